@@ -1,0 +1,3 @@
+from camcam.cli import main
+
+raise SystemExit(main())

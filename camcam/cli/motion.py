@@ -1,0 +1,71 @@
+"""``camcam motion SPEC -o DIR``: the motion program as a table, a plot and a summary."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from camcam.cli.output import print_json, warn
+from camcam.export.files import OutputSet
+from camcam.export.motion_table import motion_csv
+from camcam.motion.program import MotionProgram
+from camcam.plots.svaj import svaj_png
+from camcam.spec import load_spec
+
+__all__ = ["register", "motion_summary", "motion_outputs"]
+
+
+def register(sub) -> None:
+    p = sub.add_parser("motion", help="tabulate and plot a spec's motion program")
+    p.add_argument("spec", help="spec file (TOML)")
+    p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
+    p.add_argument("--step", type=float, default=0.5, help="table step in degrees (default 0.5)")
+    p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
+    p.set_defaults(func=run)
+
+
+def motion_summary(program: MotionProgram) -> dict:
+    """Extremes of s, v, a, j with the cam angles where they occur, and the joins."""
+    names = ["lift", "velocity", "acceleration", "jerk"]
+    out = {"rpm": program.rpm, "units": dict(zip(names, program.units)), "extremes": {}}
+    for k, n in enumerate(names):
+        lo, hi = program.extremes(k)
+        out["extremes"][n] = {"min": lo.value, "min_at_deg": lo.angle_deg, "max": hi.value, "max_at_deg": hi.angle_deg}
+    out["joins"] = [
+        {"angle_deg": j.angle_deg, "quantity": {1: "velocity", 2: "acceleration"}[j.order], "jump": j.jump, "unit": j.unit}
+        for j in program.joins
+    ]
+    return out
+
+
+def motion_outputs(out: OutputSet, name: str, program: MotionProgram, step_deg: float) -> None:
+    out.add(f"{name}-motion.csv", motion_csv(program, step_deg))
+    out.add(f"{name}-svaj.png", svaj_png(program, title=f"{name}: motion at {program.rpm:g} rpm"))
+
+
+def print_summary(summary: dict) -> None:
+    for n, e in summary["extremes"].items():
+        u = summary["units"][n]
+        print(f"{n:13s} min {e['min']:+12.6g} {u:7s} at {e['min_at_deg']:7.2f}°   max {e['max']:+12.6g} {u:7s} at {e['max_at_deg']:7.2f}°")
+
+
+def run(args) -> int:
+    from camcam.errors import SpecError
+
+    if not args.step > 0 or args.step > 360:
+        raise SpecError("--step", f"expected a number of degrees > 0 and <= 360, got {args.step:g}")
+    spec = load_spec(args.spec)
+    program = spec.need("motion", "motion").program()
+    for j in program.joins:
+        warn(j.describe())
+    out = OutputSet(Path(args.output))
+    motion_outputs(out, spec.name, program, args.step)
+    written = out.commit()
+    summary = motion_summary(program)
+    summary["files"] = [str(p) for p in written]
+    if args.json:
+        print_json(summary)
+    else:
+        print_summary(summary)
+        for p in written:
+            print(f"wrote {p}")
+    return 0

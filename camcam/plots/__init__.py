@@ -1,0 +1,1 @@
+"""Plots rendered to PNG bytes (matplotlib, Agg, deterministic metadata)."""

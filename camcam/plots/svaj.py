@@ -1,0 +1,35 @@
+"""The SVAJ plot: displacement, velocity, acceleration and jerk over the revolution."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from camcam.motion.program import MotionProgram
+from camcam.plots.render import plt, png_bytes
+
+__all__ = ["svaj_png"]
+
+
+def svaj_png(program: MotionProgram, title: str = "", points_per_degree: int = 4) -> bytes:
+    """Four stacked axes with units; segment boundaries dashed; jumps drawn as jumps."""
+    fig, axes = plt.subplots(4, 1, figsize=(8, 8.5), sharex=True)
+    names = ["displacement", "velocity", "acceleration", "jerk"]
+    for seg in program.segments:
+        n = max(2, int((seg.end_deg - seg.start_deg) * points_per_degree) + 1)
+        T = np.linspace(0.0, 1.0, n)
+        ang = seg.start_deg + T * (seg.end_deg - seg.start_deg)
+        for k, ax in enumerate(axes):
+            val = program.to_physical(seg.derivative(T, k) + (seg.base if k == 0 else 0.0), k)
+            ax.plot(ang, val, color="C0", lw=1.4)
+    for k, ax in enumerate(axes):
+        ax.set_ylabel(f"{names[k]}\n[{program.units[k]}]")
+        ax.grid(True, alpha=0.3)
+        for seg in program.segments[1:]:
+            ax.axvline(seg.start_deg, color="0.5", ls="--", lw=0.8)
+        ax.axhline(0.0, color="0.3", lw=0.6)
+    axes[-1].set_xlabel("cam angle [deg]")
+    axes[-1].set_xlim(0, 360)
+    axes[-1].set_xticks(np.arange(0, 361, 30))
+    fig.suptitle(title or f"Motion program at {program.rpm:g} rpm")
+    fig.tight_layout()
+    return png_bytes(fig)
