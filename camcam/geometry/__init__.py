@@ -1,0 +1,1 @@
+"""Geometry stage: pitch curves, profiles and cams as exact parametric curves."""
