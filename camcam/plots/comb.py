@@ -20,17 +20,18 @@ def _comb(ax, x, y, kappa, scale, color):
 
 
 def lift_comb_png(before, after, x0: float, x1: float, unit: str = "mm", title: str = "", step_deg: float = 0.5) -> bytes:
-    """Combs of interpolants ``before`` and ``after`` (``f(x, nu)``) over [x0, x1], same scale, and κ(α)."""
+    """Combs of interpolants ``before`` and ``after`` (``f(x, nu)``) over [x0, x1], and κ(α) of both."""
     x = np.arange(x0, x1 + 1e-9, step_deg)
     yb, ya = before(x), after(x)
     kb, ka = lift_curvature(before, x), lift_curvature(after, x)
     span = max(np.ptp(yb), 1e-9)
-    scale = 0.35 * span / max(np.max(np.abs(kb)), np.max(np.abs(ka)), 1e-300)
+    sb = 0.35 * span / max(np.max(np.abs(kb)), 1e-300)
+    sa = 0.35 * span / max(np.max(np.abs(ka)), 1e-300)
     fig, axes = plt.subplots(3, 1, figsize=(9, 9), sharex=True)
-    _comb(axes[0], x, yb, kb, scale, "C3")
-    axes[0].set_title("before fairing")
-    _comb(axes[1], x, ya, ka, scale, "C2")
-    axes[1].set_title("after fairing (same comb scale)")
+    _comb(axes[0], x, yb, kb, sb, "C3")
+    axes[0].set_title(f"before fairing: max |κ| {np.max(np.abs(kb)):.3g}")
+    _comb(axes[1], x, ya, ka, sa, "C2")
+    axes[1].set_title(f"after fairing: max |κ| {np.max(np.abs(ka)):.3g} (comb magnified ×{sa / sb:.3g} against the one above)")
     for ax in axes[:2]:
         ax.set_ylabel(f"lift [{unit}]")
         ax.grid(True, alpha=0.3)
