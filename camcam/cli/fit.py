@@ -33,7 +33,7 @@ def register(sub) -> None:
     p.add_argument("--xi", type=float, default=DEFAULT_XI, help=f"mid-point stop: largest correction per round, mm (default {DEFAULT_XI:g})")
     p.add_argument("--method", choices=METHODS, default=DEFAULT_METHOD, help=f"fairing method (default {DEFAULT_METHOD})")
     p.add_argument("--fit", choices=FITS, default=None, help="interpolation (default periodic for a full revolution, else clamped)")
-    p.add_argument("--threshold", type=float, default=FairingOptions.threshold, help="bad point: |deviation| > threshold × noise scale (default 6)")
+    p.add_argument("--threshold", type=float, default=FairingOptions.threshold, help="bad point: |deviation| > threshold × noise scale (default 5)")
     p.add_argument("--min-size", type=float, default=FairingOptions.min_size, help="bad point: |deviation| > this, mm (default 0.001)")
     p.add_argument("--no-bad-points", action="store_true", help="do not look for bad points")
     p.set_defaults(func=run)

@@ -14,8 +14,8 @@ The rule (leave-one-out against the neighbours' cubic, robust noise scale):
    spacing).  σ is estimated robustly as σ̂ = 1.4826·median|r_i/g_i| (the MAD
    scale; a few spikes do not move it), floored at the rounding noise
    resolution/√12 of the printed lifts.
-3. A point is bad when |r_i| > k·g_i·σ̂ (k = ``threshold``, default 6: a
-   6-sigma event is a one-in-10⁹ chance per point for Gaussian noise) *and*
+3. A point is bad when |r_i| > k·g_i·σ̂ (k = ``threshold``, default 5: a
+   5-sigma event has a chance of 6·10⁻⁷ per point, 2·10⁻⁴ per 360-point table, for Gaussian noise) *and*
    |r_i| > ``min_size`` (default 0.001 mm: below a micrometre nothing is
    worth removing).
 4. The worst bad point is removed and steps 1–3 are repeated on the rest (a
@@ -36,7 +36,7 @@ from camcam.lifttable.table import LiftTable
 
 __all__ = ["BadPoint", "BadPointReport", "find_bad_points", "DEFAULT_THRESHOLD", "DEFAULT_MIN_SIZE"]
 
-DEFAULT_THRESHOLD = 6.0
+DEFAULT_THRESHOLD = 5.0
 DEFAULT_MIN_SIZE = 1e-3
 MAD_TO_SIGMA = 1.4826
 

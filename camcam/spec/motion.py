@@ -27,7 +27,7 @@ Instead of ``segments`` the motion may come from a full-revolution lift table
     method = "smoothing"      # or "mid-point"
     xi = 1e-4                 # mid-point stop: largest correction per round, mm
     bad_points = true
-    threshold = 6.0           # bad point: |deviation| > threshold × its noise scale
+    threshold = 5.0           # bad point: |deviation| > threshold × its noise scale
     min_size = 0.001          # … and > min_size mm
 
 A rise-only table is a segment law: ``{ law = "lift-table", table = "rise.csv",

@@ -3,7 +3,7 @@
 Truth: the demo program (modified-sine rise of 10 mm over 0–120°, dwell to
 180°, cycloidal return over 180–300°, dwell to 360°), sampled at every whole
 degree, plus Gaussian noise of σ = 3 µm (numpy default_rng(20240611)) and
-four spikes; lifts written with 5 decimals (0.01 µm).  Run from the repository
+four spikes of 35–50 µm; lifts written with 5 decimals (0.01 µm).  Run from the repository
 root: ``PYTHONPATH=. python samples/lift/make_noisy_lift.py``.
 """
 
@@ -21,7 +21,7 @@ from camcam.motion.standard import dwell
 SEED = 20240611
 NOISE_MM = 0.003
 #: (angle in degrees, spike in mm)
-SPIKES = ((47.0, 0.040), (151.0, -0.030), (233.0, 0.050), (329.0, -0.035))
+SPIKES = ((47.0, 0.040), (151.0, -0.035), (233.0, 0.050), (329.0, -0.035))
 
 
 def truth_program(rise_mm: float = 10.0) -> MotionProgram:
