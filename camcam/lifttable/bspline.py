@@ -94,6 +94,13 @@ class ChordBSpline:
                 out[m] = self.numerators[nu - 1][i](v[m]) / self.xs[i].deriv()(v[m]) ** (2 * nu - 1)
         return out.reshape(x.shape)
 
+    def piece_value(self, nu: int, i: int, v) -> np.ndarray:
+        """Derivative ``nu`` on piece i at local parameters v (one-sided at the piece ends)."""
+        v = np.asarray(v, dtype=float)
+        if nu == 0:
+            return self.ys[i](v)
+        return self.numerators[nu - 1][i](v) / self.xs[i].deriv()(v) ** (2 * nu - 1)
+
     def stationary(self, nu: int, i: int) -> tuple[np.ndarray, np.ndarray]:
         """Angles inside piece i where derivative ``nu`` (0..3) is stationary, and its values there."""
         L = self.lengths[i]
@@ -109,8 +116,7 @@ class ChordBSpline:
         r = np.roots(coef[::-1])
         r = r[np.abs(r.imag) <= 1e-9 * max(1.0, L)].real
         r = r[(r > 1e-13 * L) & (r < L * (1 - 1e-13))]
-        ang = self.xs[i](r)
-        return ang, self(ang, nu)
+        return self.xs[i](r), self.piece_value(nu, i, r)
 
 
 def chord_bspline(x, y) -> ChordBSpline:

@@ -62,7 +62,8 @@ class ChordBSplineLaw(MotionLaw):
             ends = np.array([xk[i], xk[i + 1]])
             ang, val = self.spline.stationary(order, i)
             allx = np.concatenate([ends, ang])
-            vals = np.concatenate([self.spline(ends, order), val])
+            end_vals = self.spline.piece_value(order, i, [0.0, self.spline.lengths[i]])  # one-sided at the knots
+            vals = np.concatenate([end_vals, val])
             for xa, v in zip(allx, vals):
                 cands.append((float(k * v - (self.offset / self.scale if order == 0 else 0.0)), float((xa - self.a) / self.span)))
         if rest_ends:  # V or A not zero at an end: a jump from or to rest
