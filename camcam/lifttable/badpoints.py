@@ -114,7 +114,7 @@ def find_bad_points(
     --------
     >>> import numpy as np
     >>> ang = np.arange(0.0, 361.0, 1.0)
-    >>> h = 5 - 5 * np.cos(np.radians(ang)) + 0.002 * np.sin(7.3 * ang)  # smooth + "noise"
+    >>> h = 5 - 5 * np.cos(np.radians(ang)) + np.random.default_rng(0).normal(0, 0.002, ang.size)
     >>> h[100] += 0.05; h[-1] = h[0]
     >>> rep = find_bad_points(LiftTable(tuple(ang), tuple(h)))
     >>> rep.angles_deg
