@@ -24,7 +24,7 @@ from camcam.errors import GeometryError
 from camcam.geometry.extrema import extreme, negative_ranges
 from camcam.geometry.jet import hypot
 
-__all__ = ["AngleValue", "CurvatureSummary", "FaceWidth", "DiscAnalysis", "analyse", "convex_curvature", "flat_radius", "check_undercut",
+__all__ = ["AngleValue", "CurvatureSummary", "FaceWidth", "DiscAnalysis", "analyse", "max_pressure_angle", "undercut_margin", "convex_curvature", "flat_radius", "check_undercut",
            "smallest_base_radius_without_undercut"]
 
 
@@ -119,16 +119,21 @@ def curvature_summary(curve, sigma: int, breaks) -> CurvatureSummary:
     return CurvatureSummary(rad, _deg(top.t), spans, low)
 
 
-def analyse(cam) -> DiscAnalysis:
-    """All analyses of a :class:`DiscCam` or :class:`GrooveCam`."""
-    br = cam.breaks
+def max_pressure_angle(cam) -> AngleValue:
+    """Largest |pressure angle| in degrees and the program angle where it occurs."""
 
     def pa(t, i):
         j = cam.pressure_angle(t, 1, i)
         return j.d[0], j.d[1]
 
-    p = extreme(pa, br, "absmax")
-    pressure = AngleValue(abs(math.degrees(p.value)), _deg(p.t))
+    p = extreme(pa, cam.breaks, "absmax")
+    return AngleValue(abs(math.degrees(p.value)), _deg(p.t))
+
+
+def analyse(cam) -> DiscAnalysis:
+    """All analyses of a :class:`DiscCam` or :class:`GrooveCam`."""
+    br = cam.breaks
+    pressure = max_pressure_angle(cam)
     pitch = curvature_summary(cam.pitch, cam.sigma, br) if cam.pitch is not None else None
     profile = curvature_summary(cam.profile, cam.sigma, br) if cam.pitch is not None else flat_summary(cam)
     face = None
@@ -144,7 +149,7 @@ def analyse(cam) -> DiscAnalysis:
 
 
 # -- undercut -----------------------------------------------------------------
-def _margin(cam) -> tuple[float, float]:
+def undercut_margin(cam) -> tuple[float, float]:
     """(margin, angle): margin ≤ 0 means undercut or cusp at that program angle (rad)."""
     br = cam.breaks
     sg = cam.sigma
@@ -169,7 +174,7 @@ def smallest_base_radius_without_undercut(cam) -> float:
 
     def m(r):
         try:
-            return _margin(_with_base(cam, r))[0]
+            return undercut_margin(_with_base(cam, r))[0]
         except GeometryError:
             return -1.0
 
@@ -184,7 +189,7 @@ def smallest_base_radius_without_undercut(cam) -> float:
 
 def check_undercut(cam) -> None:
     """Raise :class:`GeometryError` if the profile (or a groove flank) has an undercut or a cusp."""
-    margin, t = _margin(cam)
+    margin, t = undercut_margin(cam)
     if margin > 0:
         return
     fix = smallest_base_radius_without_undercut(cam)
