@@ -25,7 +25,7 @@ from camcam.geometry.extrema import extreme, negative_ranges
 from camcam.geometry.jet import hypot
 
 __all__ = ["AngleValue", "CurvatureSummary", "FaceWidth", "DiscAnalysis", "analyse", "max_pressure_angle", "undercut_margin", "convex_curvature", "flat_radius", "check_undercut",
-           "smallest_base_radius_without_undercut"]
+           "smallest_base_radius_without_undercut", "analyse_cylindrical"]
 
 
 @dataclass(frozen=True)
@@ -205,3 +205,27 @@ def check_undercut(cam) -> None:
         f"cusp at cam angle {ang:.2f}°: the flat-faced profile's radius of curvature there is "
         f"{margin:.3f} mm (it must stay positive); cam.base_radius >= {fix:.2f} mm avoids it"
     )
+
+
+# -- cylindrical cams ----------------------------------------------------------
+def analyse_cylindrical(cam) -> DiscAnalysis:
+    """Pressure angle at the groove bottom (its largest) and the developed groove's curvature there.
+
+    ``profile.min_radius_mm`` is the smallest radius of curvature of the developed
+    flanks at the groove bottom on their convex side: that of the developed centre
+    line minus the roller radius.  Raises :class:`GeometryError` if the roller
+    does not fit the groove's bends (centre-line radius ≤ roller radius).
+    """
+    br = cam.breaks
+    pressure = max_pressure_angle(cam)
+    centre = cam.developed_centre(cam.bottom_radius)
+    f = lambda t, i: convex_curvature(centre, 1, t, i)  # noqa: E731
+    c = extreme(f, br, "absmax")
+    rho = 1.0 / abs(c.value) if c.value else math.inf
+    if rho <= cam.roller_radius:
+        raise GeometryError(
+            f"undercut at cam angle {_deg(c.t):.2f}°: the developed groove centre line bends with radius {rho:.3f} mm "
+            f"at the groove bottom, not larger than the roller radius {cam.roller_radius:g} mm; use a larger cam.base_radius"
+        )
+    summary = CurvatureSummary(rho - cam.roller_radius, _deg(c.t), (), None)
+    return DiscAnalysis(pressure, CurvatureSummary(rho, _deg(c.t), (), None), summary, None)
