@@ -54,7 +54,7 @@ def run(args) -> int:
     if not args.step > 0 or args.step > 360:
         raise SpecError("--step", f"expected a number of degrees > 0 and <= 360, got {args.step:g}")
     spec = load_spec(args.spec)
-    program = spec.need("motion", "motion").program()
+    program = spec.need("motion", "motion").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
     out = OutputSet(Path(args.output))

@@ -1,7 +1,8 @@
 """``camcam run SPEC -o DIR``: the whole flow for one spec.
 
-Today: the motion stage (table, SVAJ plot, summary).  Later stages add the
-geometry, the NC program, the drawing and the report to the same output set.
+Motion stage (table, SVAJ plot, summary); with ``[cam]`` and ``[follower]``
+tables also the cam geometry: ``<name>.stl``, ``<name>-profile.png`` and
+``<name>-report.json``.  Later stages add the NC program and the drawing.
 """
 
 from __future__ import annotations
@@ -9,7 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from camcam.cli.motion import motion_outputs, motion_summary, print_summary
-from camcam.cli.output import print_json, warn
+from camcam.cli.output import print_json, to_json, warn
 from camcam.export.files import OutputSet
 from camcam.spec import load_spec
 
@@ -26,17 +27,34 @@ def register(sub) -> None:
 
 def run(args) -> int:
     spec = load_spec(args.spec)
-    program = spec.need("motion", "run").program()
+    program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
     out = OutputSet(Path(args.output))
     motion_outputs(out, spec.name, program, 0.5)
+    summary = {"name": spec.name, "motion": motion_summary(program)}
+    if spec.cam is not None:
+        from camcam.export.cam_report import cam_report
+        from camcam.export.stl import stl_bytes
+        from camcam.geometry.build import build_cam
+        from camcam.plots.profile import cam_png
+
+        built = build_cam(spec.cam, spec.follower, program)
+        report = cam_report(built)
+        out.add(f"{spec.name}.stl", stl_bytes(built.mesh))
+        out.add(f"{spec.name}-profile.png", cam_png(built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower"))
+        out.add(f"{spec.name}-report.json", to_json(report) + "\n")
+        summary["cam"] = report
     written = out.commit()
-    summary = {"name": spec.name, "motion": motion_summary(program), "files": [str(p) for p in written]}
+    summary["files"] = [str(p) for p in written]
     if args.json:
         print_json(summary)
     else:
         print_summary(summary["motion"])
+        if "cam" in summary:
+            c = summary["cam"]
+            print(f"max pressure angle {c['max_pressure_angle_deg']:.4f}° at {c['max_pressure_angle_at_deg']:.2f}°; "
+                  f"min radius of curvature {c['min_curvature_radius_mm']:.4f} mm at {c['min_curvature_radius_at_deg']:.2f}°")
         for p in written:
             print(f"wrote {p}")
     return 0

@@ -12,6 +12,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from camcam.errors import SpecError
+from camcam.spec.cam import CamSpec, read_cam
+from camcam.spec.follower import FollowerSpec, read_follower
 from camcam.spec.motion import MotionSpec, read_motion
 from camcam.spec.reader import Table
 
@@ -27,6 +29,13 @@ class Spec:
     name: str
     source: Path
     motion: MotionSpec | None
+    cam: CamSpec | None = None
+    follower: FollowerSpec | None = None
+
+    @property
+    def unit(self) -> str:
+        """Motion unit: degrees for an oscillating follower, else mm."""
+        return self.follower.unit if self.follower is not None else "mm"
 
     def need(self, table: str, command: str):
         """The table ``table``, or a :class:`SpecError` saying ``command`` needs it."""
@@ -42,13 +51,22 @@ def parse_spec(data: dict, source: Path) -> Spec:
     name = root.string("name", source.stem)
     root.check("name", bool(_NAME.match(name)), f'"{name}" must be 1–64 letters, digits, "_", "-" or "." (it names the output files)')
     base = source.parent
-    unit = "mm"
+    cam_t = root.table("cam", None)
+    cam = read_cam(cam_t) if cam_t is not None else None
+    fol_t = root.table("follower", None)
+    follower = read_follower(fol_t, cam.kind if cam else None) if fol_t is not None else None
+    if cam is not None and follower is None:
+        raise SpecError("follower", "missing; a [cam] needs a [follower] table")
+    if follower is not None and cam is not None:
+        if cam.kind != "disc" and not follower.is_roller:
+            raise SpecError("follower.kind", f'"{follower.kind}": a {cam.kind} cam needs a roller follower')
+    unit = follower.unit if follower is not None else "mm"
     motion = root.table("motion", None)
     motion_spec = read_motion(motion, base, unit) if motion is not None else None
     if motion is not None:
         motion.done()
     root.done()
-    return Spec(name, source, motion_spec)
+    return Spec(name, source, motion_spec, cam, follower)
 
 
 def load_spec(path: str | Path) -> Spec:

@@ -1,0 +1,63 @@
+"""From the validated ``[cam]`` and ``[follower]`` tables to a cam, its analysis and its mesh."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import trimesh
+
+from camcam.geometry.analysis import DiscAnalysis, analyse, analyse_cylindrical, check_undercut
+from camcam.geometry.cylindrical import BarrelOscillatingRoller, BarrelTranslatingRoller, CylindricalCam
+from camcam.geometry.disc import DiscCam
+from camcam.geometry.followers import OscillatingFlat, OscillatingRoller, TranslatingFlat, TranslatingRoller
+from camcam.geometry.groove import GrooveCam
+from camcam.geometry.mesh import cylinder_mesh, disc_mesh, groove_mesh, ring_points
+from camcam.motion.program import MotionProgram
+from camcam.spec.cam import CamSpec
+from camcam.spec.follower import FollowerSpec
+
+__all__ = ["BuiltCam", "build_cam"]
+
+
+@dataclass(frozen=True)
+class BuiltCam:
+    """The cam value object, its analysis and its watertight mesh."""
+
+    cam: DiscCam | GrooveCam | CylindricalCam
+    analysis: DiscAnalysis
+    mesh: trimesh.Trimesh
+    spec: CamSpec
+
+
+def _follower(f: FollowerSpec):
+    if f.kind == "translating-roller":
+        return TranslatingRoller(f.roller_radius, f.offset)
+    if f.kind == "oscillating-roller":
+        return OscillatingRoller(f.roller_radius, f.pivot_distance, f.arm_length)
+    if f.kind == "translating-flat":
+        return TranslatingFlat(f.offset)
+    return OscillatingFlat(f.pivot_distance)
+
+
+def build_cam(c: CamSpec, f: FollowerSpec, program: MotionProgram) -> BuiltCam:
+    """Build, check (undercut raises :class:`GeometryError`), analyse and mesh the cam."""
+    if c.kind == "cylindrical":
+        fol = (
+            BarrelTranslatingRoller(f.roller_radius)
+            if f.kind == "translating-roller"
+            else BarrelOscillatingRoller(f.roller_radius, f.pivot_distance, f.arm_length)
+        )
+        cam = CylindricalCam(fol, program, c.base_radius, c.length, c.groove_depth, c.rotation, c.bore)
+        return BuiltCam(cam, analyse_cylindrical(cam), cylinder_mesh(cam), c)
+    disc = DiscCam(_follower(f), program, c.base_radius, c.rotation)
+    if c.kind == "disc":
+        check_undercut(disc)
+        return BuiltCam(disc, analyse(disc), disc_mesh(disc, c.thickness, c.bore), c)
+    cam = GrooveCam(disc, c.groove_depth)
+    check_undercut(cam)
+    outer = c.outer_radius
+    if outer is None:
+        _, pts = ring_points(cam.flanks[1])
+        outer = float(np.ceil(np.hypot(pts[:, 0], pts[:, 1]).max() + cam.roller_radius))
+    return BuiltCam(cam, analyse(cam), groove_mesh(cam, c.thickness, c.bore, outer), c)

@@ -1,0 +1,261 @@
+"""Cylindrical (barrel) cams: a roller runs in a groove around a cylinder.
+
+Frame (DESIGN.md): cam axis along +X, the cylinder spans x ∈ [0, length];
+the cam turns about +X in direction ``rotation`` (σ = +1 "ccw" seen from +X).
+The follower sits above the cam (+Z); its roller axis is radial at the
+follower's start position, so a radial end mill of the roller's radius cuts
+the groove the roller needs.  Cam-frame point of a fixed point p at program
+angle θ: p turned by −σθ about X.
+
+Followers:
+
+* :class:`BarrelTranslatingRoller` – roller axis along Z at x = x₀ + s(θ),
+  the lift centred on the cylinder's length.
+* :class:`BarrelOscillatingRoller` – seed 002: the arm pivots about an axis
+  parallel to Y at (length/2, 0, d), d = ``pivot_distance``; the follower
+  angle is θf = s(θ) − (s_max + s_min)/2 (swing centred on the perpendicular);
+  the roller axis lies along the arm.  The roller cross-section at arm distance
+  ℓ is at distance d − ℓ cos θf from the cam axis; "radius ρ" below means the
+  cross-section ℓ = d − ρ (radius ρ at θf = 0).  Seed 002's r is such an ℓ.
+
+Contact (any depth).  A roller cross-section with centre C, normal to the
+roller axis, spanned by the motion direction n and e_Y: the contact is
+p = C ± r_r·m, m = cos α·n + sin α·e_Y, where m must be normal to the
+relative velocity of cam and follower.  That gives
+
+    tan α = −σ·v / R,   v = s′ (translating) or θf′·ℓ (oscillating),
+                        R = ρ or d − ℓ cos θf (distance of C from the axis),
+
+and the pressure angle is φ = atan2(σv, R) (the angle between m and n).
+This is seed 002's eq. 17 (tan φz = r ω_f / v_c, v_c from eq. 16).  Seed
+002's eqs. 10–12 give the same point in its frame (cam axis Z, pivot on +Y,
+so its (x, y, z) is our (Y, Z, X) up to the pivot position), with one error:
+eq. 11 has (d − r)·cos θf where the arm geometry (and the paper's own eq. 16,
+v_c = (d − r cos θf)·ω_c) require d − r·cos θf; both agree only at θf = 0.
+We use d − r·cos θf.
+
+Flank 0 is the groove wall on the −X side, flank 1 on the +X side.  Each
+flank curve "at radius ρ" is the contact line on the roller cross-section ρ
+(what a radial cutter's cross-section at that depth cuts); its true distance
+from the axis is √(R² + (r_r sin α)²) ≥ R for the translating roller.
+:meth:`CylindricalCam.flank_on_surface` gives the points on the cylinder
+r = ρ exactly (solved per point), used for the mesh.
+
+The developed (unrolled) groove at radius ρ maps a point at cam-frame polar
+angle φ (about X, from +Y) and axial x to (u, x), u = ρ·σ·(π/2 − φ): the
+groove centre line is u = ρθ.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from camcam.errors import GeometryError
+from camcam.geometry.jet import Jet
+from camcam.geometry.jetcurve import JetCurve, LiftJet, SpaceCurve, program_breaks
+from camcam.motion.program import MotionProgram
+
+__all__ = ["BarrelTranslatingRoller", "BarrelOscillatingRoller", "CylindricalCam"]
+
+SIGMA = {"ccw": 1, "cw": -1}
+
+
+@dataclass(frozen=True)
+class BarrelTranslatingRoller:
+    roller_radius: float
+    kind = "translating-roller"
+    unit = "mm"
+
+
+@dataclass(frozen=True)
+class BarrelOscillatingRoller:
+    """Seed 002's follower: pivot distance d, roller radius r_r; ``arm_length`` r names the
+    cross-section of the paper's eqs. 10–12 (radius d − r); default: mid-depth of the groove."""
+
+    roller_radius: float
+    pivot_distance: float
+    arm_length: float | None = None
+    kind = "oscillating-roller"
+    unit = "deg"
+
+
+@dataclass(frozen=True)
+class CylindricalCam:
+    """A barrel cam: cylinder of radius ``base_radius`` and ``length``, groove ``groove_depth`` deep."""
+
+    follower: BarrelTranslatingRoller | BarrelOscillatingRoller
+    program: MotionProgram
+    base_radius: float
+    length: float
+    groove_depth: float
+    rotation: str = "ccw"
+    bore: float = 0.0
+    lift: LiftJet = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        f, R, h = self.follower, self.base_radius, self.groove_depth
+        if self.rotation not in SIGMA:
+            raise GeometryError(f'cam.rotation must be "ccw" or "cw", got {self.rotation!r}')
+        if self.program.unit != f.unit:
+            raise GeometryError(f"a {f.kind} follower needs a program in {f.unit}, got {self.program.unit}")
+        if not 0 < h < R:
+            raise GeometryError(f"cam.groove_depth {h:g} mm must be > 0 and smaller than the cylinder radius {R:g} mm")
+        if not 0 <= self.bore / 2 < R - h:
+            raise GeometryError(f"cam.bore {self.bore:g} mm must leave material under the groove bottom (radius {R - h:g} mm)")
+        lo, hi = self.program.extremes(0)
+        mid = 0.5 * (lo.value + hi.value)
+        scale = math.pi / 180 if f.unit == "deg" else 1.0
+        object.__setattr__(self, "lift", LiftJet(self.program, scale, mid))
+        if isinstance(f, BarrelOscillatingRoller):
+            if not f.pivot_distance > R:
+                raise GeometryError(f"follower.pivot_distance {f.pivot_distance:g} mm must exceed the cylinder radius {R:g} mm")
+            if f.arm_length is not None and not f.pivot_distance - R <= f.arm_length <= f.pivot_distance - R + h:
+                raise GeometryError(
+                    f"follower.arm_length {f.arm_length:g} mm must reach into the groove: between "
+                    f"{f.pivot_distance - R:g} and {f.pivot_distance - R + h:g} mm (pivot_distance − radius)"
+                )
+        span = self.axial_extent()
+        if span[0] < 0 or span[1] > self.length:
+            raise GeometryError(
+                f"cam.length {self.length:g} mm is too short: the groove spans x = {span[0]:.3f} … {span[1]:.3f} mm"
+            )
+
+    # -- basics -------------------------------------------------------------
+    @property
+    def sigma(self) -> int:
+        return SIGMA[self.rotation]
+
+    @property
+    def kind(self) -> str:
+        return self.follower.kind
+
+    @property
+    def roller_radius(self) -> float:
+        return self.follower.roller_radius
+
+    @property
+    def breaks(self) -> np.ndarray:
+        return program_breaks(self.program)
+
+    @property
+    def bottom_radius(self) -> float:
+        return self.base_radius - self.groove_depth
+
+    @property
+    def reference_radius(self) -> float:
+        """Radius of seed 002's cross-section (d − r), or mid-depth."""
+        f = self.follower
+        if isinstance(f, BarrelOscillatingRoller) and f.arm_length is not None:
+            return f.pivot_distance - f.arm_length
+        return self.base_radius - 0.5 * self.groove_depth
+
+    def axial_extent(self) -> tuple[float, float]:
+        """Smallest and largest x the groove reaches (both flanks, all depths), mm, from a dense view."""
+        t = np.linspace(0, 2 * math.pi, 1441)
+        xs = []
+        for rho in (self.bottom_radius, self.base_radius):
+            for side in (0, 1):
+                xs.append(self._contact(t, 0, None, rho, side)[0].value)
+        xs = np.concatenate(xs)
+        return float(xs.min()), float(xs.max())
+
+    # -- fixed-frame pieces -------------------------------------------------
+    def _axis_point(self, theta, K, piece, rho):
+        """Roller-axis point C, motion direction n, speed v along n, distance R of C from the axis."""
+        s = self.lift(theta, K + 1, piece)
+        n = s.d.shape[1]
+        one = Jet.constant(1.0, n, K)
+        rho = np.broadcast_to(np.asarray(rho, float), (n,))
+        if isinstance(self.follower, BarrelTranslatingRoller):
+            C = (s.truncate(K) + 0.5 * self.length, one * 0.0, one * rho)
+            return C, (one, one * 0.0, one * 0.0), s.derivative(), one * rho
+        d = self.follower.pivot_distance
+        ell = d - rho
+        th = s.truncate(K)
+        c, sn = th.cos(), th.sin()
+        C = (0.5 * self.length - sn * ell, one * 0.0, d - c * ell)
+        return C, (-c, one * 0.0, sn), s.derivative() * ell, d - c * ell
+
+    def _contact(self, theta, K, piece, rho, side):
+        """Fixed-frame contact point jets on flank ``side`` (0: −X wall, 1: +X wall) at radius ρ."""
+        C, nvec, v, R = self._axis_point(theta, K, piece, rho)
+        alpha = Jet.atan2(v * (-self.sigma), R)
+        ca, sa = alpha.cos(), alpha.sin()
+        m = (nvec[0] * ca, sa, nvec[2] * ca)
+        plus_side = 1 if isinstance(self.follower, BarrelTranslatingRoller) else 0
+        sign = self.roller_radius * (1.0 if side == plus_side else -1.0)
+        return tuple(C[i] + m[i] * sign for i in range(3))
+
+    def _to_cam(self, theta, p):
+        x, y, z = p
+        a = Jet.variable(theta, x.K) * (-self.sigma)
+        c, s = a.cos(), a.sin()
+        return x, c * y - s * z, s * y + c * z
+
+    # -- curves -------------------------------------------------------------
+    def _check_radius(self, rho: float) -> float:
+        if not self.bottom_radius - 1e-9 <= rho <= self.base_radius + 1e-9:
+            raise GeometryError(f"radius {rho:g} mm is outside the groove ({self.bottom_radius:g} … {self.base_radius:g} mm)")
+        return float(rho)
+
+    def centre(self, radius_mm: float) -> SpaceCurve:
+        """Groove centre curve (the roller axis) at radius ρ, cam frame."""
+        rho = self._check_radius(radius_mm)
+        return SpaceCurve(lambda t, K, piece=None: self._to_cam(t, self._axis_point(t, K, piece, rho)[0]), self.breaks)
+
+    def flank(self, index: int, radius_mm: float) -> SpaceCurve:
+        """Flank ``index`` (0: −X wall, 1: +X wall) on the roller cross-section at radius ρ, cam frame."""
+        rho = self._check_radius(radius_mm)
+        if index not in (0, 1):
+            raise ValueError(f"flank index must be 0 or 1, got {index!r}")
+        return SpaceCurve(lambda t, K, piece=None: self._to_cam(t, self._contact(t, K, piece, rho, index)), self.breaks)
+
+    def contact_point(self, theta, radius_mm: float, index: int) -> np.ndarray:
+        """Fixed-frame contact point(s) (n, 3): seed 002's eqs. 10–12 (corrected) at θc = 0."""
+        p = self._contact(np.atleast_1d(np.asarray(theta, float)), 0, None, self._check_radius(radius_mm), index)
+        return np.stack([j.value for j in p], axis=-1)
+
+    def _developed(self, theta, K, piece, rho, p):
+        delta = Jet.atan2(p[1], p[2])
+        u = (Jet.variable(theta, K) + delta * self.sigma) * rho
+        return u, p[0]
+
+    def developed_centre(self, radius_mm: float) -> JetCurve:
+        """The unrolled groove centre line at radius ρ: (u, x), u = ρθ."""
+        rho = self._check_radius(radius_mm)
+        return JetCurve(lambda t, K, piece=None: self._developed(t, K, piece, rho, self._axis_point(t, K, piece, rho)[0]),
+                        self.breaks, closed=False)
+
+    def developed_flank(self, index: int, radius_mm: float) -> JetCurve:
+        """The unrolled flank ``index`` at radius ρ: (u, x)."""
+        rho = self._check_radius(radius_mm)
+        return JetCurve(lambda t, K, piece=None: self._developed(t, K, piece, rho, self._contact(t, K, piece, rho, index)),
+                        self.breaks, closed=False)
+
+    def pressure_angle(self, theta, K: int = 0, piece: int | None = None, radius_mm: float | None = None) -> Jet:
+        """Signed pressure angle (rad) at radius ρ (default: the groove bottom, where it is largest)."""
+        rho = self.bottom_radius if radius_mm is None else self._check_radius(radius_mm)
+        _, _, v, R = self._axis_point(np.atleast_1d(np.asarray(theta, float)), K, piece, rho)
+        return Jet.atan2(v * self.sigma, R)
+
+    def flank_on_surface(self, theta, index: int, radius_mm: float | None = None, iterations: int = 60) -> np.ndarray:
+        """Cam-frame points (n, 3) of flank ``index`` lying exactly on the cylinder r = ρ (default the surface).
+
+        Solved per point by bisection over the roller cross-section (to ~1e-15 of r_r).
+        """
+        rho = self.base_radius if radius_mm is None else float(radius_mm)
+        theta = np.atleast_1d(np.asarray(theta, float))
+        lo = np.full(theta.shape, rho - 2 * self.roller_radius)
+        hi = np.full(theta.shape, rho + 2 * self.roller_radius)
+        for _ in range(iterations):
+            mid = 0.5 * (lo + hi)
+            p = self._contact(theta, 0, None, mid, index)
+            r = np.hypot(p[1].value, p[2].value)
+            outside = r > rho
+            hi = np.where(outside, mid, hi)
+            lo = np.where(outside, lo, mid)
+        p = self._to_cam(theta, self._contact(theta, 0, None, 0.5 * (lo + hi), index))
+        return np.stack([j.value for j in p], axis=-1)

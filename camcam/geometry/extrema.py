@@ -1,0 +1,82 @@
+"""Extremes and sign ranges of functions of the cam angle, per analytic piece.
+
+Within a piece (between two motion-segment boundaries) every cam quantity is
+analytic.  Its stationary points are the roots of its exact derivative: a
+sample of the derivative only *brackets* them, ``scipy.optimize.brentq``
+finds them to 1e-13 rad.  Piece ends are candidates too, evaluated one-sided.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+from scipy.optimize import brentq
+
+__all__ = ["Candidate", "stationary_candidates", "negative_ranges", "extreme"]
+
+#: Samples per piece used to bracket roots; the roots themselves come from brentq.
+BRACKETS_PER_PIECE = 48
+
+#: brentq tolerance on the cam angle, rad.
+ROOT_XTOL = 1e-13
+
+PieceFunc = Callable[[np.ndarray, int], tuple[np.ndarray, np.ndarray]]
+
+
+@dataclass(frozen=True)
+class Candidate:
+    t: float
+    value: float
+    piece: int
+
+
+def _roots(g: Callable[[np.ndarray], np.ndarray], a: float, b: float) -> list[float]:
+    ts = np.linspace(a, b, BRACKETS_PER_PIECE + 1)
+    vs = g(ts)
+    out = []
+    for i in range(len(ts) - 1):
+        if vs[i] == 0.0 and 0 < i:
+            out.append(float(ts[i]))
+        elif vs[i] * vs[i + 1] < 0:
+            out.append(brentq(lambda u: float(g(np.array([u]))[0]), ts[i], ts[i + 1], xtol=ROOT_XTOL))
+    return out
+
+
+def stationary_candidates(f: PieceFunc, breaks: np.ndarray) -> list[Candidate]:
+    """Piece ends and roots of f′ in every piece; ``f(t, piece)`` → (value, derivative)."""
+    out = []
+    for i, (a, b) in enumerate(zip(breaks, breaks[1:])):
+        ts = [a, b, *_roots(lambda t: f(t, i)[1], a, b)]
+        vals = f(np.array(ts), i)[0]
+        out += [Candidate(float(t), float(v), i) for t, v in zip(ts, vals)]
+    return out
+
+
+def extreme(f: PieceFunc, breaks: np.ndarray, kind: str) -> Candidate:
+    """The ``"max"``, ``"min"`` or ``"absmax"`` of f over the revolution (first angle on ties)."""
+    cands = stationary_candidates(f, breaks)
+    key = {"max": lambda c: c.value, "min": lambda c: -c.value, "absmax": lambda c: abs(c.value)}[kind]
+    best = max(key(c) for c in cands)
+    return min((c for c in cands if key(c) >= best - 1e-12 * max(1.0, abs(best))), key=lambda c: c.t)
+
+
+def negative_ranges(f: Callable[[np.ndarray, int], np.ndarray], breaks: np.ndarray) -> list[tuple[float, float]]:
+    """Parameter ranges where f < 0 (roots by brentq per piece), merged across breaks and 2π."""
+    spans: list[list[float]] = []
+    for i, (a, b) in enumerate(zip(breaks, breaks[1:])):
+        g = lambda t, i=i: f(t, i)  # noqa: E731
+        edges = [a, *_roots(g, a, b), b]
+        for lo, hi in zip(edges, edges[1:]):
+            if hi - lo <= 0:
+                continue
+            if float(g(np.array([0.5 * (lo + hi)]))[0]) < 0:
+                if spans and abs(spans[-1][1] - lo) < 1e-12:
+                    spans[-1][1] = hi
+                else:
+                    spans.append([lo, hi])
+    if len(spans) > 1 and abs(spans[0][0] - breaks[0]) < 1e-12 and abs(spans[-1][1] - breaks[-1]) < 1e-12:
+        spans[0][0] = spans.pop()[0] - 2 * math.pi
+    return [(lo, hi) for lo, hi in spans]

@@ -1,0 +1,103 @@
+"""Curves of the cam angle built from jets: the motion program as a jet, and
+planar / space curves whose ``evaluate(t, order)`` reads the jet's derivative.
+
+Every cam curve here is parameterised by the program cam angle θ (radians,
+0…2π), closed, with ``breaks`` at the motion segment boundaries.  A curve can
+also be evaluated on one analytic piece (``piece=i``) so that analyses see the
+one-sided values at a segment boundary where an acceleration jumps.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from camcam.geometry.jet import MAX_ORDER, Jet
+from camcam.motion.program import MotionProgram
+
+__all__ = ["LiftJet", "JetCurve", "SpaceCurve", "program_breaks"]
+
+
+def program_breaks(program: MotionProgram) -> np.ndarray:
+    """Segment boundaries in radians, 0 and 2π included."""
+    edges = [0.0] + [math.radians(s.end_deg) for s in program.segments[:-1]] + [2 * math.pi]
+    return np.array(edges)
+
+
+@dataclass(frozen=True)
+class LiftJet:
+    """The follower displacement as a jet: ``scale·(s(θ) − shift)``.
+
+    ``scale`` = 1 keeps mm; ``math.pi/180`` turns an oscillating program's
+    degrees into radians.  ``piece`` evaluates segment ``piece``'s law at
+    (θ − start)/span without wrapping or clipping (one-sided at its ends).
+    """
+
+    program: MotionProgram
+    scale: float = 1.0
+    shift: float = 0.0
+
+    def __call__(self, theta, K: int, piece: int | None = None) -> Jet:
+        if K > MAX_ORDER:
+            raise ValueError(f"the motion program gives lift derivatives up to order {MAX_ORDER}, asked {K}")
+        theta = np.atleast_1d(np.asarray(theta, dtype=float))
+        if piece is None:
+            rows = [self.program.lift(theta, k) for k in range(K + 1)]
+        else:
+            seg = self.program.segments[piece]
+            T = (np.degrees(theta) - seg.start_deg) / (seg.end_deg - seg.start_deg)
+            rows = [seg.derivative(T, k) + (seg.base if k == 0 else 0.0) for k in range(K + 1)]
+        rows[0] = rows[0] - self.shift
+        return Jet(np.array(rows) * self.scale)
+
+
+JetFunc = Callable[[np.ndarray, int, "int | None"], tuple[Jet, ...]]
+
+
+@dataclass(frozen=True)
+class JetCurve:
+    """A closed :class:`~camcam.geometry.curve.PlanarCurve` of the cam angle from a jet function.
+
+    ``func(theta, K, piece)`` returns the (x, y) jets of order ≥ K.
+    """
+
+    func: JetFunc
+    breaks: np.ndarray
+    t_start: float = 0.0
+    t_end: float = 2 * math.pi
+    closed: bool = True
+
+    def jets(self, t, K: int, piece: int | None = None) -> tuple[Jet, ...]:
+        return self.func(np.atleast_1d(np.asarray(t, dtype=float)), K, piece)
+
+    def evaluate(self, t, order: int = 0, piece: int | None = None) -> np.ndarray:
+        if not 0 <= order <= 3:
+            raise ValueError(f"order must be 0..3, got {order!r}")
+        return np.stack([j.d[order] for j in self.jets(t, order, piece)], axis=-1)
+
+    def polyline(self, per_piece: int = 200) -> np.ndarray:
+        """A dense view: points at ``per_piece`` parameters per analytic piece, ends once."""
+        ts = np.concatenate([np.linspace(a, b, per_piece, endpoint=False) for a, b in zip(self.breaks, self.breaks[1:])])
+        return self.evaluate(ts)
+
+
+@dataclass(frozen=True)
+class SpaceCurve:
+    """A closed 3-D curve of the cam angle: ``evaluate(t, order)`` → (n, 3), order 0…3."""
+
+    func: JetFunc
+    breaks: np.ndarray
+    t_start: float = 0.0
+    t_end: float = 2 * math.pi
+    closed: bool = True
+
+    def jets(self, t, K: int, piece: int | None = None) -> tuple[Jet, ...]:
+        return self.func(np.atleast_1d(np.asarray(t, dtype=float)), K, piece)
+
+    def evaluate(self, t, order: int = 0, piece: int | None = None) -> np.ndarray:
+        if not 0 <= order <= 3:
+            raise ValueError(f"order must be 0..3, got {order!r}")
+        return np.stack([j.d[order] for j in self.jets(t, order, piece)], axis=-1)

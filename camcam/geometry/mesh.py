@@ -1,0 +1,180 @@
+"""Watertight triangle meshes of the cams (trimesh), built from exact curve points.
+
+Every surface is a band of quads between two closed rings of equally many
+points (the rings' points lie on the exact cam surfaces).  The bands of a
+solid form one cycle of rings (r0→r1→…→r0), each ring once first and once
+second in a band, so shared edges match and run opposite ways: the mesh is
+closed and consistently wound by construction; it is turned inside out if its
+volume comes out negative.
+
+* disc cam: the profile ring, extruded to ``thickness``, with a bore;
+* face-groove cam: a disc of ``outer_radius`` with the groove (between the two
+  flanks) cut ``groove_depth`` deep into the top face;
+* cylindrical cam: a cylinder with the groove cut, walls sampled on the exact
+  cylinders r = ρ between the groove bottom and the surface.
+
+A disc profile must be star-shaped about the cam centre (its polar angle
+monotone), which every practical disc cam is; otherwise :class:`GeometryError`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import trimesh
+
+from camcam.errors import GeometryError
+
+__all__ = ["disc_mesh", "groove_mesh", "cylinder_mesh", "ring_points"]
+
+#: Points per analytic piece of a curve in the mesh rings.
+POINTS_PER_PIECE = 180
+
+
+def ring_points(curve, per_piece: int = POINTS_PER_PIECE) -> tuple[np.ndarray, np.ndarray]:
+    """(parameters, points) of a closed curve: ``per_piece`` per analytic piece, the end once."""
+    br = curve.breaks
+    t = np.concatenate([np.linspace(a, b, per_piece, endpoint=False) for a, b in zip(br, br[1:])])
+    return t, curve.evaluate(t)
+
+
+def _polar(points: np.ndarray, what: str) -> np.ndarray:
+    phi = np.unwrap(np.arctan2(points[:, 1], points[:, 0]))
+    steps = np.diff(np.append(phi, phi[0] + (2 * math.pi if phi[-1] > phi[0] else -2 * math.pi)))
+    if not (np.all(steps > 0) or np.all(steps < 0)):
+        i = int(np.argmin(np.abs(steps)))
+        raise GeometryError(f"the {what} is not star-shaped about the cam centre near point {i}; cannot mesh it")
+    return phi
+
+
+def _band(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Triangles joining index-matched closed rings of vertex indices a and b."""
+    a2, b2 = np.roll(a, -1), np.roll(b, -1)
+    return np.concatenate([np.stack([a, a2, b2], 1), np.stack([a, b2, b], 1)])
+
+
+def _fan(ring: np.ndarray, centre: int, first: bool = True) -> np.ndarray:
+    """Triangles closing a ring to a centre vertex; ``first``: the ring's edges run as in ``_band(ring, ·)``."""
+    tri = np.stack([ring, np.roll(ring, -1), np.full_like(ring, centre)], 1)
+    return tri if first else tri[:, ::-1]
+
+
+class _Builder:
+    def __init__(self) -> None:
+        self.vertices: list[np.ndarray] = []
+        self.faces: list[np.ndarray] = []
+        self.count = 0
+
+    def add(self, pts: np.ndarray) -> np.ndarray:
+        pts = np.atleast_2d(pts)
+        idx = np.arange(self.count, self.count + len(pts))
+        self.vertices.append(pts)
+        self.count += len(pts)
+        return idx
+
+    def mesh(self) -> trimesh.Trimesh:
+        m = trimesh.Trimesh(np.concatenate(self.vertices), np.concatenate(self.faces), process=True)
+        if m.volume < 0:
+            m.invert()
+        if not (m.is_watertight and m.is_winding_consistent and m.volume > 0):
+            raise GeometryError("the cam mesh is not a closed solid (the groove or profile intersects itself)")
+        return m
+
+
+def _xy(points: np.ndarray, z: float) -> np.ndarray:
+    return np.column_stack([points, np.full(len(points), z)])
+
+
+def _circle(radius: float, phi: np.ndarray) -> np.ndarray:
+    return radius * np.column_stack([np.cos(phi), np.sin(phi)])
+
+
+def _annulus_prism(b: _Builder, outer: np.ndarray, inner_r: float, phi: np.ndarray, z0: float, z1: float) -> None:
+    o0, o1 = b.add(_xy(outer, z0)), b.add(_xy(outer, z1))
+    b.faces.append(_band(o0, o1))
+    if inner_r > 0:
+        i0, i1 = b.add(_xy(_circle(inner_r, phi), z0)), b.add(_xy(_circle(inner_r, phi), z1))
+        b.faces += [_band(o1, i1), _band(i1, i0), _band(i0, o0)]
+    else:
+        c0, c1 = b.add([0.0, 0.0, z0]), b.add([0.0, 0.0, z1])
+        b.faces += [_fan(o0, c0[0], first=False), _fan(o1, c1[0])]
+
+
+def disc_mesh(cam, thickness: float, bore: float, per_piece: int = POINTS_PER_PIECE) -> trimesh.Trimesh:
+    """The disc cam extruded from z = 0 to ``thickness`` with a bore of diameter ``bore``."""
+    _, pts = ring_points(cam.profile, per_piece)
+    phi = _polar(pts, "profile")
+    if bore / 2 >= np.hypot(pts[:, 0], pts[:, 1]).min():
+        raise GeometryError(f"cam.bore {bore:g} mm does not fit inside the profile")
+    b = _Builder()
+    _annulus_prism(b, pts, bore / 2, phi, 0.0, thickness)
+    return b.mesh()
+
+
+def groove_mesh(cam, thickness: float, bore: float, outer_radius: float, per_piece: int = POINTS_PER_PIECE) -> trimesh.Trimesh:
+    """A face-groove cam: disc of ``outer_radius``, groove ``cam.groove_depth`` deep in the top face."""
+    h = cam.groove_depth
+    if not h < thickness:
+        raise GeometryError(f"cam.groove_depth {h:g} mm must be smaller than the thickness {thickness:g} mm")
+    _, inner = ring_points(cam.flanks[0], per_piece)
+    _, outer = ring_points(cam.flanks[1], per_piece)
+    pi, po = _polar(inner, "inner flank"), _polar(outer, "outer flank")
+    if np.hypot(outer[:, 0], outer[:, 1]).max() >= outer_radius:
+        raise GeometryError(f"cam.outer_radius {outer_radius:g} mm does not contain the groove")
+    if bore / 2 >= np.hypot(inner[:, 0], inner[:, 1]).min():
+        raise GeometryError(f"cam.bore {bore:g} mm does not fit inside the groove's inner flank")
+    zg = thickness - h
+    b = _Builder()
+    rim = _circle(outer_radius, po)
+    c0, c1 = b.add(_xy(rim, 0.0)), b.add(_xy(rim, thickness))
+    o_g, o_t = b.add(_xy(outer, zg)), b.add(_xy(outer, thickness))
+    i_g, i_t = b.add(_xy(inner, zg)), b.add(_xy(inner, thickness))
+    b.faces += [_band(c0, c1), _band(c1, o_t), _band(o_t, o_g), _band(o_g, i_g), _band(i_g, i_t)]
+    if bore > 0:
+        core = _circle(bore / 2, pi)
+        h0, h1 = b.add(_xy(core, 0.0)), b.add(_xy(core, thickness))
+        b.faces += [_band(i_t, h1), _band(h1, h0), _band(h0, c0)]
+    else:
+        top, bot = b.add([0.0, 0.0, thickness]), b.add([0.0, 0.0, 0.0])
+        b.faces += [_fan(i_t, top[0]), _fan(c0, bot[0], first=False)]
+    return b.mesh()
+
+
+def cylinder_mesh(cam, per_piece: int = POINTS_PER_PIECE, levels: int = 6) -> trimesh.Trimesh:
+    """A :class:`~camcam.geometry.cylindrical.CylindricalCam` as a solid with its groove cut."""
+    br = cam.breaks
+    t = np.concatenate([np.linspace(a, b, per_piece, endpoint=False) for a, b in zip(br, br[1:])])
+    radii = np.linspace(cam.bottom_radius, cam.base_radius, levels + 1)
+    b = _Builder()
+    walls = []
+    for side in (0, 1):
+        rings = [b.add(cam.flank_on_surface(t, side, r)) for r in radii]
+        walls.append(rings)
+        pairs = zip(rings, rings[1:]) if side == 0 else zip(rings[1:], rings)
+        b.faces += [_band(r0, r1) for r0, r1 in pairs]
+    b.faces.append(_band(walls[1][0], walls[0][0]))  # groove bottom
+    R, L = cam.base_radius, cam.length
+    ends = []
+    for side, x in ((0, 0.0), (1, L)):
+        top = np.concatenate(b.vertices)[walls[side][-1]]
+        phi = np.unwrap(np.arctan2(top[:, 2], top[:, 1]))
+        _check_monotone(phi, side)
+        rim = b.add(np.column_stack([np.full(len(t), x), R * np.cos(phi), R * np.sin(phi)]))
+        b.faces.append(_band(walls[side][-1], rim) if side == 0 else _band(rim, walls[side][-1]))
+        if cam.bore > 0:
+            hole = b.add(np.column_stack([np.full(len(t), x), cam.bore / 2 * np.cos(phi), cam.bore / 2 * np.sin(phi)]))
+            b.faces.append(_band(rim, hole) if side == 0 else _band(hole, rim))
+            ends.append(hole)
+        else:
+            c = b.add([x, 0.0, 0.0])
+            b.faces.append(_fan(rim, c[0], first=side == 0))
+    if cam.bore > 0:
+        b.faces.append(_band(ends[0], ends[1]))
+    return b.mesh()
+
+
+def _check_monotone(phi: np.ndarray, side: int) -> None:
+    steps = np.diff(phi)
+    if not (np.all(steps > 0) or np.all(steps < 0)):
+        raise GeometryError(f"groove flank {side} folds over itself (pressure angle too large for the roller); cannot mesh it")

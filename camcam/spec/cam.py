@@ -1,0 +1,58 @@
+"""The ``[cam]`` table.
+
+```toml
+[cam]
+kind = "disc"          # "disc", "disc-groove" or "cylindrical"
+base_radius = 40.0     # disc: base circle of the profile; cylindrical: cylinder radius, mm
+thickness = 12.0       # disc kinds, mm
+bore = 12.0            # bore diameter, mm (0: none)
+rotation = "ccw"       # "ccw" or "cw" (about +Z for discs, +X for cylinders)
+groove_depth = 8.0     # disc-groove and cylindrical, mm
+outer_radius = 90.0    # disc-groove: blank radius, mm (default: groove + one roller radius of wall)
+length = 120.0         # cylindrical, mm
+```
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from camcam.spec.reader import Table
+
+__all__ = ["CamSpec", "read_cam", "CAM_KINDS"]
+
+CAM_KINDS = ("disc", "disc-groove", "cylindrical")
+
+
+@dataclass(frozen=True)
+class CamSpec:
+    kind: str
+    base_radius: float
+    bore: float = 0.0
+    rotation: str = "ccw"
+    thickness: float | None = None
+    groove_depth: float | None = None
+    outer_radius: float | None = None
+    length: float | None = None
+
+
+def read_cam(t: Table) -> CamSpec:
+    kind = t.string("kind", "disc", choices=CAM_KINDS)
+    base = t.number("base_radius", minimum=0, inclusive=False, unit="mm")
+    bore = t.number("bore", 0.0, minimum=0, unit="mm")
+    rotation = t.string("rotation", "ccw", choices=("ccw", "cw"))
+    thickness = groove = outer = length = None
+    if kind in ("disc", "disc-groove"):
+        thickness = t.number("thickness", minimum=0, inclusive=False, unit="mm")
+    if kind in ("disc-groove", "cylindrical"):
+        groove = t.number("groove_depth", minimum=0, inclusive=False, unit="mm")
+    if kind == "disc-groove":
+        outer = t.number("outer_radius", None, minimum=0, inclusive=False, unit="mm")
+        t.check("groove_depth", groove < thickness, f"{groove:g} must be smaller than thickness = {thickness:g}")
+    if kind == "cylindrical":
+        length = t.number("length", minimum=0, inclusive=False, unit="mm")
+        t.check("groove_depth", groove < base, f"{groove:g} must be smaller than base_radius = {base:g}")
+    if bore:
+        t.check("bore", bore / 2 < base - (groove or 0.0), f"{bore:g} mm leaves no material around the bore")
+    t.done()
+    return CamSpec(kind, base, bore, rotation, thickness, groove, outer, length)
