@@ -55,6 +55,9 @@ class ComplexSettings:
     max_evaluations: int = 400_000
     weight_factor: float = 10.0
     violation_tol: float = 1e-6
+    restart_scale: float = 4.0
+    restart_floor: float = 1e-4
+    patience: int = 12
 
 
 @dataclass(frozen=True)
@@ -109,7 +112,8 @@ def complex_method(
             progress(count["evals"], best_value)
         return f.terms(x)
 
-    start = x1
+    start, D = x1, s.D
+    idle = 0
     iterations = restarts = 0
     converged = False
     best_value = np.inf
@@ -118,7 +122,7 @@ def complex_method(
 
     while budget_left():
         # (a) the complex around the start point
-        X = start + s.D * rng.uniform(-0.5, 0.5, size=(M, nf))
+        X = start + D * rng.uniform(-0.5, 0.5, size=(M, nf))
         X[0] = start
         T = [terms(x) for x in X[: min(M, s.max_evaluations - count["evals"] + 1)]]
         if len(T) < M:
@@ -138,7 +142,9 @@ def complex_method(
                 if _raise_weight(weights, f.relative_violation(IC[l]), s):
                     restart = True
                 elif cycle_start - F[l] > s.eps:  # this cycle improved: look again around the best
-                    restart = True
+                    restart, idle = True, 0
+                elif idle + 1 < s.patience:  # no improvement: try a fresh complex
+                    restart, idle = True, idle + 1
                 else:
                     converged = True
                 break
@@ -174,6 +180,9 @@ def complex_method(
             break
         restarts += 1
         start = X[l].copy()
+        # Restart at the scale the complex had reached (at most D, at least D·restart_floor).
+        spread = float(np.abs(X - X[l]).max())
+        D = min(s.D, max(s.restart_scale * spread, s.D * s.restart_floor ** ((idle % 4) / 3)))
     x, ic, ir = best
     return ComplexResult(
         x=x,

@@ -13,6 +13,7 @@ from pathlib import Path
 
 from camcam.errors import SpecError
 from camcam.spec.motion import MotionSpec, read_motion
+from camcam.spec.optimize import OptimizeSpec, read_optimize
 from camcam.spec.reader import Table
 
 __all__ = ["Spec", "load_spec", "parse_spec"]
@@ -27,6 +28,7 @@ class Spec:
     name: str
     source: Path
     motion: MotionSpec | None
+    optimize: OptimizeSpec | None = None
 
     def need(self, table: str, command: str):
         """The table ``table``, or a :class:`SpecError` saying ``command`` needs it."""
@@ -47,8 +49,12 @@ def parse_spec(data: dict, source: Path) -> Spec:
     motion_spec = read_motion(motion, base, unit) if motion is not None else None
     if motion is not None:
         motion.done()
+    optimize = root.table("optimize", None)
+    optimize_spec = read_optimize(optimize) if optimize is not None else None
+    if optimize is not None:
+        optimize.done()
     root.done()
-    return Spec(name, source, motion_spec)
+    return Spec(name, source, motion_spec, optimize_spec)
 
 
 def load_spec(path: str | Path) -> Spec:
