@@ -124,8 +124,8 @@ class EvaluationFunction:
     >>> p = Problem(5, 7, True, "A", (("V", 2.0), ("J", 30.0)))
     >>> f = EvaluationFunction(p)
     >>> ic, ir = f.terms(p.space.initial_free())
-    >>> float(ic[0]) < 1e-4, round(float(ic[1]), 1), round(ir, 2)   # cycloidal-like: J ≈ 39.5
-    (True, 9.5, 6.28)
+    >>> float(ic[0]) < 1e-4, round(float(ic[1]), 1), round(ir, 2)   # cycloidal-like: J ≈ ±39.5, 9.5 over on each side
+    (True, 18.9, 6.28)
     """
 
     problem: Problem
