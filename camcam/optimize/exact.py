@@ -28,7 +28,9 @@ from camcam.optimize.extremes import piece_extremes
 
 __all__ = ["ExactResult", "InfeasibleProblem", "exact_optimum"]
 
-_ORDER = {"V": 1, "A": 2, "J": 3}
+#: HiGHS tolerances on rows scaled to O(1): 1e-10 keeps the solver's own
+#: slack below the 1e-9 relative limit check.
+_TIGHT = {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10}
 
 
 class InfeasibleProblem(ValueError):
@@ -97,14 +99,11 @@ def exact_optimum(problem: Problem, rtol: float = 1e-9, max_rounds: int = 60, pe
                 b_ub += [(lim - b) / lim, (lim + b) / lim]
         c = np.zeros(nf + 1)
         c[-1] = 1.0
-        res = linprog(
-            c,
-            A_ub=np.vstack(A_ub),
-            b_ub=np.concatenate(b_ub),
-            bounds=[(None, None)] * nf + [(0, None)],
-            method="highs-ds",
-            options={"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10},
-        )
+        A_all, b_all = np.vstack(A_ub), np.concatenate(b_ub)
+        bounds = [(None, None)] * nf + [(0, None)]
+        res = linprog(c, A_ub=A_all, b_ub=b_all, bounds=bounds, method="highs-ds", options=_TIGHT)
+        if res.status not in (0, 2):  # tight tolerances can stall HiGHS: retry with its defaults
+            res = linprog(c, A_ub=A_all, b_ub=b_all, bounds=bounds, method="highs")
         lp_iters += int(getattr(res, "nit", 0) or 0)
         if res.status == 2:
             raise InfeasibleProblem("no curve of this degree and number of segments meets the limits")
