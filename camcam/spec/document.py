@@ -15,6 +15,7 @@ from camcam.errors import SpecError
 from camcam.spec.cam import CamSpec, read_cam
 from camcam.spec.follower import FollowerSpec, read_follower
 from camcam.spec.motion import MotionSpec, read_motion
+from camcam.spec.optimize import OptimizeSpec, read_optimize
 from camcam.spec.reader import Table
 
 __all__ = ["Spec", "load_spec", "parse_spec"]
@@ -31,6 +32,7 @@ class Spec:
     motion: MotionSpec | None
     cam: CamSpec | None = None
     follower: FollowerSpec | None = None
+    optimize: OptimizeSpec | None = None
 
     @property
     def unit(self) -> str:
@@ -65,8 +67,12 @@ def parse_spec(data: dict, source: Path) -> Spec:
     motion_spec = read_motion(motion, base, unit) if motion is not None else None
     if motion is not None:
         motion.done()
+    optimize = root.table("optimize", None)
+    optimize_spec = read_optimize(optimize) if optimize is not None else None
+    if optimize is not None:
+        optimize.done()
     root.done()
-    return Spec(name, source, motion_spec, cam, follower)
+    return Spec(name, source, motion_spec, cam, follower, optimize_spec)
 
 
 def load_spec(path: str | Path) -> Spec:

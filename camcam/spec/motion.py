@@ -13,7 +13,8 @@ segments = [
 ```
 
 ``rise`` is signed (negative = return) in mm for a translating follower or
-degrees for an oscillating one.  Law parameters (``beta7`` … for ``yu-lee``)
+degrees for an oscillating one.  ``law = "file:laws/x.json"`` uses a law
+written by ``camcam optimize`` (path relative to the spec file).  Law parameters (``beta7`` … for ``yu-lee``)
 sit beside ``law`` in the segment.
 
 Instead of ``segments`` the motion may come from a full-revolution lift table
@@ -160,6 +161,8 @@ def _read_lift_table(t: Table, base_dir: Path) -> TableMotionSpec:
 
 def _read_law(t: Table, base_dir: Path) -> tuple[str, MotionLaw]:
     name = t.string("law")
+    if name.startswith("file:"):
+        return name, _read_law_file(t, name, base_dir)
     if name == "dwell":
         return name, dwell()
     if name not in LAWS:
@@ -167,6 +170,20 @@ def _read_law(t: Table, base_dir: Path) -> tuple[str, MotionLaw]:
         raise t.error("law", f"unknown law {fmt(name)}; known: {known}")
     params = {p: t.number(p, default) for p, default in LAWS[name].parameters.items()}
     return name, make_law(name, **params)
+
+
+def _read_law_file(t: Table, name: str, base_dir: Path) -> MotionLaw:
+    """``law = "file:laws/x.json"``: an optimised law, path relative to the spec."""
+    from camcam.optimize.lawfile import read_law_file
+
+    rel = name.removeprefix("file:")
+    if not rel:
+        raise t.error("law", '"file:" needs a path, e.g. "file:laws/table1.json"')
+    try:
+        return read_law_file(base_dir / rel, name)
+    except InputError as err:
+        msg = str(err).removeprefix(f"{base_dir / rel}: ")
+        raise t.error("law", f"{fmt(name)}: {msg}") from None
 
 
 def read_motion(t: Table, base_dir: Path, unit: str = "mm") -> MotionSpec:

@@ -1,0 +1,108 @@
+"""``camcam optimize SPEC [-o LAW.json] [--json]``: an optimal B-spline cam curve."""
+
+from __future__ import annotations
+
+import sys
+import time
+from pathlib import Path
+
+from camcam.cli.output import print_json, to_json
+from camcam.errors import SpecError
+from camcam.export.files import atomic_write
+from camcam.optimize.bspline_law import BSplineLaw
+from camcam.optimize.complex_method import ComplexSettings, complex_method
+from camcam.optimize.evaluation import EvaluationFunction
+from camcam.optimize.exact import InfeasibleProblem, exact_optimum
+from camcam.optimize.lawfile import law_document
+from camcam.spec import load_spec
+from camcam.spec.optimize import OptimizeSpec
+
+__all__ = ["register", "optimize"]
+
+
+def register(sub) -> None:
+    p = sub.add_parser("optimize", help="optimise a B-spline cam curve ([optimize] table)")
+    p.add_argument("spec", help="spec file (TOML) with an [optimize] table")
+    p.add_argument("-o", "--output", help="write the law as JSON to this file")
+    p.add_argument("--json", action="store_true", help="print the law as one JSON object")
+    p.set_defaults(func=run)
+
+
+class _Progress:
+    """A progress line on stderr, shown only once a run has taken a second."""
+
+    def __init__(self, total: int) -> None:
+        self.total, self.start, self.shown = total, time.perf_counter(), False
+
+    def __call__(self, evaluations: int, best: float) -> None:
+        if time.perf_counter() - self.start < 1.0:
+            return
+        self.shown = True
+        frac = min(1.0, evaluations / self.total)
+        bar = "#" * int(30 * frac)
+        sys.stderr.write(f"\rcamcam: complex [{bar:30s}] {evaluations} evaluations, best I = {best:.6g}")
+        sys.stderr.flush()
+
+    def close(self) -> None:
+        if self.shown:
+            sys.stderr.write("\n")
+
+
+def optimize(opt: OptimizeSpec, progress=None) -> tuple[BSplineLaw, dict]:
+    """Run the spec's method; the law and the solver figures."""
+    problem = opt.problem
+    if opt.method == "exact":
+        try:
+            r = exact_optimum(problem)
+        except InfeasibleProblem as err:
+            raise SpecError("optimize.limits", f"{err} (degree {problem.degree}, {problem.segments} segments)") from None
+        solver = {
+            "method": "exact",
+            "lp_rounds": r.rounds,
+            "iterations": r.lp_iterations,
+            "evaluations": r.rounds,
+            "samples": r.samples,
+            "lower_bound": r.lower_bound,
+            "worst_violation": r.worst_violation,
+            "seconds": r.seconds,
+        }
+        x = r.x
+    else:
+        settings = ComplexSettings()
+        f = EvaluationFunction(problem)
+        r = complex_method(f, problem.space.initial_free(), opt.seed, settings, progress)
+        solver = {
+            "method": "complex",
+            "seed": opt.seed,
+            "evaluations": r.evaluations,
+            "iterations": r.iterations,
+            "restarts": r.restarts,
+            "converged": r.converged,
+            "weights": list(r.weights),
+            "worst_violation": max(r.violations, default=0.0),
+            "seconds": r.seconds,
+        }
+        x = r.x
+    return BSplineLaw.from_free(problem.space, x), solver
+
+
+def run(args) -> int:
+    spec = load_spec(args.spec)
+    opt = spec.need("optimize", "optimize")
+    bar = _Progress(ComplexSettings().max_evaluations)
+    try:
+        law, solver = optimize(opt, bar)
+    finally:
+        bar.close()
+    doc = law_document(law, problem=opt.as_dict(), solver=solver)
+    if args.output:
+        atomic_write(Path(args.output), to_json(doc) + "\n")
+    if args.json:
+        print_json(doc)
+    else:
+        print(f"{opt.method}: degree {law.degree}, {law.segments} segments, {'symmetric' if law.symmetric else 'asymmetric'}")
+        print(f"Vm {doc['Vm']:.6f}  Am {doc['Am']:.6f}  Jm {doc['Jm']:.6f}  (Jmax {doc['Jmax']:+.6f}, Jmin {doc['Jmin']:+.6f})")
+        print(f"{solver['evaluations']} evaluations in {solver['seconds']:.3f} s, worst limit violation {solver['worst_violation']:.2e}")
+        if args.output:
+            print(f"wrote {args.output}")
+    return 0
