@@ -1,0 +1,136 @@
+"""Bad input everywhere: broken specs, tables and point files (hypothesis).
+
+Each broken input must end in exit status 2 with one line on stderr naming the
+problem, never a traceback (an uncaught exception fails the test in-process),
+and never a file in the output directory.  A mutation that happens to stay
+valid must simply succeed.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import tempfile
+import tomllib
+from pathlib import Path
+
+import tomli_w
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from camcam.cli import main
+
+ROOT = Path(__file__).resolve().parents[2]
+
+BAD_VALUES = st.one_of(
+    st.just(-1.0), st.just(0), st.just(1e300), st.just(-1e300), st.just(float("nan")), st.just(float("inf")),
+    st.just(""), st.just("nonsense"), st.just(True), st.just([]), st.just([1, 2]), st.just({}), st.just({"x": 1}),
+    st.integers(-1000, 1000), st.floats(-1e6, 1e6, allow_nan=False), st.text(max_size=8),
+)
+
+
+def leaf_paths(obj, prefix=()):
+    """Every key path to a scalar or array in a parsed TOML document."""
+    if isinstance(obj, dict):
+        for k, v in obj.items():
+            yield from leaf_paths(v, prefix + (k,))
+    elif isinstance(obj, list) and obj and all(isinstance(v, dict) for v in obj):
+        for i, v in enumerate(obj):
+            yield from leaf_paths(v, prefix + (i,))
+    else:
+        yield prefix
+
+
+def mutate(doc, path, value):
+    node = doc
+    for k in path[:-1]:
+        node = node[k]
+    if value is _DELETE:
+        del node[path[-1]]
+    else:
+        node[path[-1]] = value
+
+
+_DELETE = object()
+
+
+def run_cli(args) -> tuple[int, str]:
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+        code = main(args)
+    return code, err.getvalue()
+
+
+def check_outcome(code, stderr, out_dir):
+    if code == 0:
+        return
+    assert code == 2, (code, stderr)
+    lines = [ln for ln in stderr.splitlines() if not ln.startswith("camcam: warning:") and "…" not in ln and " done in " not in ln]
+    assert len(lines) == 1 and lines[0].startswith("camcam: error: "), stderr
+    assert "Traceback" not in stderr
+    assert not out_dir.exists() or not any(out_dir.iterdir()), f"partial output left: {list(out_dir.iterdir())}"
+
+
+SPECS = {
+    "demo.toml": "motion",
+    "disc-translating-roller.toml": "run",
+    "disc-oscillating-flat.toml": "run",
+}
+
+
+def _sweep(sample, command, data):
+    doc = tomllib.loads((ROOT / "samples" / sample).read_text())
+    paths = list(leaf_paths(doc))
+    path = data.draw(st.sampled_from(paths))
+    value = data.draw(st.one_of(BAD_VALUES, st.just(_DELETE)))
+    try:
+        mutate(doc, path, value)
+        text = tomli_w.dumps(doc)
+    except (TypeError, ValueError):  # not representable in TOML (e.g. NaN key types): nothing to test
+        return
+    with tempfile.TemporaryDirectory() as d:
+        spec = Path(d) / "spec.toml"
+        spec.write_text(text)
+        out = Path(d) / "out"
+        code, err = run_cli([command, str(spec), "-o", str(out)])
+        check_outcome(code, err, out)
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_broken_motion_specs(data):
+    _sweep("demo.toml", "motion", data)
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(sample=st.sampled_from(["disc-translating-roller.toml", "disc-oscillating-flat.toml"]), data=st.data())
+def test_broken_cam_specs(sample, data):
+    _sweep(sample, "run", data)
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    rows=st.lists(
+        st.tuples(st.one_of(st.floats(-10, 400), st.text(max_size=4)), st.one_of(st.floats(-5, 5), st.just("x"))),
+        min_size=0, max_size=12,
+    )
+)
+def test_broken_lift_tables(rows):
+    with tempfile.TemporaryDirectory() as d:
+        table = Path(d) / "t.csv"
+        table.write_text("angle_deg,lift_mm\n" + "".join(f"{a},{b}\n" for a, b in rows))
+        out = Path(d) / "out"
+        code, err = run_cli(["fit", str(table), "-o", str(out)])
+        check_outcome(code, err, out)
+
+
+@settings(max_examples=20, deadline=None)
+@given(garbage=st.binary(max_size=200))
+def test_garbage_spec_files(garbage):
+    with tempfile.TemporaryDirectory() as d:
+        spec = Path(d) / "spec.toml"
+        spec.write_bytes(garbage)
+        out = Path(d) / "out"
+        for command in ("motion", "run", "optimize"):
+            code, err = run_cli([command, str(spec), "-o", str(out)] if command != "optimize" else [command, str(spec)])
+            check_outcome(code, err, out)
