@@ -15,6 +15,23 @@ segments = [
 ``rise`` is signed (negative = return) in mm for a translating follower or
 degrees for an oscillating one.  Law parameters (``beta7`` … for ``yu-lee``)
 sit beside ``law`` in the segment.
+
+Instead of ``segments`` the motion may come from a full-revolution lift table
+(exactly one of the two)::
+
+    [motion]
+    rpm = 120
+    lift_table = "lift.csv"   # relative to the spec file; angles 0–360°
+    fit = "periodic"          # periodic (default), clamped, natural, not-a-knot, bspline
+    [motion.fairing]          # optional: remove bad points, then fair
+    method = "smoothing"      # or "mid-point"
+    xi = 1e-4                 # mid-point stop: largest correction per round, mm
+    bad_points = true
+    threshold = 5.0           # bad point: |deviation| > threshold × its noise scale
+    min_size = 0.001          # … and > min_size mm
+
+A rise-only table is a segment law: ``{ law = "lift-table", table = "rise.csv",
+fit = "clamped", from = 0, to = 120 }`` (``rise`` defaults to the table's rise).
 """
 
 from __future__ import annotations
@@ -22,14 +39,19 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from camcam.errors import MotionError
+from camcam.errors import InputError, MotionError
+from camcam.lifttable.fairing import DEFAULT_MAX_ITERATIONS, METHODS
+from camcam.lifttable.interpolate import FITS, default_fit
+from camcam.lifttable.law import table_law, table_program
+from camcam.lifttable.process import FairingOptions, FittedTable, fit_table
+from camcam.lifttable.table import LiftTable, load_lift_table
 from camcam.motion.catalog import LAWS, make_law
 from camcam.motion.law import MotionLaw
 from camcam.motion.program import TILE_ATOL_DEG, MotionProgram, Segment
 from camcam.motion.standard import dwell
-from camcam.spec.reader import Table, fmt
+from camcam.spec.reader import MISSING, Table, fmt
 
-__all__ = ["SegmentSpec", "MotionSpec", "read_motion"]
+__all__ = ["SegmentSpec", "TableMotionSpec", "MotionSpec", "read_motion"]
 
 #: Closure tolerance of a program's rises, mm or degrees: decimal rises in a spec
 #: add up to exact zero within float rounding (~1e-12); a real mismatch is ≥ 1e-6.
@@ -48,15 +70,31 @@ class SegmentSpec:
 
 
 @dataclass(frozen=True)
+class TableMotionSpec:
+    """``[motion] lift_table``: the table file, the fit, the fairing options and the fitted result."""
+
+    path: Path
+    fit: str
+    fairing: FairingOptions | None
+    fitted: FittedTable
+
+
+@dataclass(frozen=True)
 class MotionSpec:
-    """The validated ``[motion]`` table."""
+    """The validated ``[motion]`` table: ``segments`` or (exclusively) ``lift_table``."""
 
     rpm: float
     strict: bool
     segments: tuple[SegmentSpec, ...]
+    lift_table: TableMotionSpec | None = None
 
     def program(self, unit: str = "mm") -> MotionProgram:
         """The motion program; with ``strict`` a jump at a join raises :class:`MotionError`."""
+        if self.lift_table is not None:
+            program = table_program(self.lift_table.fitted.law, self.rpm, unit)
+            if self.strict:
+                program.check_strict()
+            return program
         segs = []
         lift = 0.0
         for s in self.segments:
@@ -68,12 +106,64 @@ class MotionSpec:
         return program
 
 
+def _load_table(t: Table, key: str, base_dir: Path) -> tuple[Path, LiftTable]:
+    rel = t.string(key)
+    path = (base_dir / rel) if not Path(rel).is_absolute() else Path(rel)
+    try:
+        return path, load_lift_table(path)
+    except InputError as err:
+        raise t.error(key, str(err)) from None
+
+
+def _read_table_law(t: Table, base_dir: Path) -> tuple[MotionLaw, float]:
+    """A rise-only table as a segment law: (normalised law, the table's rise)."""
+    _, table = _load_table(t, "table", base_dir)
+    t.check("table", not table.full_revolution, "a full-revolution table goes in [motion] lift_table, not in a segment")
+    fit = t.string("fit", "clamped", choices=[f for f in FITS if f != "periodic"])
+    try:
+        law = table_law(table, fit)
+    except InputError as err:
+        raise t.error("table", str(err)) from None
+    return law, table.lift[-1] - table.lift[0]
+
+
+def _read_fairing(t: Table) -> FairingOptions:
+    opts = FairingOptions(
+        method=t.string("method", FairingOptions.method, choices=METHODS),
+        xi=t.number("xi", FairingOptions.xi, minimum=0, inclusive=False, unit="mm"),
+        bad_points=t.boolean("bad_points", True),
+        threshold=t.number("threshold", FairingOptions.threshold, minimum=0, inclusive=False),
+        min_size=t.number("min_size", FairingOptions.min_size, minimum=0, unit="mm"),
+        max_iterations=t.integer("max_iterations", DEFAULT_MAX_ITERATIONS, minimum=1),
+    )
+    t.done()
+    return opts
+
+
+def _read_lift_table(t: Table, base_dir: Path) -> TableMotionSpec:
+    path, table = _load_table(t, "lift_table", base_dir)
+    t.check(
+        "lift_table",
+        table.full_revolution and abs(table.angles_deg[0]) <= TILE_ATOL_DEG,
+        f"{path.name} covers {table.angles_deg[0]:g}–{table.angles_deg[-1]:g}°; [motion] lift_table must run 0–360° "
+        '(a rise-only table is a segment law: law = "lift-table")',
+    )
+    fit = t.string("fit", default_fit(True), choices=FITS)
+    ft = t.table("fairing", None)
+    fairing = _read_fairing(ft) if ft is not None else None
+    try:
+        fitted = fit_table(table, fit, fairing)
+    except InputError as err:
+        raise t.error("lift_table", str(err)) from None
+    return TableMotionSpec(path, fit, fairing, fitted)
+
+
 def _read_law(t: Table, base_dir: Path) -> tuple[str, MotionLaw]:
     name = t.string("law")
     if name == "dwell":
         return name, dwell()
     if name not in LAWS:
-        known = ", ".join([*sorted(LAWS), "dwell"])
+        known = ", ".join([*sorted(LAWS), "dwell", "lift-table"])
         raise t.error("law", f"unknown law {fmt(name)}; known: {known}")
     params = {p: t.number(p, default) for p, default in LAWS[name].parameters.items()}
     return name, make_law(name, **params)
@@ -83,11 +173,27 @@ def read_motion(t: Table, base_dir: Path, unit: str = "mm") -> MotionSpec:
     """Validate the ``[motion]`` table ``t``; law files are resolved against ``base_dir``."""
     rpm = t.number("rpm", minimum=0, inclusive=False, unit="rev/min")
     strict = t.boolean("strict", False)
+    if t.has("lift_table") and t.has("segments"):
+        raise t.error("lift_table", "give either segments or lift_table, not both")
+    if t.has("lift_table") or not t.has("segments"):
+        if not t.has("lift_table"):
+            raise t.error("segments", "missing; expected an array of tables (or lift_table = \"FILE.csv\")")
+        spec = MotionSpec(rpm, strict, (), _read_lift_table(t, base_dir))
+        try:
+            spec.program(unit)
+        except MotionError as err:
+            raise t.error("strict", str(err).removeprefix("motion: ")) from None
+        return spec
     rows = t.tables("segments")
     segments = []
     prev_to = 0.0
     for i, row in enumerate(rows):
-        name, law = _read_law(row, base_dir)
+        table_rise = None
+        if row.has("law") and row.data["law"] == "lift-table":
+            name = row.string("law")
+            law, table_rise = _read_table_law(row, base_dir)
+        else:
+            name, law = _read_law(row, base_dir)
         a = row.number("from", unit="degrees")
         b = row.number("to", unit="degrees")
         if i == 0:
@@ -102,7 +208,7 @@ def read_motion(t: Table, base_dir: Path, unit: str = "mm") -> MotionSpec:
             rise = row.number("rise", 0.0)
             row.check("rise", rise == 0.0, f"{fmt(rise)}: a dwell has no rise")
         else:
-            rise = row.number("rise", unit="mm" if unit == "mm" else "degrees")
+            rise = row.number("rise", table_rise if table_rise is not None else MISSING, unit="mm" if unit == "mm" else "degrees")
         row.done()
         segments.append(SegmentSpec(name, law, a, b, rise))
         prev_to = b

@@ -1,0 +1,1 @@
+"""Reports for the machinist and the inspector: self-contained HTML and JSON."""

@@ -1,0 +1,106 @@
+"""A self-contained HTML document from report sections (plots embedded as data URIs).
+
+The page needs no network and no files beside it: styles inline, PNGs in
+base64.  Same sections, same bytes.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+from dataclasses import dataclass
+from typing import Sequence, Union
+
+__all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Section", "render_html"]
+
+
+@dataclass(frozen=True)
+class Figure:
+    """A PNG plot with a caption."""
+
+    png: bytes
+    caption: str
+
+
+@dataclass(frozen=True)
+class KeyValues:
+    """A two-column table of labelled values (already formatted, units included)."""
+
+    rows: tuple[tuple[str, str], ...]
+
+
+@dataclass(frozen=True)
+class DataTable:
+    """A table with a header row; cells already formatted."""
+
+    header: tuple[str, ...]
+    rows: tuple[tuple[str, ...], ...]
+    caption: str = ""
+
+
+@dataclass(frozen=True)
+class Paragraph:
+    text: str
+
+
+Block = Union[Figure, KeyValues, DataTable, Paragraph]
+
+
+@dataclass(frozen=True)
+class Section:
+    title: str
+    blocks: tuple[Block, ...]
+
+
+_STYLE = """
+body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,sans-serif;margin:2em auto;max-width:1100px;color:#1b1b1b;padding:0 1em}
+h1{font-size:1.6em;margin-bottom:.2em}h2{font-size:1.25em;border-bottom:2px solid #2a6fb0;padding-bottom:.2em;margin-top:1.8em}
+.sub{color:#555;margin-top:0}table{border-collapse:collapse;margin:.6em 0;font-size:.92em}
+td,th{border:1px solid #ccc;padding:.25em .6em;text-align:right}th{background:#eef3f8}
+td:first-child,th:first-child{text-align:left}table.kv td:first-child{font-weight:600;background:#f7f7f7}
+figure{margin:1em 0}figure img{max-width:100%;border:1px solid #ddd}figcaption{color:#444;font-size:.9em}
+.ok{color:#176b2c;font-weight:600}.bad{color:#a11;font-weight:600}
+@media print{h2{page-break-after:avoid}figure,table{page-break-inside:avoid}}
+"""
+
+
+def _block(b: Block) -> str:
+    e = html.escape
+    if isinstance(b, Figure):
+        data = base64.b64encode(b.png).decode("ascii")
+        return f'<figure><img alt="{e(b.caption)}" src="data:image/png;base64,{data}"><figcaption>{e(b.caption)}</figcaption></figure>'
+    if isinstance(b, KeyValues):
+        rows = "".join(f"<tr><td>{e(k)}</td><td>{e(v)}</td></tr>" for k, v in b.rows)
+        return f'<table class="kv">{rows}</table>'
+    if isinstance(b, DataTable):
+        head = "".join(f"<th>{e(h)}</th>" for h in b.header)
+        body = "".join("<tr>" + "".join(f"<td>{e(c)}</td>" for c in r) + "</tr>" for r in b.rows)
+        cap = f"<caption>{e(b.caption)}</caption>" if b.caption else ""
+        return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+    if isinstance(b, Paragraph):
+        return f"<p>{e(b.text)}</p>"
+    raise TypeError(f"not a report block: {type(b).__name__}")
+
+
+def render_html(title: str, subtitle: str, sections: Sequence[Section]) -> str:
+    """The whole page as text.
+
+    Examples
+    --------
+    >>> page = render_html("cam", "demo", [Section("Job", (KeyValues((("tolerance", "0.01 mm"),)),))])
+    >>> "<td>tolerance</td><td>0.01 mm</td>" in page
+    True
+    """
+    e = html.escape
+    parts = [
+        "<!DOCTYPE html>",
+        '<html lang="en"><head><meta charset="utf-8">',
+        f"<title>{e(title)}</title><style>{_STYLE}</style></head><body>",
+        f"<h1>{e(title)}</h1><p class=\"sub\">{e(subtitle)}</p>",
+    ]
+    for s in sections:
+        parts.append(f"<section><h2>{e(s.title)}</h2>")
+        parts.extend(_block(b) for b in s.blocks)
+        parts.append("</section>")
+    parts.append("</body></html>\n")
+    return "\n".join(parts)
