@@ -68,6 +68,8 @@ class BarrelFollower:
 
     ``pivot_distance`` None means a translating roller.  ``flank`` 0 is the
     groove wall on the −X side, 1 the +X side (as :meth:`CylindricalCam.flank`).
+    ``inner_radius``/``outer_radius``: the groove bottom and the cylinder; a solved
+    roller cross-section must lie within a roller radius of them.
     """
 
     roller_radius: float
@@ -75,6 +77,8 @@ class BarrelFollower:
     rotation: str = "ccw"
     pivot_distance: float | None = None
     flank: int = 0
+    inner_radius: float = 0.0
+    outer_radius: float = math.inf
 
     @property
     def oscillating(self) -> bool:
@@ -208,7 +212,9 @@ def solve_cylindrical(f: BarrelFollower, points: np.ndarray, tangents: np.ndarra
         u = u + np.where(np.isfinite(delta), delta, 0.0)
     res, p = _residuals(f, u, xP, rhoP, tangents)
     q, alpha, ell = u
-    bad = ~np.all(np.isfinite(res), axis=0) | np.any(np.abs(res) > 1e-6, axis=0) | (np.abs(alpha) >= 0.5 * math.pi * 0.95)
+    R = f.axis(q, ell)[2]
+    bad = (R < f.inner_radius - f.roller_radius) | (R > f.outer_radius + f.roller_radius)
+    bad |= ~np.all(np.isfinite(res), axis=0) | np.any(np.abs(res) > 1e-6, axis=0) | (np.abs(alpha) >= 0.5 * math.pi * 0.95)
     if f.oscillating:
         bad |= (ell <= 0) | (np.abs(q) >= 0.5 * math.pi)
     if np.any(bad):

@@ -135,7 +135,8 @@ def _reverse_cylindrical(points, cam, follower, options) -> ReverseResult:
     if options.flank not in (0, 1):
         raise ValueError(f"flank must be 0 or 1, got {options.flank!r}")
     pivot = follower.pivot_distance if follower.kind == "oscillating-roller" else None
-    bf = BarrelFollower(follower.roller_radius, cam.length, cam.rotation, pivot, options.flank)
+    bf = BarrelFollower(follower.roller_radius, cam.length, cam.rotation, pivot, options.flank,
+                        cam.base_radius - cam.groove_depth, cam.base_radius)
     X = points.xyz
     order, phi = _polar_order(points, X[:, 1], X[:, 2])
     X = X[order]
