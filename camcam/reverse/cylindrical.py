@@ -34,11 +34,11 @@ Corrections to the seed, checked against the forward geometry in the tests:
 
 * eq. 11 writes (d − r)·cos θf for the arm's reach where the arm geometry needs
   d − r·cos θf (the paper's own eq. 16 uses the latter);
-* eq. 13, tan φ_z = f′/cos θf, inverts the projection: with the flank normal
-  m tilted by θf out of the tangent plane, a tangent with axial/circumferential
-  slope f′ gives tan α = f′·cos θf to first order – and neither form holds
-  exactly once the roller offset moves the contact off the mid-plane, so
-  condition 3 is used exactly instead;
+* eq. 13, tan φ_z = f′/cos θf, is a first-order projection of the flank
+  slope that ignores the roller offset moving the contact off the mid-plane;
+  on the forward geometry it (and the projection f′·cos θf) misses tan α by
+  ~1e-2, a cam-angle error of r_r·δα/R ≈ 0.1° (tests), so condition 3 is used
+  exactly instead;
 * the seed takes every measured point on the roller cross-section r; here ℓ
   is solved per point, so points measured at any depth (e.g. on a cylinder of
   constant radius, as a probe scans) are recovered as well.
