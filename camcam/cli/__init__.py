@@ -10,12 +10,12 @@ import argparse
 import sys
 
 from camcam import __version__
-from camcam.cli import fit, laws, motion, optimize, run
+from camcam.cli import fit, laws, motion, optimize, reverse, run
 from camcam.errors import CamcamError
 
 __all__ = ["main"]
 
-COMMANDS = (laws, motion, run, fit, optimize)
+COMMANDS = (laws, motion, run, fit, optimize, reverse)
 
 #: Exit status for every user error (bad spec, table, points, arguments).
 USAGE_ERROR = 2

@@ -2,6 +2,9 @@
 
 A lift table is a CSV-like text with two columns, ``angle_deg, lift_mm`` (the
 lift is in degrees for an oscillating follower).  A header line is optional;
+a header naming more columns (``cam_angle_deg, lift, velocity, acceleration``,
+as ``camcam reverse`` writes) makes every row carry that many values, of which
+the first two are read;
 values are separated by commas or whitespace with any spacing; ``#`` starts a
 comment line.  The angles must rise strictly.  A table whose angles span
 exactly 360° is a full revolution and must close (the last lift equals the
@@ -133,6 +136,7 @@ def parse_lift_table(text: str, source: str = "table") -> LiftTable:
     lifts: list[float] = []
     rows: list[int] = []
     decimals = 0
+    ncol = 2
     seen_content = False
     for lineno, line in enumerate(text.splitlines(), start=1):
         stripped = line.strip()
@@ -146,11 +150,12 @@ def parse_lift_table(text: str, source: str = "table") -> LiftTable:
             try:
                 float(fields[0])
             except ValueError:
-                if len(fields) != 2:
+                if len(fields) < 2:
                     raise InputError(f"{where}: a header needs 2 column names (angle_deg, lift_mm), got {len(fields)}") from None
+                ncol = len(fields)
                 continue  # a header line
-        if len(fields) != 2 or "" in fields:
-            raise InputError(f"{where}: expected 2 values (angle_deg, lift_mm), got {stripped!r}")
+        if len(fields) != ncol or "" in fields:
+            raise InputError(f"{where}: expected {ncol} values (angle_deg, lift_mm{', …' if ncol > 2 else ''}), got {stripped!r}")
         angle = _number(fields[0], "angle", where)
         lift = _number(fields[1], "lift", where)
         if angles and angle <= angles[-1]:

@@ -1,0 +1,31 @@
+"""The reverse-design plot: recovered lift, velocity, acceleration against the design."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from camcam.plots.render import plt, png_bytes
+
+__all__ = ["reverse_png"]
+
+
+def reverse_png(angles_deg, recovered, unit: str, point_angles_deg, point_lift, design=None, title: str = "") -> bytes:
+    """Three stacked axes; ``recovered`` and ``design`` are (n, 3) columns (lift, per-degree velocity, acceleration)."""
+    fig, axes = plt.subplots(3, 1, figsize=(8, 7.5), sharex=True)
+    units = [unit, f"{unit}/deg", f"{unit}/deg²"]
+    names = ["lift", "velocity", "acceleration"]
+    for k, ax in enumerate(axes):
+        if design is not None:
+            ax.plot(angles_deg, design[:, k], color="0.55", lw=2.6, label="design")
+        ax.plot(angles_deg, recovered[:, k], color="C0", lw=1.1, label="recovered")
+        if k == 0:
+            ax.plot(point_angles_deg, point_lift, ".", ms=2.5, color="C3", label="measured points")
+        ax.set_ylabel(f"{names[k]} [{units[k]}]")
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(loc="best", fontsize=8)
+    axes[-1].set_xlabel("cam angle [deg]")
+    axes[-1].set_xlim(0, 360)
+    axes[-1].set_xticks(np.arange(0, 361, 30))
+    fig.suptitle(title or "Reverse design")
+    fig.tight_layout()
+    return png_bytes(fig)

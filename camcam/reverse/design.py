@@ -1,0 +1,162 @@
+"""Reverse design: measured points + the cam's and follower's geometry → the follower motion.
+
+:func:`reverse_design` orders the points by their polar angle about the cam
+axis, estimates the curve's slopes (:mod:`camcam.reverse.slopes`), solves each
+point for its cam angle and lift (:mod:`camcam.reverse.disc`,
+:mod:`camcam.reverse.cylindrical`), checks that the cam angles come out in the
+points' order and cover the revolution, and fits the motion
+(:mod:`camcam.reverse.fit`).
+
+Lift units are those of a motion program: mm, or degrees for an oscillating
+follower.  A disc cam's lift is measured from the base circle (as the forward
+model).  A cylindrical cam's geometry fixes the follower only relative to the
+groove, so its lift is the displacement from the centre of the swing (the
+forward model centres the design's swing the same way; :func:`design_motion`
+gives the design in that reference).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from camcam.errors import GeometryError, InputError
+from camcam.motion.program import MotionProgram
+from camcam.reverse.cylindrical import BarrelFollower, flank_tangents, solve_cylindrical
+from camcam.reverse.disc import disc_follower, profile_normals, solve_disc
+from camcam.reverse.fit import DEFAULT_MAX_GAP_DEG, RecoveredMotion, fit_motion
+from camcam.reverse.points import MeasuredPoints
+from camcam.reverse.slopes import periodic_fit
+from camcam.spec.cam import CamSpec
+from camcam.spec.follower import FollowerSpec
+
+__all__ = ["ReverseOptions", "ReverseResult", "reverse_design", "design_motion", "BASE_TOL"]
+
+#: A disc profile may dip this far (mm or deg of lift) inside the base circle before the
+#: points are taken not to fit ``base_radius``: ten times a few micrometres of noise.
+BASE_TOL = 0.02
+
+
+@dataclass(frozen=True)
+class ReverseOptions:
+    """``fit``: "periodic" or "bspline" (default: bspline, seed 002, for cylindrical cams; periodic for discs).
+    ``smoothing``: GCV smoothing of the profile fit and of the recovered lifts (for measured, noisy points).
+    ``slopes``: "spline" (periodic fits) or "central" (seed 002's three-point differences; cylindrical only).
+    ``flank``: which groove wall a cylindrical cam's points lie on (0: −X side, 1: +X side)."""
+
+    fit: str | None = None
+    smoothing: bool = True
+    slopes: str = "spline"
+    flank: int = 0
+    max_gap_deg: float = DEFAULT_MAX_GAP_DEG
+
+
+@dataclass(frozen=True)
+class ReverseResult:
+    """The recovered motion and per-point figures (in the points' polar order).
+
+    ``point_velocity`` is the per-point velocity (lift/deg) of seed 002's eq. 18
+    for cylindrical cams, None for discs.
+    """
+
+    motion: RecoveredMotion
+    cam_kind: str
+    follower_kind: str
+    unit: str
+    point_angles_deg: np.ndarray
+    point_lift: np.ndarray
+    point_velocity: np.ndarray | None
+
+
+def _polar_order(points: MeasuredPoints, u: np.ndarray, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    phi = np.mod(np.arctan2(v, u), 2 * math.pi)
+    order = np.argsort(phi, kind="stable")
+    phi = phi[order]
+    same = np.flatnonzero(np.diff(phi) <= 1e-12)
+    if same.size:
+        i, j = order[same[0]], order[same[0] + 1]
+        raise InputError(f"{points.describe(int(j))}: same polar angle about the cam axis as {points.describe(int(i))}; remove the duplicate")
+    return order, phi
+
+
+def _check_order(points: MeasuredPoints, order: np.ndarray, theta: np.ndarray) -> None:
+    """The cam angles of points in polar order must run one way round, once."""
+    d = np.angle(np.exp(1j * (np.roll(theta, -1) - theta)))
+    sign = np.sign(np.median(d))
+    bad = np.flatnonzero(np.sign(d) != sign)
+    if bad.size:
+        i = int(bad[0])
+        j = (i + 1) % theta.size
+        raise GeometryError(
+            f"{points.describe(int(order[i]))} and {points.describe(int(order[j]))} come out at cam angles "
+            f"{math.degrees(theta[i]):.3f}° and {math.degrees(theta[j]):.3f}°, against the order of the points round "
+            "the cam: the points do not fit this follower's geometry"
+        )
+
+
+def reverse_design(points: MeasuredPoints, cam: CamSpec, follower: FollowerSpec,
+                   options: ReverseOptions = ReverseOptions()) -> ReverseResult:
+    """Recover the follower motion from measured points (module docstring)."""
+    if cam.kind == "cylindrical":
+        return _reverse_cylindrical(points, cam, follower, options)
+    if cam.kind != "disc":
+        raise GeometryError(f'cam.kind "{cam.kind}": reverse design handles "disc" and "cylindrical" cams')
+    P = points.xyz[:, :2]
+    order, phi = _polar_order(points, P[:, 0], P[:, 1])
+    P = P[order]
+    r = np.hypot(P[:, 0], P[:, 1])
+    fit_r = periodic_fit(phi, r, options.smoothing)
+    rr = fit_r(phi)
+    Q = np.stack([rr * np.cos(phi), rr * np.sin(phi)], axis=-1)  # the fitted profile at the points
+    fol = disc_follower(follower)
+    theta, lift = solve_disc(fol, cam.base_radius, cam.rotation, Q, profile_normals(phi, rr, fit_r(phi, 1)))
+    _check_order(points, order, theta)
+    unit = follower.unit
+    if unit == "deg":
+        lift = np.degrees(lift)
+    k = int(np.argmin(lift))
+    if lift[k] < -BASE_TOL:
+        raise GeometryError(
+            f"the profile dips {-lift[k]:.4f} {unit} of lift inside the base circle at cam angle "
+            f"{math.degrees(theta[k]):.2f}° ({points.describe(int(order[k]))}): the points do not fit "
+            f"cam.base_radius = {cam.base_radius:g} mm (the points come within {r.min():.4f} mm of the centre)"
+        )
+    motion = fit_motion(np.degrees(theta), lift, unit, options.fit or "periodic", options.smoothing, options.max_gap_deg)
+    return ReverseResult(motion, cam.kind, follower.kind, unit, np.degrees(theta), lift, None)
+
+
+def _reverse_cylindrical(points, cam, follower, options) -> ReverseResult:
+    if points.dims != 3:
+        raise InputError(f"{points.source}: a cylindrical cam needs x, y, z points (cam axis along x); got x, y only")
+    if not follower.is_roller:
+        raise GeometryError(f'follower.kind "{follower.kind}": a cylindrical cam needs a roller follower')
+    if options.flank not in (0, 1):
+        raise ValueError(f"flank must be 0 or 1, got {options.flank!r}")
+    pivot = follower.pivot_distance if follower.kind == "oscillating-roller" else None
+    bf = BarrelFollower(follower.roller_radius, cam.length, cam.rotation, pivot, options.flank,
+                        cam.base_radius - cam.groove_depth, cam.base_radius)
+    X = points.xyz
+    order, phi = _polar_order(points, X[:, 1], X[:, 2])
+    X = X[order]
+    t = flank_tangents(phi, X[:, 0], np.hypot(X[:, 1], X[:, 2]), options.slopes, options.smoothing)
+    sol = solve_cylindrical(bf, X, t, lambda i: points.describe(int(order[i])))
+    _check_order(points, order, sol.cam_angle)
+    unit = follower.unit
+    scale = 180.0 / math.pi if unit == "deg" else 1.0
+    lift = sol.q * scale
+    vel = sol.dq * scale * math.pi / 180.0  # per degree of cam angle
+    motion = fit_motion(np.degrees(sol.cam_angle), lift, unit, options.fit or "bspline", options.smoothing, options.max_gap_deg)
+    return ReverseResult(motion, cam.kind, follower.kind, unit, np.degrees(sol.cam_angle), lift, vel)
+
+
+def design_motion(program: MotionProgram, cam_kind: str, angles_deg, order: int) -> np.ndarray:
+    """The design's lift derivative ``order`` per degree at ``angles_deg``, in the reference
+    :func:`reverse_design` recovers (centred on the swing for a cylindrical cam)."""
+    theta = np.radians(np.asarray(angles_deg, dtype=float))
+    val = program.lift(theta, order) * (math.pi / 180.0) ** order
+    if order == 0 and cam_kind == "cylindrical":
+        lo, hi = program.extremes(0)
+        val = val - 0.5 * (lo.value + hi.value)
+    return val
