@@ -1,0 +1,422 @@
+"""The NC second fitting: arcs (G1-continuous arc spline) or lines, deviation guaranteed.
+
+Arcs.  On each analytic piece of the curve (between its ``breaks``) nodes are
+placed greedily so that the *turn-matching chord arc* of each interval (the arc
+through the two curve points whose sweep equals the curve's tangent turn over
+the interval) stays within the fitting tolerance.  This is the arc of the
+optimal periodic G1 arc spline: its error e(s) = −κ′h³B₃(s/h)/6 equioscillates,
+|e| ≤ |κ′|h³/124.7, so it needs about 1.155·N_lb arcs, against ≈1.7·N_lb for
+Hermite biarcs.  Then the spline is marched: from the node's actual tangent a
+single arc to the next node is kept when it stays within tolerance (the G1
+tangent error alternates but does not grow), otherwise a biarc resets the
+tangent to the ideal one, otherwise the interval is split.  Each piece starts
+and ends on the curve with the curve's exact tangent.
+
+Lines.  The seed paper's chordal method (Hu & Guo, eq. 8): a chord of length
+L on curvature radius ρ errs by δ ≈ L²/(8ρ), so the step starts from
+L = √(8ρδ) and is lengthened or shortened until the chord is within tolerance.
+
+Guarantee.  Every node, arc end and centre is rounded to the post's decimals
+(the program as printed); the rounding budget 3·(√2/2)·10^−d is reserved, the
+fit aims at ``tolerance − budget − margin``, and the rounded result of each
+piece is measured two-sided by :func:`measure_deviation` (which adds its own
+between-sample bound).  A piece that still fails is refitted tighter.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate import simpson
+
+from camcam.errors import InputError
+from camcam.geometry.curve import PlanarCurve, curvature, curvature_rate, speed
+from camcam.toolpath.deviation import Deviation, measure_deviation
+from camcam.toolpath.elements import Arc, Line, arc_from_tangent, element_distance
+
+__all__ = ["FitResult", "fit_contour", "lower_bound_blocks", "line_estimate_blocks", "rounding_budget"]
+
+
+def rounding_budget(decimals: int) -> float:
+    """Deviation reserved for rounding to ``decimals``: 10^−d (ends and centre each move ≤ 0.71·10^−d).
+
+    The worst case could reach 3 × 0.71·10^−d; the rounded program is measured
+    afterwards, and a piece that fails is refitted tighter, so the guarantee
+    does not rest on this budget.
+    """
+    return 10.0 ** (-decimals)
+
+
+@dataclass(frozen=True)
+class FitResult:
+    """A fitted contour: elements on the decimal grid, in the curve's direction."""
+
+    elements: tuple
+    mode: str
+    tolerance_mm: float
+    decimals: int
+    deviation: Deviation
+    lower_bound: float  # N_lb for arcs (∫(|κ′|/192δ)^⅓ ds), for lines ∫√(|κ|/8δ) ds
+    piece_blocks: tuple[int, ...]
+    piece_lower_bounds: tuple[float, ...]
+
+    @property
+    def line_blocks(self) -> int:
+        return sum(isinstance(e, Line) for e in self.elements)
+
+    @property
+    def arc_blocks(self) -> int:
+        return sum(isinstance(e, Arc) for e in self.elements)
+
+    @property
+    def max_deviation_mm(self) -> float:
+        return self.deviation.max_deviation_mm
+
+
+def _integral(curve, a, b, f, n: int = 20001) -> float:
+    """∫ f ds over [a, b] by Simpson's rule on ``n`` parameter points (vectorised)."""
+    t = np.linspace(a, b, n)
+    return float(simpson(f(t) * speed(curve, t), x=t))
+
+
+def lower_bound_blocks(curve: PlanarCurve, tolerance_mm: float, a=None, b=None) -> float:
+    """N_lb = ∫ (|dκ/ds| / (192 δ))^(1/3) ds: fewest arcs any arc spline can use (asymptotically)."""
+    edges = _pieces(curve, a, b)
+    return sum(_integral(curve, lo, hi, lambda t: np.cbrt(np.abs(curvature_rate(curve, t)) / (192 * tolerance_mm)))
+               for lo, hi in edges)
+
+
+def line_estimate_blocks(curve: PlanarCurve, tolerance_mm: float, a=None, b=None) -> float:
+    """∫ √(|κ| / (8 δ)) ds: chords needed by the chordal method (δ = L²/8ρ)."""
+    return sum(_integral(curve, lo, hi, lambda t: np.sqrt(np.abs(curvature(curve, t)) / (8 * tolerance_mm)))
+               for lo, hi in _pieces(curve, a, b))
+
+
+def _pieces(curve, a=None, b=None):
+    br = np.asarray(curve.breaks, float)
+    a = br[0] if a is None else a
+    b = br[-1] if b is None else b
+    edges = [a, *[x for x in br if a < x < b], b]
+    return list(zip(edges, edges[1:]))
+
+
+class _Piece:
+    """One analytic piece of the curve with tangent angles unwrapped continuously."""
+
+    def __init__(self, curve, a, b):
+        self.curve, self.a, self.b = curve, a, b
+        self.grid = np.linspace(a, b, 4097)
+        d = curve.evaluate(self.grid, 1)
+        self.phi_grid = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+
+    def point(self, t) -> np.ndarray:
+        return self.curve.evaluate(np.atleast_1d(t), 0)
+
+    def phi(self, t) -> np.ndarray:
+        t = np.atleast_1d(np.asarray(t, float))
+        ref = np.interp(t, self.grid, self.phi_grid)
+        d = self.curve.evaluate(t, 1)
+        raw = np.arctan2(d[:, 1], d[:, 0])
+        return ref + (raw - ref + np.pi) % (2 * np.pi) - np.pi
+
+    def samples(self, t0, t1, n=33) -> np.ndarray:
+        return self.point(np.linspace(t0, t1, n))
+
+
+def _unit(angle):
+    return np.array([math.cos(angle), math.sin(angle)])
+
+
+def _end_tangent(e) -> np.ndarray:
+    if isinstance(e, Line):
+        v = np.subtract(e.end, e.start)
+        return v / np.hypot(*v)
+    r = np.subtract(e.end, e.centre)
+    r = r / np.hypot(*r)
+    return np.array([-r[1], r[0]]) if e.ccw else np.array([r[1], -r[0]])
+
+
+def _seg_dist(q, poly):
+    """Distance from points q (n,2) to the polyline poly (m,2)."""
+    a, b = poly[:-1], poly[1:]
+    d = b - a
+    L2 = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+    rel = q[:, None, :] - a[None, :, :]
+    u = np.clip(np.einsum("nmj,mj->nm", rel, d) / L2, 0, 1)
+    foot = a[None] + u[..., None] * d[None]
+    return np.hypot(*(q[:, None, :] - foot).transpose(2, 0, 1)).min(axis=1)
+
+
+def _dev(piece, elems, t0, t1) -> float:
+    """Two-sided deviation of ``elems`` from the curve on [t0, t1], densely sampled (a fitting check)."""
+    cp = piece.samples(t0, t1, 49)
+    d1 = np.min([element_distance(e, cp) for e in elems], axis=0).max()
+    ep = np.concatenate([e.points(9) for e in elems])
+    dense = piece.samples(t0, t1, 97)
+    d2 = _seg_dist(ep, dense).max()
+    return float(max(d1, d2))
+
+
+def _biarc(p0, t0, p1, t1, sag):
+    """Equal-tangent-length biarc from (p0, t0) to (p1, t1) (unit tangents)."""
+    v = p1 - p0
+    t = t0 + t1
+    c = 1.0 - float(t0 @ t1)
+    vt = float(v @ t)
+    if c < 1e-12:
+        denom = 4.0 * float(v @ t0)
+        if abs(denom) < 1e-300:
+            return None
+        alpha = float(v @ v) / denom
+    else:
+        alpha = (-vt + math.sqrt(vt * vt + 2.0 * c * float(v @ v))) / (2.0 * c)
+    if not alpha > 0:
+        return None
+    joint = 0.5 * (p0 + alpha * t0 + p1 - alpha * t1)
+    if np.hypot(*(joint - p0)) < 1e-9 or np.hypot(*(p1 - joint)) < 1e-9:
+        return None
+    e1 = arc_from_tangent(p0, t0, joint, sag)
+    e2 = arc_from_tangent(joint, _end_tangent(e1), p1, sag)
+    return [e1, e2]
+
+
+def _sweep_ok(elems, max_sweep) -> bool:
+    return all(not isinstance(e, Arc) or e.sweep <= max_sweep for e in elems)
+
+
+def _greedy(t0, b, ok, guess):
+    """Largest t1 in (t0, b] with ok(t0, t1), by expansion from ``guess`` then bisection."""
+    if ok(t0, b):
+        return b
+    span = b - t0
+    lo, hi = t0, None
+    step = min(guess, span)
+    while True:
+        t = t0 + step
+        if t >= b:
+            hi = b
+            break
+        if ok(t0, t):
+            lo = t
+            step *= 1.6
+        else:
+            hi = t
+            break
+    if lo == t0:  # shrink until something works
+        while True:
+            step *= 0.5
+            if step < span * 1e-9:
+                return t0 + step * 2
+            if ok(t0, t0 + step):
+                lo, hi = t0 + step, t0 + 2 * step
+                break
+    for _ in range(30):
+        if hi - lo <= 1e-6 * span:
+            break
+        mid = 0.5 * (lo + hi)
+        if ok(t0, mid):
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+def _ideal(piece, t0, t1):
+    q0, q1 = piece.point(t0)[0], piece.point(t1)[0]
+    v = q1 - q0
+    chord = math.atan2(v[1], v[0])
+    tau = float(piece.phi(t1)[0] - piece.phi(t0)[0])
+    return q0, q1, chord, tau
+
+
+#: Nodes are placed for ideal arcs within this fraction of the tolerance, leaving
+#: room for the G1 tangent error the marched single arcs carry.
+NODE_GAMMA = 0.85
+NODE_GAMMAS = (0.6, 0.7, 0.8, 0.9, 1.0)
+
+
+def _equidistribute(nodes):
+    """Spread greedy nodes evenly: the greedy's short last interval is shared by all.
+
+    The greedy interval lengths give a node density (1/h); the last, partial
+    interval takes its neighbour's density; n = ⌈∫density⌉ nodes are then placed
+    at equal steps of the integrated density.
+    """
+    t = np.asarray(nodes, float)
+    h = np.diff(t)
+    if len(h) < 2:
+        return list(t)
+    dens = 1.0 / h
+    dens[-1] = dens[-2]
+    F = np.concatenate([[0.0], np.cumsum(dens * h)])
+    n = max(1, int(math.ceil(F[-1] - 1e-9)))
+    out = np.interp(np.linspace(0.0, F[-1], n + 1), F, t)
+    out[0], out[-1] = t[0], t[-1]
+    return list(out)
+
+
+def _fit_arcs_best(piece, tol, max_sweep, sag):
+    """The fewest elements over a few node-placement tolerances (each fit is within ``tol``)."""
+    best = None
+    for gamma in NODE_GAMMAS:
+        elems = _fit_arcs_piece(piece, tol, max_sweep, sag, gamma)
+        if best is None or len(elems) < len(best):
+            best = elems
+    return best
+
+
+def _fit_arcs_piece(piece, tol, max_sweep, sag, gamma=NODE_GAMMA):
+    a, b = piece.a, piece.b
+
+    def ideal_ok(t0, t1):
+        q0, q1, chord, tau = _ideal(piece, t0, t1)
+        if abs(tau) > max_sweep or np.hypot(*(q1 - q0)) == 0:
+            return False
+        e = arc_from_tangent(q0, _unit(chord - tau / 2), q1, sag)
+        return _dev(piece, [e], t0, t1) <= gamma * tol
+
+    nodes = [a]
+    guess = (b - a) / 8
+    while nodes[-1] < b:
+        t1 = _greedy(nodes[-1], b, ideal_ok, guess)
+        guess = t1 - nodes[-1]
+        nodes.append(t1)
+    nodes = _equidistribute(nodes)
+
+    def ideal_tangent(i, ts):
+        if i == 0:
+            return _unit(float(piece.phi(a)[0]))
+        if i == len(ts) - 1:
+            return _unit(float(piece.phi(b)[0]))
+        _, _, c0, tau0 = _ideal(piece, ts[i - 1], ts[i])
+        _, _, c1, tau1 = _ideal(piece, ts[i], ts[i + 1])
+        u = _unit(c0 + tau0 / 2) + _unit(c1 - tau1 / 2)
+        return u / np.hypot(*u)
+
+    elems = []
+    tan = ideal_tangent(0, nodes)
+    i = 0
+    while i < len(nodes) - 1:
+        t0, t1 = nodes[i], nodes[i + 1]
+        p0, p1 = piece.point(t0)[0], piece.point(t1)[0]
+        last = i + 1 == len(nodes) - 1
+        target = ideal_tangent(i + 1, nodes)
+        e = arc_from_tangent(p0, tan, p1, sag)
+        et = _end_tangent(e)
+        if (_sweep_ok([e], max_sweep) and (not last or float(et @ target) > 1 - 1e-14)
+                and _dev(piece, [e], t0, t1) <= tol):
+            elems.append(e)
+            tan = et
+            i += 1
+            continue
+        bi = _biarc(p0, tan, p1, target, sag)
+        if bi is not None and _sweep_ok(bi, max_sweep) and _dev(piece, bi, t0, t1) <= tol:
+            elems.extend(bi)
+            tan = target
+            i += 1
+            continue
+        nodes.insert(i + 1, 0.5 * (t0 + t1))
+    return elems
+
+
+def _fit_lines_piece(piece, tol):
+    a, b = piece.a, piece.b
+    k = np.abs(curvature(piece.curve, piece.grid))
+    v = speed(piece.curve, piece.grid)
+
+    def ok(t0, t1):
+        q0, q1 = piece.point(t0)[0], piece.point(t1)[0]
+        if np.hypot(*(q1 - q0)) == 0:
+            return False
+        return _dev(piece, [Line(tuple(q0), tuple(q1))], t0, t1) <= tol
+
+    nodes = [a]
+    while nodes[-1] < b:
+        t0 = nodes[-1]
+        j = int(np.searchsorted(piece.grid, t0))
+        j = min(j, len(piece.grid) - 1)
+        step_mm = math.sqrt(8.0 * tol / max(k[j], 1e-12))  # seed paper eq. (8): δ = L²/8ρ
+        nodes.append(_greedy(t0, b, ok, step_mm / max(v[j], 1e-12)))
+    pts = piece.point(np.array(nodes))
+    return [Line(tuple(p), tuple(q)) for p, q in zip(pts[:-1], pts[1:])]
+
+
+def _round_elements(elems, decimals):
+    """Snap every end and centre to the 10^−d grid (the program as printed)."""
+    def snap(p):
+        return tuple(round(float(x), decimals) + 0.0 for x in p)
+
+    out = []
+    for e in elems:
+        s, t = snap(e.start), snap(e.end)
+        if s == t:
+            continue
+        if isinstance(e, Arc):
+            out.append(Arc(s, t, snap(e.centre), e.ccw))
+        else:
+            out.append(Line(s, t))
+    # consecutive elements share their rounded joints by construction (same float, same rounding)
+    return out
+
+
+def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs", decimals: int = 4,
+                max_sweep_deg: float = 90.0, a: float | None = None, b: float | None = None) -> FitResult:
+    """Fit lines/arcs to ``curve`` with a guaranteed two-sided deviation ≤ ``tolerance_mm``.
+
+    Parameters
+    ----------
+    curve : PlanarCurve
+        The exact curve (e.g. the tool-centre path).
+    tolerance_mm : float
+        Two-sided deviation allowed on the program as printed.
+    mode : {"arcs", "lines"}
+    decimals : int
+        The post's decimals: nodes and centres are rounded to them.
+    max_sweep_deg : float
+        Largest arc sweep (≤ 180; also keeps arcs away from full circles).
+    a, b : float, optional
+        Parameter range (default the whole curve).
+
+    Raises
+    ------
+    InputError
+        When the tolerance is too small for the decimals or the mode unknown.
+    """
+    if mode not in ("arcs", "lines"):
+        raise InputError(f"mode: expected 'arcs' or 'lines', got {mode!r}")
+    if not 0 < max_sweep_deg <= 180:
+        raise InputError(f"max_sweep_deg: expected 0 < value ≤ 180, got {max_sweep_deg!r}")
+    budget = rounding_budget(decimals)
+    margin = 0.02 * tolerance_mm
+    fit_tol = tolerance_mm - budget - 2 * margin
+    if not fit_tol >= 0.4 * tolerance_mm:
+        need = (budget / 0.56)
+        raise InputError(f"tolerance {tolerance_mm:g} mm is too fine for {decimals} decimals "
+                         f"(rounding alone takes {budget:.2g} mm); use at least {need:.2g} mm or more decimals")
+    sag = min(0.5 * 10.0 ** (-decimals), 0.05 * fit_tol)  # arcs flatter than this print as lines
+    max_sweep = math.radians(max_sweep_deg)
+    all_elems, blocks, lbs = [], [], []
+    worst = None
+    for lo, hi in _pieces(curve, a, b):
+        piece = _Piece(curve, lo, hi)
+        tol_k = fit_tol
+        for _attempt in range(6):
+            raw = (_fit_arcs_best(piece, tol_k, max_sweep, sag) if mode == "arcs"
+                   else _fit_lines_piece(piece, tol_k))
+            elems = _round_elements(raw, decimals)
+            dev = measure_deviation(curve, elems, lo, hi, margin_mm=margin)
+            if dev.max_deviation_mm <= tolerance_mm:
+                break
+            tol_k *= 0.8
+        else:
+            raise InputError(f"cannot fit the curve on t ∈ [{lo:g}, {hi:g}] within {tolerance_mm:g} mm")
+        all_elems.extend(elems)
+        blocks.append(len(elems))
+        lbs.append(lower_bound_blocks(curve, tolerance_mm, lo, hi) if mode == "arcs"
+                   else line_estimate_blocks(curve, tolerance_mm, lo, hi))
+        if worst is None or dev.max_deviation_mm > worst.max_deviation_mm:
+            worst = dev
+    return FitResult(tuple(all_elems), mode, tolerance_mm, decimals, worst, float(sum(lbs)),
+                     tuple(blocks), tuple(lbs))
