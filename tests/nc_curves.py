@@ -71,3 +71,16 @@ def wavy(amplitude=3.0, length=60.0):
         return np.stack([xx, y], axis=-1)
 
     return FunctionCurve(f, 0.0, 2 * length, closed=False, breaks_=(length,))
+
+
+def developed_groove(program: MotionProgram | None = None, radius_mm: float = 30.0):
+    """Cylindrical-cam groove centre developed at ``radius_mm``: x = s(θ) along the axis, y = R·θ."""
+    program = program or demo_program()
+
+    def f(t, order):
+        x = program.lift(t, order)
+        y = [radius_mm * t, radius_mm + 0 * t, 0 * t, 0 * t][order]
+        return np.stack([x, y], axis=-1)
+
+    joins = tuple(math.radians(s.end_deg) for s in program.segments[:-1])
+    return FunctionCurve(f, 0.0, 2 * math.pi, closed=False, breaks_=joins)
