@@ -220,7 +220,7 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam") -> Progr
     --------
     >>> from camcam.post.post import load_post
     >>> tp = Toolpath("demo", (Rapid(0.0, 0.0, 5.0), Feed(10.0, 0.0, 5.0, 300.0)), 1000)
-    >>> print(write_program(tp, load_post("linuxcnc")).text.splitlines()[-4])
+    >>> print(write_program(tp, load_post("linuxcnc")).text.splitlines()[-3])
     G1 X10 F300
     """
     if toolpath.rotary and not post.inverse_time:

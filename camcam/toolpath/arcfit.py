@@ -33,7 +33,9 @@ from scipy.integrate import simpson
 from camcam.errors import InputError
 from camcam.geometry.curve import PlanarCurve, curvature, curvature_rate, speed
 from camcam.toolpath.deviation import Deviation, measure_deviation
-from camcam.toolpath.elements import Arc, Line, arc_from_tangent, element_distance
+from camcam.toolpath.elements import Arc, Line, arc_from_tangent
+from camcam.toolpath.fitcore import (Piece, biarc, dev, end_tangent, greedy, pieces, signed_angle, sweep_ok,
+                                      unit)
 
 __all__ = ["FitResult", "fit_contour", "lower_bound_blocks", "line_estimate_blocks", "rounding_budget"]
 
@@ -82,7 +84,7 @@ def _integral(curve, a, b, f, n: int = 20001) -> float:
 
 def lower_bound_blocks(curve: PlanarCurve, tolerance_mm: float, a=None, b=None) -> float:
     """N_lb = ∫ (|dκ/ds| / (192 δ))^(1/3) ds: fewest arcs any arc spline can use (asymptotically)."""
-    edges = _pieces(curve, a, b)
+    edges = pieces(curve, a, b)
     return sum(_integral(curve, lo, hi, lambda t: np.cbrt(np.abs(curvature_rate(curve, t)) / (192 * tolerance_mm)))
                for lo, hi in edges)
 
@@ -90,141 +92,7 @@ def lower_bound_blocks(curve: PlanarCurve, tolerance_mm: float, a=None, b=None) 
 def line_estimate_blocks(curve: PlanarCurve, tolerance_mm: float, a=None, b=None) -> float:
     """∫ √(|κ| / (8 δ)) ds: chords needed by the chordal method (δ = L²/8ρ)."""
     return sum(_integral(curve, lo, hi, lambda t: np.sqrt(np.abs(curvature(curve, t)) / (8 * tolerance_mm)))
-               for lo, hi in _pieces(curve, a, b))
-
-
-def _pieces(curve, a=None, b=None):
-    br = np.asarray(curve.breaks, float)
-    a = br[0] if a is None else a
-    b = br[-1] if b is None else b
-    edges = [a, *[x for x in br if a < x < b], b]
-    return list(zip(edges, edges[1:]))
-
-
-class _Piece:
-    """One analytic piece of the curve with tangent angles unwrapped continuously."""
-
-    def __init__(self, curve, a, b):
-        self.curve, self.a, self.b = curve, a, b
-        self.grid = np.linspace(a, b, 4097)
-        d = curve.evaluate(self.grid, 1)
-        self.phi_grid = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
-
-    def point(self, t) -> np.ndarray:
-        return self.curve.evaluate(np.atleast_1d(t), 0)
-
-    def phi(self, t) -> np.ndarray:
-        t = np.atleast_1d(np.asarray(t, float))
-        ref = np.interp(t, self.grid, self.phi_grid)
-        d = self.curve.evaluate(t, 1)
-        raw = np.arctan2(d[:, 1], d[:, 0])
-        return ref + (raw - ref + np.pi) % (2 * np.pi) - np.pi
-
-    def samples(self, t0, t1, n=33) -> np.ndarray:
-        return self.point(np.linspace(t0, t1, n))
-
-
-def _unit(angle):
-    return np.array([math.cos(angle), math.sin(angle)])
-
-
-def _end_tangent(e) -> np.ndarray:
-    if isinstance(e, Line):
-        v = np.subtract(e.end, e.start)
-        return v / np.hypot(*v)
-    r = np.subtract(e.end, e.centre)
-    r = r / np.hypot(*r)
-    return np.array([-r[1], r[0]]) if e.ccw else np.array([r[1], -r[0]])
-
-
-def _seg_dist(q, poly):
-    """Distance from points q (n,2) to the polyline poly (m,2)."""
-    a, b = poly[:-1], poly[1:]
-    d = b - a
-    L2 = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
-    rel = q[:, None, :] - a[None, :, :]
-    u = np.clip(np.einsum("nmj,mj->nm", rel, d) / L2, 0, 1)
-    foot = a[None] + u[..., None] * d[None]
-    return np.hypot(*(q[:, None, :] - foot).transpose(2, 0, 1)).min(axis=1)
-
-
-def _dev(piece, elems, t0, t1) -> float:
-    """Two-sided deviation of ``elems`` from the curve on [t0, t1], densely sampled (a fitting check)."""
-    cp = piece.samples(t0, t1, 41)
-    d1 = np.min([element_distance(e, cp) for e in elems], axis=0).max()
-    ep = np.concatenate([e.points(9) for e in elems])
-    dense = piece.samples(t0, t1, 81)
-    d2 = _seg_dist(ep, dense).max()
-    return float(max(d1, d2))
-
-
-def _biarc(p0, t0, p1, t1, sag):
-    """Equal-tangent-length biarc from (p0, t0) to (p1, t1) (unit tangents)."""
-    p0, t0, p1, t1 = (np.asarray(x, float) for x in (p0, t0, p1, t1))
-    v = p1 - p0
-    t = t0 + t1
-    c = 1.0 - float(t0 @ t1)
-    vt = float(v @ t)
-    if c < 1e-12:
-        denom = 4.0 * float(v @ t0)
-        if abs(denom) < 1e-300:
-            return None
-        alpha = float(v @ v) / denom
-    else:
-        alpha = (-vt + math.sqrt(vt * vt + 2.0 * c * float(v @ v))) / (2.0 * c)
-    if not alpha > 0:
-        return None
-    joint = 0.5 * (p0 + alpha * t0 + p1 - alpha * t1)
-    if np.hypot(*(joint - p0)) < 1e-9 or np.hypot(*(p1 - joint)) < 1e-9:
-        return None
-    e1 = arc_from_tangent(p0, t0, joint, sag)
-    e2 = arc_from_tangent(joint, _end_tangent(e1), p1, sag)
-    return [e1, e2]
-
-
-def _sweep_ok(elems, max_sweep) -> bool:
-    return all(not isinstance(e, Arc) or e.sweep <= max_sweep for e in elems)
-
-
-def _greedy(t0, b, ok, guess):
-    """Largest t1 in (t0, b] with ok(t0, t1), by expansion from ``guess`` then bisection."""
-    if ok(t0, b):
-        return b
-    span = b - t0
-    lo, hi = t0, None
-    step = min(guess, span)
-    while True:
-        t = t0 + step
-        if t >= b:
-            hi = b
-            break
-        if ok(t0, t):
-            lo = t
-            step *= 1.6
-        else:
-            hi = t
-            break
-    if lo == t0:  # shrink until something works
-        while True:
-            step *= 0.5
-            if step < span * 1e-9:
-                return t0 + step * 2
-            if ok(t0, t0 + step):
-                lo, hi = t0 + step, t0 + 2 * step
-                break
-    for _ in range(30):
-        if hi - lo <= 1e-6 * span:
-            break
-        mid = 0.5 * (lo + hi)
-        if ok(t0, mid):
-            lo = mid
-        else:
-            hi = mid
-    return lo
-
-
-def _signed_angle(u, v) -> float:
-    return math.atan2(u[0] * v[1] - u[1] * v[0], u[0] * v[0] + u[1] * v[1])
+               for lo, hi in pieces(curve, a, b))
 
 
 #: Candidate next nodes per step, spread over [0.25, 2.5] × the last step.
@@ -243,14 +111,14 @@ def _fit_arcs_piece(piece, tol, max_sweep, sag):
     biarc onto the curve's exact end tangent.
     """
     a, b = piece.a, piece.b
-    exact_end = _unit(float(piece.phi(b)[0]))
+    exact_end = unit(float(piece.phi(b)[0]))
     cache: dict = {}
 
     def arc_to(t0, tan, t1):
         key = (t0, tuple(tan), t1)
         if key not in cache:
             e = arc_from_tangent(piece.point(t0)[0], tan, piece.point(t1)[0], sag)
-            ok = _sweep_ok([e], max_sweep) and _dev(piece, [e], t0, t1) <= tol
+            ok = sweep_ok([e], max_sweep) and dev(piece, [e], t0, t1) <= tol
             cache[key] = (e, ok)
         return cache[key]
 
@@ -260,19 +128,19 @@ def _fit_arcs_piece(piece, tol, max_sweep, sag):
         return [t1 for t1 in grid if t1 > t0 and arc_to(t0, tan, t1)[1]]
 
     def finish(t0, tan):
-        bi = _biarc(piece.point(t0)[0], tan, piece.point(b)[0], exact_end, sag)
-        if bi is not None and _sweep_ok(bi, max_sweep) and _dev(piece, bi, t0, b) <= tol:
+        bi = biarc(piece.point(t0)[0], tan, piece.point(b)[0], exact_end, sag)
+        if bi is not None and sweep_ok(bi, max_sweep) and dev(piece, bi, t0, b) <= tol:
             return bi
         return None
 
     elems = []
     t = a
-    tan = _unit(float(piece.phi(a)[0]))
+    tan = unit(float(piece.phi(a)[0]))
     h = (b - a) / 2.5  # first try the whole piece (a dwell circle is one arc)
     while True:
         if b - t <= 2.5 * h:
             e, ok = arc_to(t, tan, b)
-            if ok and abs(_signed_angle(_end_tangent(e), exact_end)) < 1e-9:
+            if ok and abs(signed_angle(end_tangent(e), exact_end)) < 1e-9:
                 elems.append(e)
                 return elems
             bi = finish(t, tan)
@@ -289,7 +157,7 @@ def _fit_arcs_piece(piece, tol, max_sweep, sag):
 
         def score(t1):
             e, _ = arc_to(t, tan, t1)
-            et = tuple(_end_tangent(e))
+            et = tuple(end_tangent(e))
             if b - t1 <= 2.5 * (t1 - t) and finish(t1, et) is not None:
                 return b + 1.0  # the piece can be closed from here
             nxt = feasible(t1, et, t1 - t)
@@ -314,7 +182,7 @@ def _fit_arcs_piece(piece, tol, max_sweep, sag):
                     best_reach, best = r, t1
         e, _ = arc_to(t, tan, best)
         elems.append(e)
-        tan = tuple(_end_tangent(e))
+        tan = tuple(end_tangent(e))
         h = best - t
         t = best
         cache.clear() if len(cache) > 4096 else None
@@ -329,7 +197,7 @@ def _fit_lines_piece(piece, tol):
         q0, q1 = piece.point(t0)[0], piece.point(t1)[0]
         if np.hypot(*(q1 - q0)) == 0:
             return False
-        return _dev(piece, [Line(tuple(q0), tuple(q1))], t0, t1) <= tol
+        return dev(piece, [Line(tuple(q0), tuple(q1))], t0, t1) <= tol
 
     nodes = [a]
     while nodes[-1] < b:
@@ -337,7 +205,7 @@ def _fit_lines_piece(piece, tol):
         j = int(np.searchsorted(piece.grid, t0))
         j = min(j, len(piece.grid) - 1)
         step_mm = math.sqrt(8.0 * tol / max(k[j], 1e-12))  # seed paper eq. (8): δ = L²/8ρ
-        nodes.append(_greedy(t0, b, ok, step_mm / max(v[j], 1e-12)))
+        nodes.append(greedy(t0, b, ok, step_mm / max(v[j], 1e-12)))
     pts = piece.point(np.array(nodes))
     return [Line(tuple(p), tuple(q)) for p, q in zip(pts[:-1], pts[1:])]
 
@@ -398,8 +266,8 @@ def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs", 
     max_sweep = math.radians(max_sweep_deg)
     all_elems, blocks, lbs = [], [], []
     worst = None
-    for lo, hi in _pieces(curve, a, b):
-        piece = _Piece(curve, lo, hi)
+    for lo, hi in pieces(curve, a, b):
+        piece = Piece(curve, lo, hi)
         tol_k = fit_tol
         for _attempt in range(6):
             raw = (_fit_arcs_piece(piece, tol_k, max_sweep, sag) if mode == "arcs"

@@ -10,7 +10,7 @@ from camcam.geometry.curve import curvature_rate, speed
 from camcam.toolpath.arcfit import fit_contour, line_estimate_blocks, lower_bound_blocks
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Arc, Line
-from camcam.toolpath.path import _tangent_at
+from camcam.toolpath.path import _tangent_at  # noqa: PLC2701 (test of a private helper)
 from nc_curves import ellipse, polar_cam, wavy
 
 CASES = {
