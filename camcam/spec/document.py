@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from camcam.errors import SpecError
+from camcam.spec.machining import MachiningSpec, read_machining
 from camcam.spec.motion import MotionSpec, read_motion
 from camcam.spec.reader import Table
 
@@ -27,6 +28,7 @@ class Spec:
     name: str
     source: Path
     motion: MotionSpec | None
+    machining: MachiningSpec | None = None
 
     def need(self, table: str, command: str):
         """The table ``table``, or a :class:`SpecError` saying ``command`` needs it."""
@@ -47,8 +49,10 @@ def parse_spec(data: dict, source: Path) -> Spec:
     motion_spec = read_motion(motion, base, unit) if motion is not None else None
     if motion is not None:
         motion.done()
+    machining = root.table("machining", None)
+    machining_spec = read_machining(machining, base) if machining is not None else None
     root.done()
-    return Spec(name, source, motion_spec)
+    return Spec(name, source, motion_spec, machining_spec)
 
 
 def load_spec(path: str | Path) -> Spec:
