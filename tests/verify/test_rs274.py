@@ -89,3 +89,26 @@ def test_four_axis_inverse_time(tmp_path):
     # A is printed with 4 decimals of a degree: 0.5e-4° at R30 is 2.6e-5 mm, inside the rounding budget
     dev = measure_deviation(curve, path, margin_mm=0.02 * TOL)
     assert dev.max_deviation_mm <= TOL
+
+
+def test_r_format_user_post(tmp_path):
+    from camcam.post.gcode import printed_elements
+    from camcam.post.post import _post_dir
+
+    text = (_post_dir() / "linuxcnc.toml").read_text().replace('arc_format = "ij_incremental"', 'arc_format = "r"')
+    (tmp_path / "rmill.toml").write_text(text)
+    post = load_post(str(tmp_path / "rmill.toml"))
+    curve, fit = cam_fit(post.decimals, post.max_arc_sweep_deg)
+    printed = printed_elements(fit.elements, post)
+    # the centres rebuilt from the rounded R still keep the program within tolerance
+    assert measure_deviation(curve, printed, margin_mm=0.02 * TOL).max_deviation_mm <= TOL
+    prog = write_program(contour_toolpath(fit.elements, CUT, "cam"), post)
+    assert " R" in prog.text and " I" not in prog.text
+    f = tmp_path / "r.ngc"
+    f.write_text(prog.text)
+    elements, _ = interpreted_contour(f)
+    # rs274's centres agree with ours (4-decimal printing of a centre it computed: ≤ 0.71e-4 mm)
+    for a, b in zip(elements, printed):
+        if isinstance(b, Arc):
+            assert math.dist(a.centre, b.centre) < 1e-4
+    assert measure_deviation(curve, elements, margin_mm=0.02 * TOL).max_deviation_mm <= TOL + 3 * 0.71e-4
