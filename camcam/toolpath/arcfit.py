@@ -147,13 +147,15 @@ def _fit_arcs_piece(piece, tol, max_sweep, sag):
             if bi is not None:
                 elems.extend(bi)
                 return elems
-        cands = feasible(t, tan, h)
+        # the end b is only reached through the exact-tangent checks above
+        cands = [c for c in feasible(t, tan, h) if c < b - 1e-12 * (b - a)]
         if not cands:
             h *= 0.3
             if h < (b - a) * 1e-9:
                 raise InputError(f"cannot fit an arc near t = {t:g} within {tol:g} mm")
             continue
-        step = (t1_max := max(cands)) and h * 2.25 / (LOOKAHEAD_GRID - 1)
+        t1_max = max(cands)
+        step = h * 2.25 / (LOOKAHEAD_GRID - 1)  # grid spacing
 
         def score(t1):
             e, _ = arc_to(t, tan, t1)
@@ -176,7 +178,7 @@ def _fit_arcs_piece(piece, tol, max_sweep, sag):
         best_reach, best = max(scored)
         for frac in (-0.5, -0.25, 0.25, 0.5):  # refine around the best grid point
             t1 = best + frac * step
-            if t < t1 < b and t1 <= t1_max + step and arc_to(t, tan, t1)[1]:
+            if t < t1 < b - 1e-12 * (b - a) and t1 <= t1_max + step and arc_to(t, tan, t1)[1]:
                 r = score(t1)
                 if r > best_reach:
                     best_reach, best = r, t1
@@ -185,7 +187,8 @@ def _fit_arcs_piece(piece, tol, max_sweep, sag):
         tan = tuple(end_tangent(e))
         h = best - t
         t = best
-        cache.clear() if len(cache) > 4096 else None
+        if len(cache) > 4096:
+            cache.clear()
 
 
 def _fit_lines_piece(piece, tol):
