@@ -14,6 +14,7 @@ from pathlib import Path
 from camcam.errors import SpecError
 from camcam.spec.cam import CamSpec, read_cam
 from camcam.spec.follower import FollowerSpec, read_follower
+from camcam.spec.machining import MachiningSpec, read_machining
 from camcam.spec.motion import MotionSpec, read_motion
 from camcam.spec.optimize import OptimizeSpec, read_optimize
 from camcam.spec.reader import Table
@@ -33,6 +34,7 @@ class Spec:
     cam: CamSpec | None = None
     follower: FollowerSpec | None = None
     optimize: OptimizeSpec | None = None
+    machining: MachiningSpec | None = None
 
     @property
     def unit(self) -> str:
@@ -71,8 +73,10 @@ def parse_spec(data: dict, source: Path) -> Spec:
     optimize_spec = read_optimize(optimize) if optimize is not None else None
     if optimize is not None:
         optimize.done()
+    machining = root.table("machining", None)
+    machining_spec = read_machining(machining, base) if machining is not None else None
     root.done()
-    return Spec(name, source, motion_spec, cam, follower, optimize_spec)
+    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec)
 
 
 def load_spec(path: str | Path) -> Spec:

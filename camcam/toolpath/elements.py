@@ -1,0 +1,158 @@
+"""Planar path elements: straight lines and circular arcs.
+
+A fitted contour is a tuple of these, in the direction of travel.  Arcs keep
+their centre, radius and direction explicitly so the G-code writer and the DXF
+exporter print exactly the geometry the deviation was measured on.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Line", "Arc", "arc_from_tangent", "element_points", "element_distance", "contour_length"]
+
+
+@dataclass(frozen=True)
+class Line:
+    """Straight segment from ``start`` to ``end`` (mm)."""
+
+    start: tuple[float, float]
+    end: tuple[float, float]
+
+    @property
+    def length(self) -> float:
+        return math.dist(self.start, self.end)
+
+    def points(self, n: int) -> np.ndarray:
+        u = np.linspace(0.0, 1.0, n)[:, None]
+        return (1 - u) * np.asarray(self.start) + u * np.asarray(self.end)
+
+
+@dataclass(frozen=True)
+class Arc:
+    """Circular arc from ``start`` to ``end`` about ``centre``; ``ccw`` is G3, otherwise G2.
+
+    ``end_radius`` differs from ``radius`` (the start radius) only for printed
+    arcs whose rounded end is not exactly on the circle: between the ends the
+    radius is interpolated linearly in angle (the spiral a controller cuts).
+
+    Examples
+    --------
+    >>> a = Arc((1.0, 0.0), (0.0, 1.0), (0.0, 0.0), True)
+    >>> round(a.sweep, 12), round(a.length, 12)
+    (1.570796326795, 1.570796326795)
+    """
+
+    start: tuple[float, float]
+    end: tuple[float, float]
+    centre: tuple[float, float]
+    ccw: bool
+
+    @property
+    def radius(self) -> float:
+        return math.dist(self.start, self.centre)
+
+    @property
+    def end_radius(self) -> float:
+        return math.dist(self.end, self.centre)
+
+    @property
+    def start_angle(self) -> float:
+        return math.atan2(self.start[1] - self.centre[1], self.start[0] - self.centre[0])
+
+    @property
+    def sweep(self) -> float:
+        """Unsigned swept angle in (0, 2π) (rad)."""
+        a0 = self.start_angle
+        a1 = math.atan2(self.end[1] - self.centre[1], self.end[0] - self.centre[0])
+        d = (a1 - a0) if self.ccw else (a0 - a1)
+        d = math.fmod(d, 2 * math.pi)
+        return d + 2 * math.pi if d <= 0 else d
+
+    @property
+    def length(self) -> float:
+        return 0.5 * (self.radius + self.end_radius) * self.sweep
+
+    @property
+    def curvature(self) -> float:
+        """Signed curvature: +1/R for G3 (left turn), −1/R for G2."""
+        return (1.0 if self.ccw else -1.0) / self.radius
+
+    def points(self, n: int) -> np.ndarray:
+        u = np.linspace(0.0, 1.0, n)
+        ang = self.start_angle + (1.0 if self.ccw else -1.0) * self.sweep * u
+        r = self.radius + (self.end_radius - self.radius) * u
+        return np.asarray(self.centre) + r[:, None] * np.stack([np.cos(ang), np.sin(ang)], axis=-1)
+
+
+def arc_from_tangent(start, tangent, end, line_sagitta: float = 0.0) -> Line | Arc:
+    """The arc leaving ``start`` along unit ``tangent`` and ending at ``end``.
+
+    Returns a :class:`Line` when the arc's sagitta is at most ``line_sagitta``
+    (a straight or nearly straight piece; also what keeps huge radii out of
+    the program).
+
+    Examples
+    --------
+    >>> a = arc_from_tangent((1.0, 0.0), (0.0, 1.0), (-1.0, 0.0))
+    >>> a.centre, a.ccw
+    ((0.0, 0.0), True)
+    """
+    p0 = np.asarray(start, float)
+    t = np.asarray(tangent, float)
+    v = np.asarray(end, float) - p0
+    n = np.array([-t[1], t[0]])
+    chord2 = float(v @ v)
+    h = float(n @ v)  # signed offset of the end from the tangent line
+    # sagitta of the arc over its chord: r(1 - cos(sweep/2)), with sin(sweep/2) = |h|/chord
+    chord = math.sqrt(chord2)
+    if chord == 0.0:
+        raise ValueError("arc with coincident ends")
+    half = math.asin(min(1.0, abs(h) / chord))
+    if float(t @ v) < 0:  # more than a half turn
+        half = math.pi - half
+    sag = (chord / 2) * math.tan(half / 2)
+    if sag <= line_sagitta:
+        return Line(tuple(map(float, p0)), tuple(map(float, p0 + v)))
+    r = chord2 / (2 * h)  # signed: > 0 centre on the left
+    c = p0 + r * n
+    return Arc(tuple(map(float, p0)), tuple(map(float, p0 + v)), (float(c[0]), float(c[1])), r > 0)
+
+
+def element_points(elements, spacing: float) -> tuple[np.ndarray, np.ndarray]:
+    """Points every ≤ ``spacing`` mm along each element (ends included) and their element index."""
+    pts, idx = [], []
+    for i, e in enumerate(elements):
+        n = max(2, int(math.ceil(e.length / spacing)) + 1)
+        pts.append(e.points(n))
+        idx.append(np.full(n, i))
+    return np.concatenate(pts), np.concatenate(idx)
+
+
+def element_distance(e: Line | Arc, q: np.ndarray) -> np.ndarray:
+    """Exact distance from points ``q`` (n, 2) to element ``e``."""
+    q = np.atleast_2d(q)
+    a, b = np.asarray(e.start), np.asarray(e.end)
+    ends = np.minimum(np.hypot(*(q - a).T), np.hypot(*(q - b).T))
+    if isinstance(e, Line):
+        d = b - a
+        L2 = float(d @ d)
+        u = np.clip(((q - a) @ d) / L2, 0.0, 1.0) if L2 > 0 else np.zeros(len(q))
+        foot = a + u[:, None] * d
+        return np.hypot(*(q - foot).T)
+    c = np.asarray(e.centre)
+    rel = q - c
+    ang = np.arctan2(rel[:, 1], rel[:, 0])
+    s = (1.0 if e.ccw else -1.0)
+    u = np.mod(s * (ang - e.start_angle), 2 * np.pi) / e.sweep
+    inside = u <= 1.0
+    r = e.radius + (e.end_radius - e.radius) * np.clip(u, 0, 1)
+    radial = np.abs(np.hypot(rel[:, 0], rel[:, 1]) - r)
+    return np.where(inside, np.minimum(radial, ends), ends)
+
+
+def contour_length(elements) -> float:
+    return float(sum(e.length for e in elements))

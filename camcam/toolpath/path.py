@@ -1,0 +1,228 @@
+"""The neutral tool path: moves a post prints, with no controller dialect in it.
+
+:func:`contour_toolpath` turns a fitted contour into depth passes with
+tangent lead-in/lead-out arcs, safe and clearance heights, optional roughing
+at a finishing allowance and a spring pass.  :func:`rotary_toolpath` wraps a
+developed polyline (x along the cam axis, y = arc length at ``radius_mm``) onto
+the A axis for 4-axis cylindrical cams (inverse-time feeds are the writer's job).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from camcam.errors import InputError
+from camcam.toolpath.elements import Arc, Line
+
+__all__ = ["Rapid", "Feed", "ArcMove", "Toolpath", "CutSettings", "contour_toolpath", "offset_elements",
+           "rotary_toolpath"]
+
+
+@dataclass(frozen=True)
+class Rapid:
+    """G0 to (x, y, z); ``None`` keeps an axis where it is."""
+
+    x: float | None
+    y: float | None
+    z: float | None
+
+
+@dataclass(frozen=True)
+class Feed:
+    """G1 to (x, y, z) (and rotary ``a_deg`` for 4-axis) at ``feed_mm_min``."""
+
+    x: float | None
+    y: float | None
+    z: float | None
+    feed_mm_min: float
+    a_deg: float | None = None
+    length_mm: float = 0.0  # path length at the reference radius (inverse-time feeds)
+
+
+@dataclass(frozen=True)
+class ArcMove:
+    """G2/G3 in the XY plane to (x, y) about (cx, cy) at height z."""
+
+    x: float
+    y: float
+    cx: float
+    cy: float
+    ccw: bool
+    z: float
+    feed_mm_min: float
+
+
+@dataclass(frozen=True)
+class Toolpath:
+    """A frozen program in neutral form."""
+
+    title: str
+    moves: tuple
+    spindle_rpm: float
+    tool_number: int = 1
+    tool_diameter_mm: float = 0.0
+    rotary: bool = False
+    comments: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class CutSettings:
+    """How a contour is cut (mm, mm/min, rev/min).
+
+    ``stock_side`` is the side of the direction of travel where the material
+    is ("left" or "right"); leads and the finishing allowance go to the other.
+    """
+
+    depth_mm: float
+    stepdown_mm: float
+    feed_mm_min: float
+    spindle_rpm: float
+    plunge_feed_mm_min: float | None = None
+    safe_z_mm: float = 25.0
+    clearance_z_mm: float = 2.0
+    top_z_mm: float = 0.0
+    lead_radius_mm: float = 5.0
+    stock_side: str = "right"
+    finish_allowance_mm: float = 0.0
+    spring_pass: bool = False
+    tool_number: int = 1
+    tool_diameter_mm: float = 0.0
+
+    def __post_init__(self) -> None:
+        checks = [
+            ("depth_mm", self.depth_mm > 0, "> 0"), ("stepdown_mm", self.stepdown_mm > 0, "> 0"),
+            ("feed_mm_min", self.feed_mm_min > 0, "> 0"), ("spindle_rpm", self.spindle_rpm > 0, "> 0"),
+            ("lead_radius_mm", self.lead_radius_mm > 0, "> 0"),
+            ("finish_allowance_mm", self.finish_allowance_mm >= 0, "≥ 0"),
+            ("safe_z_mm", self.safe_z_mm >= self.clearance_z_mm > self.top_z_mm, "≥ clearance_z_mm > top_z_mm"),
+            ("stock_side", self.stock_side in ("left", "right"), '"left" or "right"'),
+        ]
+        for name, ok, want in checks:
+            if not ok:
+                raise InputError(f"{name}: expected {want}, got {getattr(self, name)!r}")
+
+
+def _tangent_at(e, end: bool) -> np.ndarray:
+    if isinstance(e, Line):
+        v = np.subtract(e.end, e.start)
+        return v / np.hypot(*v)
+    p = e.end if end else e.start
+    r = np.subtract(p, e.centre)
+    r = r / np.hypot(*r)
+    return np.array([-r[1], r[0]]) if e.ccw else np.array([r[1], -r[0]])
+
+
+def offset_elements(elements, distance_mm: float) -> tuple:
+    """Offset a G1 contour by ``distance_mm`` to its left (negative: right); arcs stay arcs.
+
+    Raises :class:`InputError` when an arc on the inner side would vanish.
+    """
+    out = []
+    for e in elements:
+        if isinstance(e, Line):
+            t = _tangent_at(e, False)
+            n = np.array([-t[1], t[0]]) * distance_mm
+            out.append(Line(tuple(np.add(e.start, n)), tuple(np.add(e.end, n))))
+        else:
+            r = e.radius - (distance_mm if e.ccw else -distance_mm)
+            if r <= 1e-6:
+                raise InputError(f"finish allowance {abs(distance_mm):g} mm exceeds an arc radius {e.radius:g} mm")
+            c = np.asarray(e.centre)
+
+            def move(p):
+                d = np.subtract(p, c)
+                return tuple(c + d / np.hypot(*d) * r)
+
+            out.append(Arc(move(e.start), move(e.end), e.centre, e.ccw))
+    return tuple(out)
+
+
+def _pass_moves(elements, z, feed, plunge, lead, away_left, cs):
+    """One depth pass: rapid over the lead-in start, plunge, lead-in arc, contour, lead-out arc, retract."""
+    first, last = elements[0], elements[-1]
+    p0 = np.asarray(first.start)
+    t0 = _tangent_at(first, False)
+    s = 1.0 if away_left else -1.0
+    n0 = s * np.array([-t0[1], t0[0]])
+    c_in = p0 + lead * n0
+    start = c_in - lead * t0
+    p1 = np.asarray(last.end)
+    t1 = _tangent_at(last, True)
+    n1 = s * np.array([-t1[1], t1[0]])
+    c_out = p1 + lead * n1
+    finish = c_out + lead * t1
+    moves = [Rapid(float(start[0]), float(start[1]), None), Rapid(None, None, cs.clearance_z_mm),
+             Feed(None, None, z, plunge),
+             ArcMove(float(p0[0]), float(p0[1]), float(c_in[0]), float(c_in[1]), away_left, z, feed)]
+    for e in elements:
+        if isinstance(e, Line):
+            moves.append(Feed(e.end[0], e.end[1], z, feed))
+        else:
+            moves.append(ArcMove(e.end[0], e.end[1], e.centre[0], e.centre[1], e.ccw, z, feed))
+    moves.append(ArcMove(float(finish[0]), float(finish[1]), float(c_out[0]), float(c_out[1]), away_left, z, feed))
+    moves.append(Rapid(None, None, cs.clearance_z_mm))
+    return moves
+
+
+def contour_toolpath(elements, cs: CutSettings, title: str = "camcam") -> Toolpath:
+    """Depth passes over a fitted contour (tool-centre elements in the direction of cut).
+
+    Passes go down in equal steps no deeper than ``stepdown_mm``; with a
+    finishing allowance every pass but a final full-depth pass runs offset away
+    from the stock; ``spring_pass`` repeats the final pass.
+
+    Examples
+    --------
+    >>> from camcam.toolpath.elements import Arc
+    >>> c = (Arc((10.0, 0.0), (-10.0, 0.0), (0.0, 0.0), True), Arc((-10.0, 0.0), (10.0, 0.0), (0.0, 0.0), True))
+    >>> tp = contour_toolpath(c, CutSettings(depth_mm=6, stepdown_mm=4, feed_mm_min=300, spindle_rpm=2000))
+    >>> sum(isinstance(m, ArcMove) for m in tp.moves)
+    8
+    """
+    if not elements:
+        raise InputError("contour: no elements to cut")
+    n = max(1, math.ceil(cs.depth_mm / cs.stepdown_mm - 1e-9))
+    levels = [cs.top_z_mm - cs.depth_mm * (k + 1) / n for k in range(n)]
+    away_left = cs.stock_side == "right"
+    plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
+    rough = offset_elements(elements, cs.finish_allowance_mm * (1 if away_left else -1)) \
+        if cs.finish_allowance_mm > 0 else tuple(elements)
+    moves: list = [Rapid(None, None, cs.safe_z_mm)]
+    for z in levels:
+        moves += _pass_moves(rough, z, cs.feed_mm_min, plunge, cs.lead_radius_mm, away_left, cs)
+    finals = (1 if cs.finish_allowance_mm > 0 else 0) + (1 if cs.spring_pass else 0)
+    for _ in range(finals):
+        moves += _pass_moves(tuple(elements), levels[-1], cs.feed_mm_min, plunge, cs.lead_radius_mm, away_left, cs)
+    moves.append(Rapid(None, None, cs.safe_z_mm))
+    return Toolpath(title, tuple(moves), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False,
+                    (f"{n} depth passes to {levels[-1]:g} mm",))
+
+
+def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "camcam") -> Toolpath:
+    """4-axis moves from a developed polyline: x stays X, y/radius becomes A (degrees).
+
+    ``points_xy`` is (n, 2) on the developed plane at ``radius_mm`` (y = arc
+    length); each pass is one ``G1 X A`` move per chord at the pass depth
+    (Z = radius − depth from the axis).
+    """
+    pts = np.asarray(points_xy, float)
+    if radius_mm <= 0:
+        raise InputError(f"radius_mm: expected > 0, got {radius_mm!r}")
+    n = max(1, math.ceil(cs.depth_mm / cs.stepdown_mm - 1e-9))
+    levels = [radius_mm - cs.depth_mm * (k + 1) / n for k in range(n)]
+    a = np.degrees(pts[:, 1] / radius_mm)
+    seg = np.hypot(*np.diff(pts, axis=0).T)
+    plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
+    moves: list = [Rapid(None, None, radius_mm + cs.safe_z_mm)]
+    for z in levels:
+        moves.append(Rapid(float(pts[0, 0]), None, None))
+        moves.append(Feed(None, None, radius_mm + cs.clearance_z_mm, plunge, float(a[0]), cs.safe_z_mm))
+        moves.append(Feed(None, None, z, plunge, float(a[0]), cs.clearance_z_mm + radius_mm - z))
+        for k in range(1, len(pts)):
+            moves.append(Feed(float(pts[k, 0]), None, z, cs.feed_mm_min, float(a[k]), float(seg[k - 1])))
+        moves.append(Rapid(None, None, radius_mm + cs.safe_z_mm))
+    return Toolpath(title, tuple(moves), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, True,
+                    (f"4-axis, developed at R{radius_mm:g}",))

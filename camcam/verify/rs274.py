@@ -1,0 +1,114 @@
+"""Run LinuxCNC's standalone interpreter on a program and rebuild the path it would cut.
+
+``rs274 -g FILE < /dev/null`` prints canonical moves, one per line::
+
+    STRAIGHT_TRAVERSE(x, y, z, a, b, c)        G0
+    STRAIGHT_FEED(x, y, z, a, b, c)            G1
+    ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end, a, b, c)
+
+In G17 ``first`` is X and ``second`` Y (in G18 first is Z: only G17 arcs are
+accepted here).  Numbers carry 4 decimals, so a program printed with at most
+4 decimals is reproduced exactly; otherwise each coordinate may be off by
+0.5·10⁻⁴ mm (:func:`print_margin_mm`).
+"""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+from dataclasses import dataclass
+from pathlib import Path
+
+from camcam.toolpath.elements import Arc, Line
+
+__all__ = ["CanonMove", "rs274_available", "run_rs274", "feed_passes", "print_margin_mm"]
+
+_MOVE = re.compile(r"\b(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED|SELECT_PLANE)\((.*)\)\s*$")
+
+
+@dataclass(frozen=True)
+class CanonMove:
+    """One interpreted move: ``kind`` is "rapid", "line" or "arc"; ends in program units."""
+
+    kind: str
+    x: float
+    y: float
+    z: float
+    a: float
+    centre: tuple[float, float] | None = None
+    ccw: bool = False
+    turns: int = 0
+
+
+def rs274_available() -> bool:
+    return shutil.which("rs274") is not None
+
+
+def print_margin_mm(decimals: int) -> float:
+    """Deviation rs274's 4-decimal printing may add to a program printed with ``decimals``."""
+    return 0.0 if decimals <= 4 else 3 * 0.5 * 2**0.5 * 1e-4
+
+
+def run_rs274(path: str | Path, timeout_s: float = 60.0) -> list[CanonMove]:
+    """Interpret ``path``; raise ``RuntimeError`` with rs274's message if it rejects the program."""
+    proc = subprocess.run(["rs274", "-g", str(path)], stdin=subprocess.DEVNULL, capture_output=True,
+                          text=True, timeout=timeout_s)
+    if proc.returncode != 0:
+        msg = " / ".join(line.strip() for line in proc.stderr.splitlines() if line.strip())
+        raise RuntimeError(f"rs274 rejected {path}: {msg}")
+    moves: list[CanonMove] = []
+    plane = "CANON_PLANE_XY"
+    for line in proc.stdout.splitlines():
+        m = _MOVE.search(line)
+        if not m:
+            continue
+        kind, args = m.group(1), m.group(2)
+        if kind == "SELECT_PLANE":
+            plane = args.strip()
+            continue
+        v = [float(x) for x in args.replace(" ", "").split(",")]
+        if kind == "ARC_FEED":
+            if plane != "CANON_PLANE_XY":
+                raise RuntimeError(f"arc in {plane}: only G17 arcs are expected")
+            x, y, cx, cy, rot, z, a = v[:7]
+            moves.append(CanonMove("arc", x, y, z, a, (cx, cy), rot > 0, int(abs(rot)) - 1))
+        else:
+            moves.append(CanonMove("rapid" if kind == "STRAIGHT_TRAVERSE" else "line", *v[:4]))
+    return moves
+
+
+def feed_passes(moves: list[CanonMove]) -> list[tuple[float, list]]:
+    """XY paths cut at constant Z: (z, elements) for each run of feed moves at one height.
+
+    A run ends at a rapid or a Z change; the plunge into the run is not part of it.
+    """
+    out: list[tuple[float, list]] = []
+    pos = None
+    cur_z, cur = None, []
+    for m in moves:
+        if m.kind == "arc" and m.turns:
+            raise RuntimeError("full-turn arc (P word) in the interpreted program")
+        prev = pos
+        pos = (m.x, m.y, m.z)
+        if m.kind == "rapid" or prev is None:
+            if cur:
+                out.append((cur_z, cur))
+            cur_z, cur = None, []
+            continue
+        if m.z != prev[2] or (cur_z is not None and m.z != cur_z):
+            if cur:
+                out.append((cur_z, cur))
+            cur_z, cur = None, []
+            if m.z != prev[2]:
+                continue
+        if (m.x, m.y) == (prev[0], prev[1]):
+            continue
+        cur_z = m.z
+        if m.kind == "arc":
+            cur.append(Arc((prev[0], prev[1]), (m.x, m.y), m.centre, m.ccw))
+        else:
+            cur.append(Line((prev[0], prev[1]), (m.x, m.y)))
+    if cur:
+        out.append((cur_z, cur))
+    return out

@@ -1,0 +1,96 @@
+import re
+
+import pytest
+
+from camcam.errors import GeometryError, InputError
+from camcam.post.gcode import write_program
+from camcam.post.post import known_posts, load_post
+from camcam.toolpath.elements import Arc
+from camcam.toolpath.path import ArcMove, CutSettings, Feed, Rapid, Toolpath, contour_toolpath
+
+QUARTERS = [(10.0, 0.0), (0.0, 10.0), (-10.0, 0.0), (0.0, -10.0), (10.0, 0.0)]
+CIRCLE = tuple(Arc(a, b, (0.0, 0.0), True) for a, b in zip(QUARTERS, QUARTERS[1:]))
+CUT = CutSettings(depth_mm=6, stepdown_mm=4, feed_mm_min=400, spindle_rpm=3000)
+
+
+def test_all_bundled_posts_load():
+    names = known_posts()
+    assert {"linuxcnc", "fanuc", "haas", "grbl", "sinumerik", "heidenhain"} <= set(names)
+    for n in names:
+        assert load_post(n).name == n
+
+
+def test_top_level_post_dir_is_the_package_data():
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    assert sorted(p.stem for p in (root / "post").glob("*.toml")) == known_posts()
+
+
+def test_unknown_post_lists_known():
+    with pytest.raises(InputError, match=r"unknown post 'mach3'; known: fanuc, grbl"):
+        load_post("mach3")
+
+
+def test_user_post_by_path_and_validation(tmp_path):
+    good = (tmp_path / "mymill.toml")
+    text = (load_post.__globals__["_post_dir"]() / "linuxcnc.toml").read_text()
+    good.write_text(text)
+    assert load_post(str(good)).name == "mymill"
+    assert load_post("./mymill.toml", base=tmp_path).extension == "ngc"
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.replace('arc_format = "ij_incremental"', 'arc_format = "ijk"'))
+    with pytest.raises(InputError, match=r"^post bad: arc_format: expected one of"):
+        load_post(str(bad))
+    bad.write_text(text.replace("decimals = 4", "decimals = 1"))
+    with pytest.raises(InputError, match=r"^post bad: decimals: expected 3–6, got 1$"):
+        load_post(str(bad))
+    bad.write_text(text + 'colour = "red"\n')
+    with pytest.raises(InputError, match=r"^post bad: colour: unknown key"):
+        load_post(str(bad))
+    bad.write_text(text.replace("{title}", "{titel}"))
+    with pytest.raises(InputError, match=r"unknown field \{titel\}"):
+        load_post(str(bad))
+    with pytest.raises(InputError, match="cannot read"):
+        load_post(str(tmp_path / "missing.toml"))
+
+
+@pytest.mark.parametrize("name", ["linuxcnc", "fanuc", "haas", "grbl", "sinumerik", "heidenhain"])
+def test_deterministic_and_dialect(name):
+    tp = contour_toolpath(CIRCLE, CUT, "demo")
+    post = load_post(name)
+    a, b = write_program(tp, post, "demo"), write_program(tp, post, "demo")
+    assert a.text.encode() == b.text.encode()
+    assert a.arc_blocks == 12  # 2 passes × (lead-in + 4 arcs + lead-out)
+    t = a.text
+    if name == "fanuc":
+        assert t.startswith("%\nO0001") and t.rstrip().endswith("%")
+        coords = re.findall(r"\b[XYZIJ](-?[0-9.]+)", t)
+        assert coords and all("." in c for c in coords)  # decimal point on every coordinate
+    if name == "grbl":
+        assert "M6" not in t and not re.search(r"\bT\d", t)
+    if name == "heidenhain":
+        assert t.startswith("0 BEGIN PGM demo MM") and "CC X+0. Y+0." in t and "DR+" in t
+        assert t.rstrip().splitlines()[-1].endswith("END PGM demo MM")
+    if name == "sinumerik":
+        assert "G71" in t and "; demo" in t
+
+
+def test_inverse_time_rotary():
+    moves = (Rapid(None, None, 30.0), Feed(0.0, None, 20.0, 100.0, 0.0, 10.0), Feed(5.0, None, 20.0, 400.0, 90.0, 20.0))
+    tp = Toolpath("rot", moves, 1000, rotary=True)
+    t = write_program(tp, load_post("linuxcnc")).text
+    assert "G93" in t and "G94" in t
+    assert "G1 X5 A90 F20" in t  # 400 mm/min over 20 mm → 20 per minute
+    for line in t.splitlines():
+        if line.startswith("G1"):
+            assert " F" in line  # F on every feed move in G93
+
+
+def test_bad_arc_is_refused():
+    tp = Toolpath("x", (Rapid(0.0, 0.0, 1.0), ArcMove(10.0, 0.0, 5.0, 0.1, True, 1.0, 100.0)), 1000)
+    with pytest.raises(GeometryError, match="sweeps"):
+        write_program(tp, load_post("linuxcnc"))
+    tp = Toolpath("x", (Rapid(0.0, 0.0, 1.0), ArcMove(10.0, 0.0, 4.0, 0.0, True, 1.0, 100.0)), 1000)
+    with pytest.raises(GeometryError, match="radius differ"):
+        write_program(tp, load_post("grbl"))

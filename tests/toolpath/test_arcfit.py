@@ -1,0 +1,112 @@
+import functools
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+from camcam.errors import InputError
+from camcam.geometry.curve import curvature_rate, speed
+from camcam.toolpath.arcfit import fit_contour, line_estimate_blocks, lower_bound_blocks
+from camcam.toolpath.deviation import measure_deviation
+from camcam.toolpath.elements import Arc, Line
+from camcam.toolpath.path import _tangent_at  # noqa: PLC2701 (test of a private helper)
+from nc_curves import ellipse, polar_cam, wavy
+
+CASES = {
+    ("ellipse", 0.01): ellipse, ("ellipse", 0.001): ellipse,
+    ("wavy", 0.01): wavy, ("wavy", 0.001): wavy,
+    ("cam", 0.01): polar_cam,
+}
+
+
+@functools.lru_cache(maxsize=None)
+def fitted(key):
+    curve = CASES[key]()
+    return curve, fit_contour(curve, key[1], decimals=4, max_sweep_deg=120)
+
+
+@pytest.fixture
+def fits():
+    class Lazy:
+        def __getitem__(self, key):
+            return fitted(key)
+
+    return Lazy()
+
+
+@pytest.mark.parametrize("key", list(CASES))
+def test_deviation_within_tolerance_measured_again(fits, key):
+    curve, fit = fits[key]
+    # an independent re-measurement with a 10x smaller between-sample margin
+    again = measure_deviation(curve, fit.elements, margin_mm=0.002 * key[1])
+    assert again.max_deviation_mm <= key[1]
+    assert fit.max_deviation_mm <= key[1]
+
+
+@pytest.mark.parametrize("key", list(CASES))
+def test_blocks_near_lower_bound(fits, key):
+    _, fit = fits[key]
+    for n, lb in zip(fit.piece_blocks, fit.piece_lower_bounds):
+        assert n <= 1.5 * lb + 2, (n, lb)
+
+
+@pytest.mark.parametrize("key", list(CASES))
+def test_no_degenerate_arcs_and_tangent_continuity(fits, key):
+    _, fit = fits[key]
+    els = fit.elements
+    for e in els:
+        for p in (e.start, e.end) + ((e.centre,) if isinstance(e, Arc) else ()):
+            # every printed number is on the 1e-4 grid (to float rounding of the decimal)
+            assert all(abs(v * 1e4 - round(v * 1e4)) < 1e-6 for v in p)
+        if isinstance(e, Arc):
+            assert abs(e.radius - e.end_radius) < 0.002  # GRBL/LinuxCNC radius check, after rounding
+            assert 1e-4 < e.sweep <= math.radians(120) + 1e-6
+    for e, f in zip(els, els[1:]):
+        assert e.end == f.start  # positional continuity is exact on the grid
+        t0, t1 = _tangent_at(e, True), _tangent_at(f, False)
+        kink = abs(math.atan2(t0[0] * t1[1] - t0[1] * t1[0], t0 @ t1))
+        # G1 up to rounding: ends and centres moved ≤ 0.71e-4 mm over lengths ≥ ~0.5 mm
+        assert kink < 2e-3, kink
+
+
+def test_lower_bound_by_quadrature():
+    from scipy.integrate import quad
+
+    E = ellipse()
+    f = lambda t: (abs(curvature_rate(E, [t])[0]) / (192 * 0.01)) ** (1 / 3) * speed(E, [t])[0]
+    ref = sum(quad(f, a, b, limit=200)[0] for a, b in zip(E.breaks, E.breaks[1:]))
+    # Simpson on 20001 points vs adaptive quadrature: the cube-root cusps limit agreement to ~1e-4
+    assert abs(lower_bound_blocks(E, 0.01) - ref) < 1e-3 * ref
+
+
+def test_lines_mode_chordal():
+    E = ellipse()
+    fit = fit_contour(E, 0.01, mode="lines")
+    assert all(isinstance(e, Line) for e in fit.elements)
+    assert fit.max_deviation_mm <= 0.01
+    est = line_estimate_blocks(E, 0.01)
+    # greedy chords with points on the curve: between the estimate and 1.3× it (rounding budget, whole steps)
+    assert est <= len(fit.elements) <= 1.3 * est + 4
+
+
+def test_arcs_beat_lines_at_a_micron():
+    E, arcs = fitted(("ellipse", 0.001))
+    est_lines = line_estimate_blocks(E, 0.001)
+    # ∫√(κ/8δ) ≈ 345 chords vs 40 arcs on this ellipse (the cam benchmark shows ≈ 14x)
+    assert est_lines / len(arcs.elements) > 8
+
+
+def test_tolerance_too_fine_for_decimals():
+    with pytest.raises(InputError, match="too fine for 3 decimals"):
+        fit_contour(ellipse(), 0.001, decimals=3)
+
+
+@settings(max_examples=4, deadline=None)
+@given(st.floats(15, 40), st.floats(8, 14), st.sampled_from([0.05, 0.01]))
+def test_random_ellipses(a, b, tol):
+    E = ellipse(a, b)
+    fit = fit_contour(E, tol)
+    again = measure_deviation(E, fit.elements, margin_mm=0.005 * tol)
+    assert again.max_deviation_mm <= tol  # guaranteed bound, re-measured
+    assert np.isclose(sum(fit.piece_blocks), len(fit.elements))  # counts add up (integers)

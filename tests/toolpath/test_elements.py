@@ -1,0 +1,38 @@
+import math
+
+import numpy as np
+from hypothesis import given, settings, strategies as st
+
+from camcam.toolpath.elements import Arc, Line, arc_from_tangent, element_distance
+
+
+def test_arc_from_tangent_quarter_circle():
+    a = arc_from_tangent((1.0, 0.0), (0.0, 1.0), (0.0, 1.0))
+    assert isinstance(a, Arc) and a.ccw
+    # closed form: centre at the origin, radius 1, sweep π/2 (float rounding only)
+    assert np.allclose(a.centre, (0.0, 0.0), atol=1e-12)
+    assert math.isclose(a.sweep, math.pi / 2, rel_tol=1e-12)
+
+
+def test_flat_arc_becomes_line():
+    # sagitta of a 10 mm chord on R = 1e6 mm is 1.25e-5 mm, below the 1e-4 line limit
+    e = arc_from_tangent((0.0, 0.0), (1.0, 0.0), (10.0, 10.0**2 / (2 * 1e6)), line_sagitta=1e-4)
+    assert isinstance(e, Line)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.floats(0.5, 20), st.floats(0.1, 3.0), st.floats(-3, 3), st.booleans(),
+       st.floats(-30, 30), st.floats(-30, 30))
+def test_distance_to_arc_matches_dense_sampling(r, sweep, a0, ccw, qx, qy):
+    c = np.array([1.0, -2.0])
+    s = -1 if not ccw else 1
+    start = c + r * np.array([math.cos(a0), math.sin(a0)])
+    end = c + r * np.array([math.cos(a0 + s * sweep), math.sin(a0 + s * sweep)])
+    arc = Arc(tuple(start), tuple(end), tuple(c), ccw)
+    pts = arc.points(20001)
+    q = np.array([[qx, qy]])
+    dense = np.hypot(*(pts - q).T).min()
+    exact = element_distance(arc, q)[0]
+    # the exact distance is a lower bound; dense sampling is within half a sample step (r·sweep/20000)
+    assert exact <= dense + 1e-9
+    assert dense - exact <= r * sweep / 20000 + 1e-9
