@@ -1,0 +1,51 @@
+"""Plots of the tolerance report: deviation along the profile, design vs as-machined motion."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from camcam.plots.render import plt, png_bytes
+from camcam.report.fitted_motion import FittedMotion
+
+__all__ = ["deviation_png", "fitted_motion_png"]
+
+
+def deviation_png(angles_deg: np.ndarray, deviation_mm: np.ndarray, tolerance_mm: float, title: str) -> bytes:
+    """Signed deviation against cam angle with the ±tolerance band."""
+    fig, ax = plt.subplots(figsize=(8, 3.2))
+    ax.axhspan(-tolerance_mm, tolerance_mm, color="C2", alpha=0.12, label=f"±{tolerance_mm:g} mm tolerance")
+    ax.plot(angles_deg, deviation_mm, color="C0", lw=1.0, label="printed path − exact")
+    ax.axhline(0, color="0.3", lw=0.6)
+    ax.set_xlim(0, 360)
+    ax.set_xticks(np.arange(0, 361, 30))
+    ax.set_xlabel("cam angle [deg]")
+    ax.set_ylabel("deviation [mm]\n(+ leaves stock)")
+    ax.set_ylim(-1.3 * tolerance_mm, 1.3 * tolerance_mm)
+    ax.legend(loc="upper right", fontsize=8)
+    ax.grid(True, alpha=0.3)
+    ax.set_title(title, fontsize=10)
+    fig.tight_layout()
+    return png_bytes(fig)
+
+
+def fitted_motion_png(fm: FittedMotion, title: str) -> bytes:
+    """Design and as-machined lift, velocity, acceleration, jerk, stacked."""
+    names = ["lift", "velocity", "acceleration", "jerk"]
+    fig, axes = plt.subplots(4, 1, figsize=(8, 8.5), sharex=True)
+    for k, ax in enumerate(axes):
+        ax.plot(fm.angles_deg, fm.design[k], color="0.2", lw=1.6, label="design")
+        style = dict(ls="none", marker=".", ms=2.5) if k == 3 else dict(lw=0.9)
+        ax.plot(fm.angles_deg, fm.fitted[k], color="C3", label="as machined (fitted program)", **style)
+        ax.set_ylabel(f"{names[k]}\n[{fm.units[k]}]")
+        ax.grid(True, alpha=0.3)
+    err_a, at_a = fm.max_error(2)
+    err_j, at_j = fm.max_error(3)
+    axes[0].legend(loc="upper right", fontsize=8)
+    axes[2].set_title(f"largest acceleration error {err_a:.4g} {fm.units[2]} at {at_a:g}°", fontsize=9)
+    axes[3].set_title(f"largest jerk error {err_j:.4g} {fm.units[3]} at {at_j:g}° (jerk is impulsive at every arc join)", fontsize=9)
+    axes[-1].set_xlim(0, 360)
+    axes[-1].set_xticks(np.arange(0, 361, 30))
+    axes[-1].set_xlabel("cam angle [deg]")
+    fig.suptitle(title)
+    fig.tight_layout()
+    return png_bytes(fig)
