@@ -48,7 +48,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return int(args.func(args) or 0)
     except CamcamError as err:
-        print(f"camcam: error: {err}", file=sys.stderr)
+        # one line whatever the message quotes (a file's bytes, a value with a newline)
+        print("camcam: error: " + " ".join(str(err).splitlines()), file=sys.stderr)
         return USAGE_ERROR
     except KeyboardInterrupt:
         print("camcam: interrupted; no output was written", file=sys.stderr)

@@ -17,7 +17,7 @@ from camcam.motion.program import MotionProgram
 from camcam.spec.cam import CamSpec
 from camcam.spec.follower import FollowerSpec
 
-__all__ = ["BuiltCam", "build_cam"]
+__all__ = ["BuiltCam", "build_cam", "disc_follower"]
 
 
 @dataclass(frozen=True)
@@ -30,7 +30,8 @@ class BuiltCam:
     spec: CamSpec
 
 
-def _follower(f: FollowerSpec):
+def disc_follower(f: FollowerSpec):
+    """The geometry stage's disc follower for a validated ``[follower]`` table."""
     if f.kind == "translating-roller":
         return TranslatingRoller(f.roller_radius, f.offset)
     if f.kind == "oscillating-roller":
@@ -50,7 +51,7 @@ def build_cam(c: CamSpec, f: FollowerSpec, program: MotionProgram) -> BuiltCam:
         )
         cam = CylindricalCam(fol, program, c.base_radius, c.length, c.groove_depth, c.rotation, c.bore)
         return BuiltCam(cam, analyse_cylindrical(cam), cylinder_mesh(cam), c)
-    disc = DiscCam(_follower(f), program, c.base_radius, c.rotation)
+    disc = DiscCam(disc_follower(f), program, c.base_radius, c.rotation)
     if c.kind == "disc":
         check_undercut(disc)
         return BuiltCam(disc, analyse(disc), disc_mesh(disc, c.thickness, c.bore), c)

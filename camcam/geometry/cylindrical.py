@@ -54,13 +54,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from camcam.errors import GeometryError
+from camcam.geometry.disc import SIGMA
 from camcam.geometry.jet import Jet
 from camcam.geometry.jetcurve import JetCurve, LiftJet, SpaceCurve, program_breaks
 from camcam.motion.program import MotionProgram
 
 __all__ = ["BarrelTranslatingRoller", "BarrelOscillatingRoller", "CylindricalCam"]
 
-SIGMA = {"ccw": 1, "cw": -1}
 
 
 @dataclass(frozen=True)

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from camcam.errors import InputError
+from camcam.inputs import read_text
 
 __all__ = ["LiftTable", "parse_lift_table", "load_lift_table", "CLOSE_ATOL", "MIN_ROWS"]
 
@@ -180,10 +181,5 @@ def parse_lift_table(text: str, source: str = "table") -> LiftTable:
 def load_lift_table(path: str | Path) -> LiftTable:
     """Read and validate the lift table file at ``path`` (named by its file name in messages)."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise InputError(f"{path}: cannot read: {err}") from None
+    text = read_text(path)
     return parse_lift_table(text, path.name)

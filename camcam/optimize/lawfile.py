@@ -20,6 +20,7 @@ import math
 from pathlib import Path
 
 from camcam.errors import InputError
+from camcam.inputs import read_text
 from camcam.optimize.bspline_law import BSplineLaw
 from camcam.optimize.space import MAX_DEGREE, MAX_SEGMENTS
 
@@ -103,12 +104,7 @@ def law_from_document(doc, name: str = "bspline") -> BSplineLaw:
 def read_law_file(path: str | Path, name: str | None = None) -> BSplineLaw:
     """Read a law file; :class:`InputError` (one line, naming the file) on any problem."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise InputError(f"{path}: cannot read: {err}") from None
+    text = read_text(path)
     try:
         doc = json.loads(text)
     except json.JSONDecodeError as err:

@@ -38,10 +38,11 @@ def _nearest_on(e, q: np.ndarray) -> np.ndarray:
     return np.where(inside[:, None], on_circle, nearest_end)
 
 
-def signed_deviation(curve: PlanarCurve, elements, theta: np.ndarray, outward: np.ndarray) -> np.ndarray:
+def signed_deviation(curve: PlanarCurve, elements, theta: np.ndarray, outward: np.ndarray | None) -> np.ndarray:
     """Signed distance (mm) from ``curve(theta)`` to the nearest printed element, + outward.
 
-    ``outward`` (n, 2) are unit normals away from the material at ``theta``.
+    ``outward`` (n, 2) are unit normals away from the material at ``theta``;
+    ``None`` gives the unsigned distance.
     """
     q = curve.evaluate(theta, 0)
     best = np.full(len(q), np.inf)
@@ -52,4 +53,6 @@ def signed_deviation(curve: PlanarCurve, elements, theta: np.ndarray, outward: n
         m = d < best
         best[m] = d[m]
         best_pt[m] = p[m]
+    if outward is None:
+        return best
     return np.sign(np.einsum("ij,ij->i", best_pt - q, outward)) * best

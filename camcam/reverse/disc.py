@@ -33,23 +33,12 @@ import math
 import numpy as np
 
 from camcam.errors import GeometryError
-from camcam.geometry.followers import OscillatingFlat, OscillatingRoller, TranslatingFlat, TranslatingRoller
-from camcam.spec.follower import FollowerSpec
+from camcam.geometry.build import disc_follower
+from camcam.geometry.followers import OscillatingRoller, TranslatingFlat, TranslatingRoller
+from camcam.geometry.disc import SIGMA
 
 __all__ = ["disc_follower", "profile_normals", "solve_disc"]
 
-SIGMA = {"ccw": 1, "cw": -1}
-
-
-def disc_follower(f: FollowerSpec):
-    """The geometry stage's follower object for a ``[follower]`` table."""
-    if f.kind == "translating-roller":
-        return TranslatingRoller(f.roller_radius, f.offset)
-    if f.kind == "oscillating-roller":
-        return OscillatingRoller(f.roller_radius, f.pivot_distance, f.arm_length)
-    if f.kind == "translating-flat":
-        return TranslatingFlat(f.offset)
-    return OscillatingFlat(f.pivot_distance)
 
 
 def profile_normals(phi, r, dr) -> np.ndarray:

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from camcam.errors import InputError
+from camcam.inputs import read_text
 
 __all__ = ["MeasuredPoints", "parse_points", "load_points", "MIN_POINTS"]
 
@@ -105,10 +106,5 @@ def parse_points(text: str, source: str = "points") -> MeasuredPoints:
 def load_points(path: str | Path) -> MeasuredPoints:
     """Read and validate the points file at ``path`` (named by its file name in messages)."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise InputError(f"{path}: cannot read: {err}") from None
+    text = read_text(path)
     return parse_points(text, path.name)

@@ -17,7 +17,7 @@ from camcam.spec.follower import FollowerSpec, read_follower
 from camcam.spec.machining import MachiningSpec, read_machining
 from camcam.spec.motion import MotionSpec, read_motion
 from camcam.spec.optimize import OptimizeSpec, read_optimize
-from camcam.spec.reader import Table
+from camcam.spec.reader import Table, fmt
 
 __all__ = ["Spec", "load_spec", "parse_spec"]
 
@@ -53,7 +53,7 @@ def parse_spec(data: dict, source: Path) -> Spec:
     """Validate a parsed TOML document (``source`` names it and anchors relative paths)."""
     root = Table(data, "")
     name = root.string("name", source.stem)
-    root.check("name", bool(_NAME.match(name)), f'"{name}" must be 1–64 letters, digits, "_", "-" or "." (it names the output files)')
+    root.check("name", bool(_NAME.match(name)), f'{fmt(name)} must be 1–64 letters, digits, "_", "-" or "." (it names the output files)')
     base = source.parent
     cam_t = root.table("cam", None)
     cam = read_cam(cam_t) if cam_t is not None else None

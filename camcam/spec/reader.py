@@ -8,6 +8,7 @@ e.g. ``motion.segments[2].to: 370 is past 360``.
 
 from __future__ import annotations
 
+import json
 import math
 from typing import Any, Callable, Iterable
 
@@ -29,7 +30,7 @@ def fmt(value: Any) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, str):
-        return f'"{value}"'
+        return json.dumps(value, ensure_ascii=False)  # quoted, control characters escaped: one line
     if isinstance(value, float) and value.is_integer() and abs(value) < 1e15:
         return str(int(value))
     if isinstance(value, dict):

@@ -1,0 +1,148 @@
+"""The machinist's tolerance report: ``<name>-report.html`` and the figures of ``<name>-report.json``.
+
+Assembled from the values the stages returned (no stage is re-run here except
+the as-machined follower motion, which is the report's own analysis).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from camcam.geometry.build import BuiltCam
+from camcam.geometry.disc import DiscCam
+from camcam.geometry.groove import GrooveCam
+from camcam.motion.program import MotionProgram
+from camcam.plots.report_plots import deviation_png, fitted_motion_png
+from camcam.plots.svaj import svaj_png
+from camcam.report.deviation_along import signed_deviation
+from camcam.report.fitted_motion import fitted_motion
+from camcam.report.html import DataTable, Figure, KeyValues, Paragraph, Section, render_html
+from camcam.report.inspection import inspection_table
+
+__all__ = ["MachiningView", "JobReport", "job_report"]
+
+
+@dataclass(frozen=True)
+class MachiningView:
+    """What the report needs from the NC stage (built by the run command)."""
+
+    post: str
+    tool_diameter_mm: float
+    tolerance_mm: float
+    mode: str
+    feed_mm_min: float
+    spindle_rpm: float
+    depth_mm: float
+    stepdown_mm: float
+    max_deviation_mm: float
+    line_blocks: int
+    arc_blocks: int
+    lower_bound_blocks: float
+    program_name: str
+    program_excerpt: str
+    contours: tuple = ()  # ((exact tool-centre PlanarCurve, printed elements), ...)
+    extra: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class JobReport:
+    html: str
+    figures: dict  # extra JSON keys
+    files: dict  # name → bytes (plots also shown in the HTML, and the inspection CSV)
+
+
+def _job_rows(name, spec, built: BuiltCam | None, m: MachiningView | None):
+    rows = [("job", name), ("cam speed", f"{spec.motion.rpm:g} rev/min")]
+    if built is not None:
+        c, cam = built.spec, built.cam
+        rows += [("cam", f"{c.kind}, base radius {c.base_radius:g} mm, rotation {cam.rotation}"),
+                 ("follower", f"{cam.kind}, roller radius {cam.roller_radius:g} mm" if cam.roller_radius else cam.kind)]
+    if m is not None:
+        rows += [
+            ("post", m.post), ("program", m.program_name),
+            ("tool", f"Ø{m.tool_diameter_mm:g} mm"), ("tolerance", f"±{m.tolerance_mm:g} mm, two-sided, on the printed program"),
+            ("mode", m.mode), ("feed", f"{m.feed_mm_min:g} mm/min"), ("spindle", f"{m.spindle_rpm:g} rev/min"),
+            ("depth / stepdown", f"{m.depth_mm:g} / {m.stepdown_mm:g} mm"),
+        ]
+    return tuple(rows)
+
+
+def job_report(name: str, spec, program: MotionProgram, built: BuiltCam | None, cam_figures: dict,
+               cam_png: bytes | None, machining: MachiningView | None, inspection_step_deg: float = 10.0) -> JobReport:
+    """Build the HTML page, the report's extra JSON figures and its files."""
+    files: dict[str, bytes] = {}
+    figures: dict = {}
+    sections = [Section("Job", (KeyValues(_job_rows(name, spec, built, machining)),))]
+    svaj = svaj_png(program, title=f"{name}: design motion at {program.rpm:g} rpm")
+    sections.append(Section("Motion (design)", (Figure(svaj, "Displacement, velocity, acceleration and jerk over the revolution; dashed: segment boundaries."),)))
+    if built is not None:
+        blocks = []
+        if cam_png is not None:
+            blocks.append(Figure(cam_png, "The cam at cam angle 0 with pitch curve, base circle and roller; pressure angle and radius of curvature."))
+        rows = [("largest pressure angle", f"{cam_figures['max_pressure_angle_deg']:.3f}° at {cam_figures['max_pressure_angle_at_deg']:.2f}°"),
+                ("smallest convex radius of curvature", f"{cam_figures['min_curvature_radius_mm']:.3f} mm at {cam_figures['min_curvature_radius_at_deg']:.2f}°")]
+        blocks.append(KeyValues(tuple(rows)))
+        sections.append(Section("Cam", tuple(blocks)))
+    if machining is not None:
+        m = machining
+        verdict = "within" if m.max_deviation_mm <= m.tolerance_mm else "OUTSIDE"
+        blocks = [KeyValues((
+            ("measured deviation (two-sided, printed program)", f"{m.max_deviation_mm:.5f} mm — {verdict} ±{m.tolerance_mm:g} mm"),
+            ("blocks on the contour", f"{m.arc_blocks} arcs + {m.line_blocks} lines"),
+            ("lower bound for any arc spline (N_lb)", f"{m.lower_bound_blocks:.1f}"),
+        ))]
+        disc = built.cam if built is not None and isinstance(built.cam, (DiscCam, GrooveCam)) else None
+        if disc is not None and m.contours:
+            curve, elements = m.contours[0]
+            ang = np.arange(0.0, 360.0, 0.25)
+            th = np.radians(ang)
+            # the sign (+ leaves stock) needs the material side: known for a disc's outside contour;
+            # a groove's flanks are drawn unsigned
+            normal = disc.normal(th) if isinstance(disc, DiscCam) else None
+            dev = signed_deviation(curve, elements, th, normal)
+            files[f"{name}-deviation.png"] = deviation_png(ang, dev, m.tolerance_mm, f"{name}: printed tool path − exact tool-centre curve")
+            blocks.append(Figure(files[f"{name}-deviation.png"], "Deviation of the printed tool path from the exact tool-centre curve along the cam angle (+ leaves stock)."))
+            figures["deviation_along_profile_mm"] = {"min": float(dev.min()), "max": float(dev.max())}
+        blocks.append(DataTable(("first blocks of the program",), tuple((ln,) for ln in m.program_excerpt.splitlines())))
+        sections.append(Section("Tolerance", tuple(blocks)))
+        if isinstance(disc, DiscCam) and m.contours:
+            curve, elements = m.contours[0]
+            fm = fitted_motion(disc, elements, m.tool_diameter_mm / 2, np.arange(0.0, 360.0, 0.5))
+            png = fitted_motion_png(fm, f"{name}: follower motion the fitted program will produce")
+            files[f"{name}-fitted-motion.png"] = png
+            ea, aa = fm.max_error(2)
+            ej, aj = fm.max_error(3)
+            el, al = fm.max_error(0)
+            figures["fitted_motion"] = {
+                "max_lift_error": el, "max_lift_error_at_deg": al,
+                "max_acceleration_error": ea, "max_acceleration_error_at_deg": aa,
+                "max_jerk_error": ej, "max_jerk_error_at_deg": aj,
+                "units": list(fm.units), "contact_changes": fm.contact_changes,
+            }
+            sections.append(Section("Follower motion as machined", (
+                Paragraph("The motion the follower will actually make on the cam cut by this program: the kinematics "
+                          "solved against every printed arc and line. An arc spline has piecewise-constant curvature, so the "
+                          "acceleration is a staircase around the design and the jerk is impulsive at every join; a finer "
+                          "tolerance makes the steps smaller."),
+                Figure(png, "Design (black) and as-machined (red) lift, velocity, acceleration and jerk."),
+                KeyValues((
+                    ("largest lift error", f"{el:.5f} {fm.units[0]} at {al:g}°"),
+                    ("largest acceleration error", f"{ea:.4g} {fm.units[2]} at {aa:g}°"),
+                    ("largest jerk error", f"{ej:.4g} {fm.units[3]} at {aj:g}°"),
+                    ("contact changes (acceleration steps) per revolution", str(fm.contact_changes)),
+                )),
+            )))
+    if built is not None and isinstance(built.cam, (DiscCam, GrooveCam)):
+        tol = machining.tolerance_mm if machining is not None else 0.0
+        table = inspection_table(built.cam, tol, inspection_step_deg)
+        files[f"{name}-inspection.csv"] = table.csv().encode()
+        sections.append(Section(f"Inspection table (every {inspection_step_deg:g}°)", (
+            Paragraph("Profile point in the cam frame (drawing at cam angle 0), its radius from the cam centre, the outward "
+                      "normal direction, the roller centre, the nominal lift and the tolerance band along the normal. "
+                      f"Also written as {name}-inspection.csv."),
+            DataTable(table.header, tuple(table.rows())),
+        )))
+    html = render_html(f"{name}: tolerance report", "camcam — cam, NC program and inspection data", sections)
+    return JobReport(html, figures, files)
