@@ -118,6 +118,8 @@ def test_start_point_is_the_law_the_limits_come_from():
     assert not ic.any() and 4.86 < ir < 4.93  # feasible projection, Am 4.920 (paper 4.869)
     f2 = EvaluationFunction(Problem(5, 7, True, "J", (("V", 1.76), ("A", 5.53))))
     assert start_point(f2)[1] == "modified-sine"  # Table 2's limits are the modified sine's
+    f4 = EvaluationFunction(Problem(5, 18, False, "A", (("V", 1.91), ("J", 81.0))))
+    assert start_point(f4)[1] == "yu-lee"  # Table 4's limits are Yu and Lee's (projection +1.9 % in J)
     x_named, name = start_point(f, "cycloidal")
     assert name == "cycloidal" and np.allclose(x_named, project_law(TABLE1.space, make_law("cycloidal")))
 
