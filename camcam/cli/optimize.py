@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-import sys
-import time
 from pathlib import Path
 
 from camcam.cli.output import print_json, to_json
+from camcam.cli.progress import step
 from camcam.errors import SpecError
 from camcam.export.files import atomic_write
 from camcam.optimize.bspline_law import BSplineLaw
@@ -14,6 +13,7 @@ from camcam.optimize.complex_method import ComplexSettings, complex_method
 from camcam.optimize.evaluation import EvaluationFunction
 from camcam.optimize.exact import InfeasibleProblem, exact_optimum
 from camcam.optimize.lawfile import law_document
+from camcam.optimize.start import start_point
 from camcam.spec import load_spec
 from camcam.spec.optimize import OptimizeSpec
 
@@ -28,27 +28,7 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-class _Progress:
-    """A progress line on stderr, shown only once a run has taken a second."""
-
-    def __init__(self, total: int) -> None:
-        self.total, self.start, self.shown = total, time.perf_counter(), False
-
-    def __call__(self, evaluations: int, best: float) -> None:
-        if time.perf_counter() - self.start < 1.0:
-            return
-        self.shown = True
-        frac = min(1.0, evaluations / self.total)
-        bar = "#" * int(30 * frac)
-        sys.stderr.write(f"\rcamcam: complex [{bar:30s}] {evaluations} evaluations, best I = {best:.6g}")
-        sys.stderr.flush()
-
-    def close(self) -> None:
-        if self.shown:
-            sys.stderr.write("\n")
-
-
-def optimize(opt: OptimizeSpec, progress=None) -> tuple[BSplineLaw, dict]:
+def optimize(opt: OptimizeSpec) -> tuple[BSplineLaw, dict]:
     """Run the spec's method; the law and the solver figures."""
     problem = opt.problem
     if opt.method == "exact":
@@ -68,12 +48,14 @@ def optimize(opt: OptimizeSpec, progress=None) -> tuple[BSplineLaw, dict]:
         }
         x = r.x
     else:
-        settings = ComplexSettings()
+        settings = ComplexSettings(max_evaluations=opt.evaluations)
         f = EvaluationFunction(problem)
-        r = complex_method(f, problem.space.initial_free(), opt.seed, settings, progress)
+        x1, start_law = start_point(f, opt.start)
+        r = complex_method(f, x1, opt.seed, settings)
         solver = {
             "method": "complex",
             "seed": opt.seed,
+            "start": start_law,
             "evaluations": r.evaluations,
             "iterations": r.iterations,
             "restarts": r.restarts,
@@ -89,11 +71,8 @@ def optimize(opt: OptimizeSpec, progress=None) -> tuple[BSplineLaw, dict]:
 def run(args) -> int:
     spec = load_spec(args.spec)
     opt = spec.need("optimize", "optimize")
-    bar = _Progress(ComplexSettings().max_evaluations)
-    try:
-        law, solver = optimize(opt, bar)
-    finally:
-        bar.close()
+    with step(f"optimize ({opt.method})"):
+        law, solver = optimize(opt)
     doc = law_document(law, problem=opt.as_dict(), solver=solver)
     if args.output:
         atomic_write(Path(args.output), to_json(doc) + "\n")

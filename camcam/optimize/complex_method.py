@@ -13,20 +13,39 @@
     meant: ε = 1e-12 would take 40 halvings); once α < ε', α is reset and the
     centroid is replaced by the best vertex, then (d) again.
 
-Two details the paper leaves open, decided here:
+Why the plain algorithm stalls, and what is decided here
+--------------------------------------------------------
+I is a maximum of many smooth pieces (eq. 6, and eq. 5 for active limits).
+With α = 1.3 a reflected vertex lands 0.3 of its distance beyond the
+centroid, so the complex shrinks by about that factor per sweep: from a
+box of size D it makes progress of order D, then collapses onto a kink of
+I.  Restarting (step (c)) is what moves it on, and what matters is the size
+D of the new box.  The paper's D = 1 spans the whole range of S; a box that
+size is thousands of times too coarse near the optimum (J grows like D/ΔT³),
+so every restart at D = 1 just collapses back onto its start.  Decided here:
 
-* If the move towards the best vertex also fails down to α < ε', the complex
-  is stuck; it restarts from the best vertex as in (c).  Without this the
-  loop of (d)–(f) need not end.
-* Constraint weights (eq. 4, the paper's ref. 8 idea): every k_cp starts at 1.
-  At each restart and at convergence, if the best vertex violates a limit by
-  more than ``violation_tol`` (relative), the weight of the first such limit in
-  priority order is multiplied by ``weight_factor``; a converged run with a
-  violated limit restarts instead of stopping.  The penalty is linear (eq. 5),
-  so a finite weight makes the constrained optimum the penalised one.
+* **Restart size.**  A cycle is steps (a)–(f) from one start.  It ends at
+  (c) (I^(m) − I^(l) ≤ ε, or K_L = M_L), when the complex has collapsed to a
+  spread below ``collapse``·D (it then only refines a kink), or when the move
+  towards the best vertex also fails down to α < ε'.  The next cycle restarts
+  from the best vertex with D·``grow`` if the cycle improved the best I, else
+  with D/``shrink`` (the first cycle uses the paper's D).  When D falls below
+  ``D_min`` it is reset to the paper's D for another sweep; the run ends when
+  a whole sweep brings no improvement, or after ``max_evaluations``.
+* **Penalty scaling and weights** (eq. 4, the paper's ref. 8 idea).  The
+  constraint terms are made relative and put on the objective's scale:
+  k_cp = w_p·I_r(Ŝ_1)/h*_p, so w_p = 1 charges a 100 % excess as much as the
+  whole start objective.  Every w_p starts at 1; after a cycle whose best
+  vertex violates a limit by more than ``violation_tol`` (relative), the
+  weight of the first such limit in priority order is multiplied by
+  ``weight_factor`` (at most ``weight_max``).  The penalty is linear (exact),
+  so a weight above the limit's Lagrange multiplier makes the constrained
+  optimum the penalised one.
+* The start point Ŝ_1 is the caller's (see :mod:`camcam.optimize.start`).
+* If the budget runs out while the best vertex violates a limit, the best
+  vertex of the last cycle that met every limit is returned instead.
 
-A seeded :class:`numpy.random.Generator` makes runs reproducible; the run
-also stops after ``max_evaluations`` evaluations of I.
+A seeded :class:`numpy.random.Generator` makes runs reproducible.
 """
 
 from __future__ import annotations
@@ -44,7 +63,7 @@ __all__ = ["ComplexSettings", "ComplexResult", "complex_method"]
 
 @dataclass(frozen=True)
 class ComplexSettings:
-    """Parameters of the Complex method (defaults: the paper's values)."""
+    """Parameters of the Complex method (α … M_L: the paper's values)."""
 
     alpha: float = 1.3
     beta: float = 0.5
@@ -52,12 +71,14 @@ class ComplexSettings:
     eps_prime: float = 1e-4
     D: float = 1.0
     restart_every: int = 50  # M_L
-    max_evaluations: int = 400_000
+    max_evaluations: int = 40_000
+    collapse: float = 1e-3
+    grow: float = 2.0
+    shrink: float = 3.0
+    D_min: float = 1e-10
     weight_factor: float = 10.0
-    violation_tol: float = 1e-6
-    restart_scale: float = 4.0
-    restart_floor: float = 1e-4
-    patience: int = 12
+    weight_max: float = 1e3
+    violation_tol: float = 1e-9
 
 
 @dataclass(frozen=True)
@@ -85,7 +106,9 @@ def complex_method(
 ) -> ComplexResult:
     """Minimise eq. 4 of ``f`` from the start point ``x1``.
 
-    ``progress(evaluations, best I)`` is called about every 1000 evaluations.
+    ``progress(evaluations, best objective)`` is called after every cycle.
+    ``converged`` is true when the run ended because a whole sweep of D
+    brought no improvement (rather than on the evaluation budget).
 
     Examples
     --------
@@ -103,105 +126,101 @@ def complex_method(
     x1 = np.asarray(x1, dtype=float)
     nf = x1.size
     M = 2 * nf
-    weights = np.ones(len(f.problem.limits))
-    count = {"evals": 0}
+    limits = np.array([lim for _, lim in f.problem.limits])
+    weights = np.ones(len(limits))
+    evals = 0
 
     def terms(x):
-        count["evals"] += 1
-        if progress is not None and count["evals"] % 1000 == 0:
-            progress(count["evals"], best_value)
+        nonlocal evals
+        evals += 1
         return f.terms(x)
 
-    start, D = x1, s.D
-    idle = 0
-    iterations = restarts = 0
-    converged = False
-    best_value = np.inf
-    best = (x1, *terms(x1))
-    budget_left = lambda: count["evals"] < s.max_evaluations  # noqa: E731
+    ic1, ir1 = terms(x1)
+    scale = max(ir1, 1e-12) / limits if limits.size else limits
 
+    def value(ic, ir) -> float:
+        return float(ir + (weights * scale * ic).sum())
+
+    budget_left = lambda: evals < s.max_evaluations  # noqa: E731
+    best = (x1, ic1, ir1)
+    feasible = best if not (ic1 / limits > settings.violation_tol).any() else None
+    start, D = x1, s.D
+    iterations = restarts = 0
+    sweep_improved = converged = False
     while budget_left():
         # (a) the complex around the start point
         X = start + D * rng.uniform(-0.5, 0.5, size=(M, nf))
         X[0] = start
-        T = [terms(x) for x in X[: min(M, s.max_evaluations - count["evals"] + 1)]]
+        T = [terms(x) for x in X[: min(M, s.max_evaluations - evals)]]
         if len(T) < M:
             break
         IC = np.array([t[0] for t in T]).reshape(M, -1)
         IR = np.array([t[1] for t in T])
-        F = IC @ weights + IR
+        F = np.array([value(a, b) for a, b in zip(IC, IR)])
+        F_start = F[0]
         l = int(np.argmin(F))
-        best_value = cycle_start = F[l]
         KL = 0
-        restart = False
-        while budget_left() and not restart:
-            # (b)
-            m = int(np.argmax(F))
-            # (c)
-            if F[m] - F[l] <= s.eps:
-                if _raise_weight(weights, f.relative_violation(IC[l]), s):
-                    restart = True
-                elif cycle_start - F[l] > s.eps:  # this cycle improved: look again around the best
-                    restart, idle = True, 0
-                elif idle + 1 < s.patience:  # no improvement: try a fresh complex
-                    restart, idle = True, idle + 1
-                else:
-                    converged = True
+        while budget_left():
+            m = int(np.argmax(F))  # (b)
+            if F[m] - F[l] <= s.eps or KL >= s.restart_every:  # (c)
                 break
-            if KL >= s.restart_every:
-                _raise_weight(weights, f.relative_violation(IC[l]), s)
-                restart = True
+            if float(np.abs(X - X[l]).max()) <= s.collapse * D:
                 break
-            # (d)–(f)
             iterations += 1
-            centroid = (X.sum(axis=0) - X[m]) / (M - 1)
-            target, alpha, towards_best = centroid, s.alpha, False
+            centroid = (X.sum(axis=0) - X[m]) / (M - 1)  # (d)
+            target, alpha, towards_best, stuck = centroid, s.alpha, False, False
             while budget_left():
                 xc = X[m] + alpha * (target - X[m])
                 ic, ir = terms(xc)
-                fc = float(ic @ weights + ir)
+                fc = value(ic, ir)
                 if fc < F[m]:  # (e)
                     X[m], IC[m], IR[m], F[m] = xc, ic, ir, fc
                     if fc < F[l]:
                         l = m
-                        best_value = fc
                         KL += 1
                     break
                 if alpha >= s.eps_prime:  # (f)
                     alpha *= s.beta
                 elif not towards_best:
                     target, alpha, towards_best = X[l], s.alpha, True
-                else:  # stuck: restart from the best vertex
-                    _raise_weight(weights, f.relative_violation(IC[l]), s)
-                    restart = True
+                else:
+                    stuck = True
                     break
-        best = (X[l].copy(), IC[l].copy(), float(IR[l]))
-        if converged:
-            break
-        restarts += 1
+            if stuck:
+                break
+        improved = F_start - F[l] > s.eps * max(1.0, abs(F[l]))
         start = X[l].copy()
-        # Restart at the scale the complex had reached (at most D, at least D·restart_floor).
-        spread = float(np.abs(X - X[l]).max())
-        D = min(s.D, max(s.restart_scale * spread, s.D * s.restart_floor ** ((idle % 4) / 3)))
+        best = (start, IC[l].copy(), float(IR[l]))
+        restarts += 1
+        if progress is not None:
+            progress(evals, best[2])
+        violated = np.nonzero(IC[l] / limits > s.violation_tol)[0] if limits.size else []
+        if not len(violated):
+            feasible = best
+        if len(violated):
+            p = violated[0]
+            weights[p] = min(s.weight_max, weights[p] * s.weight_factor)
+            sweep_improved = True  # the weights changed: I values are not comparable
+        sweep_improved |= improved
+        D = D * s.grow if improved else D / s.shrink
+        D = min(D, s.D)
+        if D < s.D_min:
+            if not sweep_improved:
+                converged = True
+                break
+            D, sweep_improved = s.D, False
+    if feasible is not None and (best[1] / limits > s.violation_tol).any():
+        best = feasible  # the run ended on an infeasible vertex: the last feasible best instead
     x, ic, ir = best
     return ComplexResult(
         x=x,
-        value=float(ic @ weights + ir),
+        value=value(ic, ir),
         objective=ir,
         violations=tuple(float(v) for v in f.relative_violation(ic)),
         weights=tuple(float(w) for w in weights),
-        evaluations=count["evals"],
+        evaluations=evals,
         iterations=iterations,
         restarts=restarts,
         converged=converged,
         seconds=time.perf_counter() - t0,
     )
-
-
-def _raise_weight(weights: np.ndarray, rel_violation: np.ndarray, s: ComplexSettings) -> bool:
-    """Raise the weight of the first violated limit (priority order); True if one was raised."""
-    for p, v in enumerate(rel_violation):
-        if v > s.violation_tol:
-            weights[p] *= s.weight_factor
-            return True
-    return False

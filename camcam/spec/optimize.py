@@ -8,6 +8,8 @@ symmetric = true
 method = "exact"      # or "complex" (the paper's Box Complex method)
 minimize = "A"        # "V", "A" or "J": the largest |.| over the rise
 seed = 1              # random numbers of the Complex method
+start = "auto"        # Complex start: a catalog law projected, or "auto" (best projection)
+evaluations = 40000   # Complex method budget (evaluations of I)
 [optimize.limits]     # upper bounds on the largest |V|, |A|, |J| (priority = order written)
 V = 2.0
 J = 61.4
@@ -19,6 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from camcam.errors import SpecError
+from camcam.motion.catalog import LAWS
 from camcam.optimize.evaluation import LINEAR_QUANTITIES, Problem
 from camcam.optimize.space import MAX_DEGREE, MAX_SEGMENTS
 from camcam.spec.reader import Table, fmt
@@ -35,6 +38,8 @@ class OptimizeSpec:
     problem: Problem
     method: str
     seed: int
+    start: str = "auto"
+    evaluations: int = 40_000
 
     def as_dict(self) -> dict:
         p = self.problem
@@ -45,6 +50,8 @@ class OptimizeSpec:
             "method": self.method,
             "minimize": p.minimize,
             "seed": self.seed,
+            "start": self.start,
+            "evaluations": self.evaluations,
             "limits": dict(p.limits),
         }
 
@@ -58,6 +65,8 @@ def read_optimize(t: Table) -> OptimizeSpec:
     method = t.string("method", "exact", choices=METHODS)
     minimize = t.string("minimize", "A", choices=LINEAR_QUANTITIES)
     seed = t.integer("seed", 1, minimum=0)
+    start = t.string("start", "auto", choices=("auto", *LAWS))
+    evaluations = t.integer("evaluations", 40_000, minimum=100, maximum=10_000_000)
     lt = t.table("limits", None)
     limits = []
     if lt is not None:
@@ -70,4 +79,4 @@ def read_optimize(t: Table) -> OptimizeSpec:
         problem = Problem(degree, segments, symmetric, minimize, tuple(limits))
     except ValueError as err:
         raise SpecError(t.key_path("segments"), f"{fmt(segments)}: {err}") from None
-    return OptimizeSpec(problem, method, seed)
+    return OptimizeSpec(problem, method, seed, start, evaluations)

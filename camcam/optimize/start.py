@@ -1,0 +1,73 @@
+"""Start points for the Complex method: known cam laws projected into the B-spline space.
+
+Seed 000 §2.3 (a) sets the initial control-point vector Ŝ_1 "suitably".  Its
+tables use the characteristic values of standard laws as limits (Table 1:
+modified trapezoid, Table 2: modified sine, Table 4: Yu and Lee's law), so the
+natural start is such a law itself: its displacement fitted by least squares
+with the free control points (the fixed ones keep the boundary conditions).
+``"auto"`` takes, among the laws of :data:`camcam.motion.catalog.LAWS` whose
+projection exceeds no limit by more than :data:`AUTO_SLACK` (relative), the
+one with the smallest objective; if none is that close, the smallest sum of
+relative excesses.  (A projection slightly off the limits, e.g. Yu and Lee's
+law for Table 4 at +1.9 % in J, is a far better start than a feasible but
+much worse law.)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.interpolate import BSpline
+
+from camcam.motion.catalog import LAWS, make_law
+from camcam.motion.law import MotionLaw
+from camcam.optimize.evaluation import EvaluationFunction
+from camcam.optimize.space import BSplineSpace
+
+__all__ = ["AUTO_SLACK", "project_law", "start_point"]
+
+#: Largest relative limit excess of a projection ``"auto"`` ranks by its objective.
+AUTO_SLACK = 0.05
+
+
+def project_law(space: BSplineSpace, law: MotionLaw) -> np.ndarray:
+    """Free control points whose curve is closest (least squares in S) to ``law``.
+
+    Examples
+    --------
+    >>> sp = BSplineSpace(5, 7, True)
+    >>> x = project_law(sp, make_law("modified-trapezoid"))
+    >>> T = np.linspace(0, 0.5, 101)
+    >>> float(np.abs(sp.spline(x)(T) - make_law("modified-trapezoid").evaluate(T, 0)).max()) < 1e-3
+    True
+    """
+    T = np.linspace(0.0, space.span, 40 * space.segments + 1)
+    basis = BSpline(space.knots, np.eye(space.n_control), space.degree)(T)
+    p0 = space.control_points(np.zeros(space.n_free))
+    E = np.stack([space.control_points(e) - p0 for e in np.eye(space.n_free)], axis=1)
+    x, *_ = np.linalg.lstsq(basis @ E, law.evaluate(T, 0) - basis @ p0, rcond=None)
+    return x
+
+
+def start_point(f: EvaluationFunction, name: str = "auto") -> tuple[np.ndarray, str]:
+    """(free control points, law name) of the start Ŝ_1 for ``f``'s problem.
+
+    Examples
+    --------
+    >>> from camcam.optimize.evaluation import Problem
+    >>> f = EvaluationFunction(Problem(5, 7, True, "A", (("V", 2.0), ("J", 61.4))))
+    >>> start_point(f)[1]
+    'modified-trapezoid'
+    """
+    space = f.problem.space
+    if name != "auto":
+        return project_law(space, make_law(name)), name
+    limits = np.array([lim for _, lim in f.problem.limits])
+    best = None
+    for law_name in LAWS:
+        x = project_law(space, make_law(law_name))
+        ic, ir = f.terms(x)
+        excess = float((ic / limits).max()) if limits.size else 0.0
+        value = (0, ir) if excess <= AUTO_SLACK else (1, float((ic / limits).sum()))
+        if best is None or value < best[0]:
+            best = (value, x, law_name)
+    return best[1], best[2]
