@@ -116,6 +116,11 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> Machini
     notes = (f"4-axis: X along the cam axis, A = program cam angle (deg), developed at R{rho:g} mm",)
     if m.mode == "arcs":
         notes += ("mode arcs: a 4-axis G1 X A program has lines only",)
+    worst = max(max(c.error_top_mm, c.error_bottom_mm) for c in contours)
+    if worst > m.tolerance_mm:
+        why = ("the roller axis tilts with the arm, a radial tool cannot follow it"
+               if cam.kind == "oscillating-roller" else "the flank's slope changes with depth")
+        notes += (f"4-axis: the cut leaves the exact groove by up to {worst:.4f} mm at the groove top/bottom ({why})",)
     return MachiningResult(name, built.spec.kind, cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, "lines",
                            tuple(contours), toolpath, program,
                            tuple(i for i in range(k) for _ in range(n_levels)), (True,) * (k * n_levels), rho, notes)

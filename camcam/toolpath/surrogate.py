@@ -4,7 +4,7 @@ The fitter evaluates its curve thousands of times at single parameters; a cam
 curve built from Taylor jets costs ~0.5 ms a call.  Between two breaks the
 curve is analytic (or, inside a piecewise law such as the modified sine, smooth up to
 a jump of a high derivative), so a Chebyshev interpolant of x(t) and y(t) of
-degree 32 is tried, and an interval where it is not within ``accuracy_mm`` of
+degree 12 is tried, and an interval where it is not within ``accuracy_mm`` of
 the exact curve at points between the nodes is halved (measured, and the
 worst kept as ``error_mm``).  Only the fitting runs on it: the printed program is
 measured against the exact curve afterwards.
@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from numpy.polynomial import Chebyshev
+from numpy.polynomial import chebyshev as C
 
 __all__ = ["ChebyshevCurve", "chebyshev_curve"]
 
@@ -26,7 +26,7 @@ class ChebyshevCurve:
 
     breaks: np.ndarray
     knots: np.ndarray  # sub-interval ends (the breaks among them)
-    series: tuple  # per sub-interval: ((x, x′, x″, x‴), (y, …)) Chebyshev objects
+    series: tuple  # per sub-interval: coefficient arrays (n+1, 2) of P, P′, P″, P‴ in s ∈ [−1, 1]
     error_mm: float
     closed: bool
 
@@ -46,13 +46,13 @@ class ChebyshevCurve:
         out = np.empty((t.size, 2))
         for k in np.unique(idx):
             m = idx == k
-            sx, sy = self.series[k]
-            out[m, 0] = sx[order](t[m])
-            out[m, 1] = sy[order](t[m])
+            lo, hi = self.knots[k], self.knots[k + 1]
+            u = (2.0 * t[m] - lo - hi) / (hi - lo)
+            out[m] = C.chebval(u, self.series[k][order]).T
         return out
 
 
-DEGREE = 32
+DEGREE = 12
 
 
 def _piece(curve, lo: float, hi: float, accuracy_mm: float, depth: int, out: list) -> float:
@@ -61,14 +61,13 @@ def _piece(curve, lo: float, hi: float, accuracy_mm: float, depth: int, out: lis
     k = np.arange(n + 1)
     nodes = 0.5 * (lo + hi) + 0.5 * (hi - lo) * np.cos(np.pi * (k + 0.5) / (n + 1))
     vals = curve.evaluate(nodes, 0)
-    sx = Chebyshev.fit(nodes, vals[:, 0], n, domain=[lo, hi])
-    sy = Chebyshev.fit(nodes, vals[:, 1], n, domain=[lo, hi])
+    c = C.chebfit(np.cos(np.pi * (k + 0.5) / (n + 1)), vals, n)  # (n+1, 2), s ∈ [−1, 1]
     check = np.linspace(lo, hi, 4 * n + 3)
-    exact = curve.evaluate(check, 0)
-    err = float(np.hypot(sx(check) - exact[:, 0], sy(check) - exact[:, 1]).max())
-    if err <= accuracy_mm or depth >= 12:
-        derivs = lambda s: (s, s.deriv(1), s.deriv(2), s.deriv(3))  # noqa: E731
-        out.append((lo, hi, (derivs(sx), derivs(sy))))
+    approx = C.chebval((2.0 * check - lo - hi) / (hi - lo), c).T
+    err = float(np.hypot(*(approx - curve.evaluate(check, 0)).T).max())
+    if err <= accuracy_mm or depth >= 14:
+        scale = 2.0 / (hi - lo)
+        out.append((lo, hi, tuple(C.chebder(c, j) * scale**j if j else c for j in range(4))))
         return err
     mid = 0.5 * (lo + hi)
     return max(_piece(curve, lo, mid, accuracy_mm, depth + 1, out), _piece(curve, mid, hi, accuracy_mm, depth + 1, out))
