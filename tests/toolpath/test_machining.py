@@ -140,14 +140,21 @@ def test_tool_too_small_for_groove_fails():
 
 
 def test_tool_larger_than_concave_radius_fails():
-    spec, built, _ = built_and_result("disc-oscillating-roller")
-    conc = built.analysis.profile.min_concave_radius
-    if conc is None:
-        pytest.skip("this profile has no concave part")
-    from dataclasses import replace
-    m = replace(spec.machining, tool_diameter_mm=2 * conc.value + 1.0)
-    with pytest.raises(GeometryError, match="concave"):
-        machine(built, m, "d")
+    from camcam.spec.document import parse_spec
+
+    # a steep 25 mm cycloidal rise over 60°: the profile is concave (radius 82.66 mm) near 12°
+    law = {"law": "cycloidal", "from": 0, "to": 60, "rise": 25.0}
+    data = {"motion": {"rpm": 60, "segments": [law, {"law": "dwell", "from": 60, "to": 180},
+                                               {"law": "cycloidal", "from": 180, "to": 240, "rise": -25.0},
+                                               {"law": "dwell", "from": 240, "to": 360}]},
+            "cam": {"kind": "disc", "base_radius": 60.0, "thickness": 10.0},
+            "follower": {"kind": "translating-roller", "roller_radius": 5.0},
+            "machining": {"tool_diameter": 170.0, "feed": 300.0, "spindle": 2000, "depth": 10.0}}
+    spec = parse_spec(data, Path("concave.toml"))
+    built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
+    assert built.analysis.profile.min_concave_radius is not None
+    with pytest.raises(GeometryError, match="smallest concave radius is 82.661 mm"):
+        machine(built, spec.machining, "d")
 
 
 def test_cylindrical_flank_errors_reported():
