@@ -2,7 +2,8 @@
 
 Motion stage (table, SVAJ plot, summary); with ``[cam]`` and ``[follower]``
 tables also the cam geometry: ``<name>.stl``, ``<name>-profile.png`` and
-``<name>-report.json``.  Later stages add the NC program and the drawing.
+``<name>-report.json``; with ``[machining]`` also the NC program
+(``<name>.<post extension>``) and ``<name>.dxf`` (:func:`nc_step`).
 """
 
 from __future__ import annotations
@@ -14,7 +15,25 @@ from camcam.cli.output import print_json, to_json, warn
 from camcam.export.files import OutputSet
 from camcam.spec import load_spec
 
-__all__ = ["register"]
+__all__ = ["register", "nc_step"]
+
+
+def nc_step(out: OutputSet, spec, built, report: dict):
+    """The NC step: machine ``built`` per ``spec.machining``, add the program and DXF to ``out``
+    and the figures to ``report``; returns the :class:`~camcam.toolpath.machining.MachiningResult`."""
+    from camcam.export.nc import machining_report, nc_files
+    from camcam.toolpath.machining import machine
+
+    result = machine(built, spec.machining, spec.name)
+    for name, data in nc_files(built, result).items():
+        out.add(name, data)
+    nc = machining_report(result)
+    for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks"):
+        report[key] = nc[key]
+    report["machining"] = nc
+    for note in result.notes:
+        warn(note)
+    return result
 
 
 def register(sub) -> None:
@@ -41,6 +60,8 @@ def run(args) -> int:
 
         built = build_cam(spec.cam, spec.follower, program)
         report = cam_report(built)
+        if spec.machining is not None:
+            nc_step(out, spec, built, report)
         out.add(f"{spec.name}.stl", stl_bytes(built.mesh))
         out.add(f"{spec.name}-profile.png", cam_png(built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower"))
         out.add(f"{spec.name}-report.json", to_json(report) + "\n")
@@ -55,6 +76,9 @@ def run(args) -> int:
             c = summary["cam"]
             print(f"max pressure angle {c['max_pressure_angle_deg']:.4f}° at {c['max_pressure_angle_at_deg']:.2f}°; "
                   f"min radius of curvature {c['min_curvature_radius_mm']:.4f} mm at {c['min_curvature_radius_at_deg']:.2f}°")
+            if "machining" in c:
+                print(f"NC: {c['line_blocks']} line + {c['arc_blocks']} arc blocks (lower bound {c['lower_bound_blocks']:.1f}), "
+                      f"max deviation {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm on the printed program")
         for p in written:
             print(f"wrote {p}")
     return 0

@@ -19,7 +19,7 @@ from scipy.interpolate import make_interp_spline
 
 from camcam.toolpath.elements import Arc, Line
 
-__all__ = ["Polyline", "Circle", "Text", "DxfDrawing", "contour_dxf", "spline_of_curve"]
+__all__ = ["Polyline", "Circle", "Text", "ExactCurve", "DxfDrawing", "contour_dxf", "spline_of_curve"]
 
 
 @dataclass(frozen=True)
@@ -39,6 +39,13 @@ class Text:
     text: str
     insert: tuple[float, float]
     height: float = 2.5
+
+
+@dataclass(frozen=True)
+class ExactCurve:
+    """An exact curve drawn as cubic SPLINEs (one per analytic piece) within the drawing's spline deviation."""
+
+    curve: object
 
 
 @dataclass(frozen=True)
@@ -71,14 +78,42 @@ def _deg(v) -> float:
     return float(np.degrees(np.arctan2(v[1], v[0])))
 
 
+_FIXED_HEADER = {"$TDINDWG": 0.0, "$TDUSRTIMER": 0.0}
+
+
 def contour_dxf(elements, curve=None, extras: dict | None = None, spline_deviation_mm: float = 1e-4,
                 title: str | None = None) -> DxfDrawing:
-    """Build the drawing in memory (no file I/O).
+    """Build the drawing in memory (no file I/O); the same input gives the same bytes.
 
-    ``extras`` maps a layer name to a list of :class:`Polyline`, :class:`Circle`
-    and :class:`Text` items.
+    ``extras`` maps a layer name to a list of :class:`Polyline`, :class:`Circle`,
+    :class:`Text` and :class:`ExactCurve` items.  ezdxf's time stamps and GUIDs
+    (``$TDCREATE``, ``$TDUPDATE``, ``$FINGERPRINTGUID``, ``$VERSIONGUID``, the
+    ezdxf marker) are written as its fixed test values; ``$TDINDWG`` and
+    ``$TDUSRTIMER`` are 0.
     """
+    saved = ezdxf.options.write_fixed_meta_data_for_testing
+    ezdxf.options.write_fixed_meta_data_for_testing = True
+    try:
+        return _build(elements, curve, extras, spline_deviation_mm, title)
+    finally:
+        ezdxf.options.write_fixed_meta_data_for_testing = saved
+
+
+def _add_splines(msp, curve, layer, deviation_mm) -> tuple[float, int]:
+    worst, count = 0.0, 0
+    br = list(curve.breaks)
+    for lo, hi in zip(br, br[1:]):
+        spl, dev = spline_of_curve(curve, lo, hi, deviation_mm)
+        worst = max(worst, dev)
+        msp.add_open_spline([tuple(p) for p in spl.c], degree=3, knots=list(spl.t), dxfattribs={"layer": layer})
+        count += 1
+    return worst, count
+
+
+def _build(elements, curve, extras, spline_deviation_mm, title) -> DxfDrawing:
     doc = ezdxf.new("R2010", setup=False)
+    for key, value in _FIXED_HEADER.items():
+        doc.header[key] = value
     doc.units = units.MM
     doc.header["$INSUNITS"] = units.MM
     doc.header["$MEASUREMENT"] = 1
@@ -97,16 +132,9 @@ def contour_dxf(elements, curve=None, extras: dict | None = None, spline_deviati
     worst = 0.0
     if curve is not None:
         doc.layers.add("EXACT", color=3)
-        br = list(curve.breaks)
-        for lo, hi in zip(br, br[1:]):
-            spl, dev = spline_of_curve(curve, lo, hi, spline_deviation_mm)
-            worst = max(worst, dev)
-            msp.add_open_spline([tuple(p) for p in spl.c], degree=3, knots=list(spl.t),
-                                dxfattribs={"layer": "EXACT"})
-            count += 1
-        msp.add_text(f"EXACT: cubic splines within {worst:.2g} mm of the exact curve", height=1.0,
-                     dxfattribs={"layer": "EXACT"}).set_placement(tuple(curve.evaluate([curve.t_start], 0)[0]))
-        count += 1
+        worst, n = _add_splines(msp, curve, "EXACT", spline_deviation_mm)
+        count += n
+    splines = curve is not None
     for layer, items in (extras or {}).items():
         if layer not in doc.layers:
             doc.layers.add(layer)
@@ -115,11 +143,23 @@ def contour_dxf(elements, curve=None, extras: dict | None = None, spline_deviati
                 msp.add_lwpolyline(it.points, close=it.closed, dxfattribs={"layer": layer})
             elif isinstance(it, Circle):
                 msp.add_circle(it.centre, it.radius, dxfattribs={"layer": layer})
+            elif isinstance(it, ExactCurve):
+                dev, n = _add_splines(msp, it.curve, layer, spline_deviation_mm)
+                worst, splines = max(worst, dev), True
+                count += n - 1
             elif isinstance(it, Text):
                 msp.add_text(it.text, height=it.height, dxfattribs={"layer": layer}).set_placement(it.insert)
             else:
                 raise TypeError(f"layer {layer}: cannot draw {type(it).__name__}")
             count += 1
+    if splines:
+        where = curve if curve is not None else next(it.curve for items in (extras or {}).values()
+                                                       for it in items if isinstance(it, ExactCurve))
+        if "EXACT" not in doc.layers:
+            doc.layers.add("EXACT", color=3)
+        msp.add_text(f"EXACT: cubic splines within {worst:.2g} mm of the exact curve", height=1.0,
+                     dxfattribs={"layer": "EXACT"}).set_placement(tuple(where.evaluate([where.t_start], 0)[0]))
+        count += 1
     if title:
         doc.layers.add("TITLE")
         msp.add_text(title, height=3.5, dxfattribs={"layer": "TITLE"}).set_placement((0.0, -10.0))

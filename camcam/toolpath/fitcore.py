@@ -27,8 +27,18 @@ class Piece:
         self.grid = np.linspace(a, b, 4097)
         d = curve.evaluate(self.grid, 1)
         self.phi_grid = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
+        self._points: dict[float, np.ndarray] = {}
 
     def point(self, t) -> np.ndarray:
+        """Curve point(s) at ``t``; single parameters are memoised (the march revisits its nodes)."""
+        if np.ndim(t) == 0:
+            key = float(t)
+            p = self._points.get(key)
+            if p is None:
+                if len(self._points) > 65536:
+                    self._points.clear()
+                p = self._points[key] = self.curve.evaluate(np.atleast_1d(key), 0)
+            return p
         return self.curve.evaluate(np.atleast_1d(t), 0)
 
     def phi(self, t) -> np.ndarray:

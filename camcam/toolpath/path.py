@@ -18,7 +18,7 @@ from camcam.errors import InputError
 from camcam.toolpath.elements import Arc, Line
 
 __all__ = ["Rapid", "Feed", "ArcMove", "Toolpath", "CutSettings", "contour_toolpath", "offset_elements",
-           "rotary_toolpath"]
+           "rotary_toolpath", "slot_toolpath", "depth_levels"]
 
 
 @dataclass(frozen=True)
@@ -167,6 +167,54 @@ def _pass_moves(elements, z, feed, plunge, lead, away_left, cs):
     return moves
 
 
+def depth_levels(cs: CutSettings) -> list[float]:
+    """Equal depth steps no deeper than ``stepdown_mm`` down to ``top_z_mm − depth_mm``."""
+    n = max(1, math.ceil(cs.depth_mm / cs.stepdown_mm - 1e-9))
+    return [cs.top_z_mm - cs.depth_mm * (k + 1) / n for k in range(n)]
+
+
+def _contour_moves(elements, z, feed):
+    moves = []
+    for e in elements:
+        if isinstance(e, Line):
+            moves.append(Feed(e.end[0], e.end[1], z, feed))
+        else:
+            moves.append(ArcMove(e.end[0], e.end[1], e.centre[0], e.centre[1], e.ccw, z, feed))
+    return moves
+
+
+def slot_toolpath(elements, cs: CutSettings, title: str = "camcam") -> Toolpath:
+    """Depth passes along a contour inside a slot or groove: plunge at its start, no leads.
+
+    For a groove both sides of the path are walls, so there is no free side
+    for a lead arc; the plunge point lies in the groove (material the pass
+    removes anyway).  ``spring_pass`` repeats the last pass; a finishing
+    allowance does not apply (the flanks are cut by their own passes).
+
+    Examples
+    --------
+    >>> from camcam.toolpath.elements import Line
+    >>> tp = slot_toolpath((Line((0.0, 0.0), (10.0, 0.0)),), CutSettings(depth_mm=6, stepdown_mm=3,
+    ...                    feed_mm_min=300, spindle_rpm=2000))
+    >>> sum(isinstance(m, Feed) for m in tp.moves)  # two plunges, two cuts
+    4
+    """
+    if not elements:
+        raise InputError("contour: no elements to cut")
+    levels = depth_levels(cs)
+    plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
+    start = elements[0].start
+    moves: list = [Rapid(None, None, cs.safe_z_mm)]
+    for z in levels + ([levels[-1]] if cs.spring_pass else []):
+        moves += [Rapid(float(start[0]), float(start[1]), None), Rapid(None, None, cs.clearance_z_mm),
+                  Feed(None, None, z, plunge)]
+        moves += _contour_moves(elements, z, cs.feed_mm_min)
+        moves.append(Rapid(None, None, cs.clearance_z_mm))
+    moves.append(Rapid(None, None, cs.safe_z_mm))
+    return Toolpath(title, tuple(moves), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False,
+                    (f"{len(levels)} depth passes to {levels[-1]:g} mm, plunged in the groove",))
+
+
 def contour_toolpath(elements, cs: CutSettings, title: str = "camcam") -> Toolpath:
     """Depth passes over a fitted contour (tool-centre elements in the direction of cut).
 
@@ -201,19 +249,24 @@ def contour_toolpath(elements, cs: CutSettings, title: str = "camcam") -> Toolpa
                     (f"{n} depth passes to {levels[-1]:g} mm",))
 
 
-def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "camcam") -> Toolpath:
+def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "camcam",
+                    developed_radius_mm: float | None = None) -> Toolpath:
     """4-axis moves from a developed polyline: x stays X, y/radius becomes A (degrees).
 
-    ``points_xy`` is (n, 2) on the developed plane at ``radius_mm`` (y = arc
-    length); each pass is one ``G1 X A`` move per chord at the pass depth
-    (Z = radius − depth from the axis).
+    ``points_xy`` is (n, 2) on the developed plane at ``developed_radius_mm``
+    (default ``radius_mm``; y = arc length there); each pass is one ``G1 X A``
+    move per chord at the pass depth (Z = radius − depth from the axis, the
+    blank's surface at ``radius_mm``); inverse-time lengths are the developed chords.
     """
     pts = np.asarray(points_xy, float)
     if radius_mm <= 0:
         raise InputError(f"radius_mm: expected > 0, got {radius_mm!r}")
+    dev_r = radius_mm if developed_radius_mm is None else developed_radius_mm
+    if dev_r <= 0:
+        raise InputError(f"developed_radius_mm: expected > 0, got {dev_r!r}")
     n = max(1, math.ceil(cs.depth_mm / cs.stepdown_mm - 1e-9))
     levels = [radius_mm - cs.depth_mm * (k + 1) / n for k in range(n)]
-    a = np.degrees(pts[:, 1] / radius_mm)
+    a = np.degrees(pts[:, 1] / dev_r)
     seg = np.hypot(*np.diff(pts, axis=0).T)
     plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
     moves: list = [Rapid(None, None, radius_mm + cs.safe_z_mm)]
