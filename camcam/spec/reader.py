@@ -24,6 +24,11 @@ class _Missing:
 
 MISSING: Any = _Missing()
 
+#: Magnitude caps applied by unit when a key states no range of its own: far beyond any
+#: cam or machine (a 10 m cam, 10 turns, 1e6 mm/min), and they keep every derived
+#: quantity (ω³·rise, areas, volumes) finite.
+UNIT_LIMITS = {"mm": 1e4, "degrees": 3600.0, "mm/min": 1e6, "rev/min": 1e5}
+
 
 def fmt(value: Any) -> str:
     """A value as the user wrote it (TOML-ish), for messages."""
@@ -96,7 +101,10 @@ class Table:
         inclusive: bool = True,
         unit: str = "",
     ) -> float:
-        """A finite number (int or float, not bool) within the given range."""
+        """A finite number (int or float, not bool) within the given range.
+
+        Besides the given range, |value| is capped by :data:`UNIT_LIMITS` for ``unit``.
+        """
         rng = _range_text(minimum, maximum, inclusive)
         what = f"a number{rng}{' ' + unit if unit else ''}"
         value = self.raw(key, default, what)
@@ -111,6 +119,9 @@ class Table:
         hi_bad = maximum is not None and (value > maximum or (not inclusive and value == maximum))
         if lo_bad or hi_bad:
             raise self.error(key, f"expected {what}, got {fmt(value)}")
+        cap = UNIT_LIMITS.get(unit)
+        if cap is not None and abs(value) > cap:
+            raise self.error(key, f"{fmt(value)} {unit} is out of range; expected at most {fmt(cap)} {unit} in size")
         return value
 
     def integer(self, key: str, default: Any = MISSING, *, minimum: int | None = None, maximum: int | None = None) -> int:
