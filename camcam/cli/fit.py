@@ -18,8 +18,6 @@ from camcam.lifttable.fairing import DEFAULT_METHOD, DEFAULT_XI, METHODS
 from camcam.lifttable.interpolate import FITS, default_fit
 from camcam.lifttable.process import FairingOptions, FittedTable, fit_table
 from camcam.lifttable.table import load_lift_table
-from camcam.plots.comb import lift_comb_png
-from camcam.plots.roughness import roughness_png
 
 __all__ = ["register", "fit_summary"]
 
@@ -63,6 +61,8 @@ def fit_summary(ft: FittedTable) -> dict:
 
 
 def run(args) -> int:
+    from camcam.plots.comb import lift_comb_png  # plotting is loaded only when a plot is drawn
+    from camcam.plots.roughness import roughness_png  # plotting is loaded only when a plot is drawn
     if not (args.step > 0 and args.step <= 360):
         raise SpecError("--step", f"expected a number of degrees > 0 and <= 360, got {args.step:g}")
     if not args.xi > 0:

@@ -8,7 +8,6 @@ from camcam.cli.output import print_json, warn
 from camcam.export.files import OutputSet
 from camcam.export.motion_table import motion_csv
 from camcam.motion.program import MotionProgram
-from camcam.plots.svaj import svaj_png
 from camcam.spec import load_spec
 
 __all__ = ["register", "motion_summary", "motion_outputs"]
@@ -37,9 +36,14 @@ def motion_summary(program: MotionProgram) -> dict:
     return out
 
 
-def motion_outputs(out: OutputSet, name: str, program: MotionProgram, step_deg: float) -> None:
+def motion_outputs(out: OutputSet, name: str, program: MotionProgram, step_deg: float) -> bytes:
+    """Add the motion table and the SVAJ plot to ``out``; returns the plot (the report shows it too)."""
+    from camcam.plots.svaj import svaj_png  # plotting is loaded only when a plot is drawn
+
     out.add(f"{name}-motion.csv", motion_csv(program, step_deg))
-    out.add(f"{name}-svaj.png", svaj_png(program, title=f"{name}: motion at {program.rpm:g} rpm"))
+    png = svaj_png(program, title=f"{name}: motion at {program.rpm:g} rpm")
+    out.add(f"{name}-svaj.png", png)
+    return png
 
 
 def print_summary(summary: dict) -> None:

@@ -18,7 +18,6 @@ from camcam.cli.output import print_json, to_json
 from camcam.errors import SpecError
 from camcam.export.files import OutputSet
 from camcam.export.recovered_motion import motion_csv
-from camcam.plots.reverse import reverse_png
 from camcam.reverse.design import ReverseOptions, design_motion, reverse_design
 from camcam.reverse.fit import DEFAULT_MAX_GAP_DEG, FITS
 from camcam.reverse.points import load_points
@@ -65,6 +64,7 @@ def compare(angles_deg, recovered, program, cam_kind: str) -> tuple[np.ndarray, 
 
 
 def run(args) -> int:
+    from camcam.plots.reverse import reverse_png  # plotting is loaded only when a plot is drawn
     if not 8 <= args.n_points <= 36000:
         raise SpecError("--points", f"expected a whole number of output angles from 8 to 36000, got {args.n_points}")
     if not 0 < args.max_gap <= 180:

@@ -1,24 +1,29 @@
-"""``camcam run SPEC -o DIR``: the whole flow for one spec.
+"""``camcam run [SPEC] -o DIR``: the whole flow for one spec.
 
-Motion stage (table, SVAJ plot, summary); with ``[cam]`` and ``[follower]``
-tables also the cam geometry: ``<name>.stl``, ``<name>-profile.png`` and
-``<name>-report.json``; with ``[machining]`` also the NC program
-(``<name>.<post extension>``) and ``<name>.dxf`` (:func:`nc_step`).
+Motion (table, SVAJ plot); with ``[cam]`` and ``[follower]`` the cam
+(``<name>.stl``, ``<name>-profile.png``, ``<name>-report.json``); with
+``[machining]`` the NC program (``<name>.<post extension>``) and
+``<name>.dxf`` (:func:`nc_step`); and the tolerance report
+``<name>-report.html`` with its plots and inspection table.  Without SPEC
+the bundled default job runs.  Everything is written at the end, all or
+nothing.
 """
 
 from __future__ import annotations
 
+from importlib import resources
 from pathlib import Path
 
-from camcam.cli.motion import motion_outputs, motion_summary, print_summary
 from camcam.cli.output import print_json, to_json, warn
-from camcam.export.files import OutputSet
-from camcam.spec import load_spec
+from camcam.cli.progress import step
 
-__all__ = ["register", "nc_step"]
+__all__ = ["register", "nc_step", "DEFAULT_SPEC"]
+
+#: The bundled job `camcam run` runs without a spec.
+DEFAULT_SPEC = "default.toml"
 
 
-def nc_step(out: OutputSet, spec, built, report: dict):
+def nc_step(out, spec, built, report: dict):
     """The NC step: machine ``built`` per ``spec.machining``, add the program and DXF to ``out``
     and the figures to ``report``; returns the :class:`~camcam.toolpath.machining.MachiningResult`."""
     from camcam.export.nc import machining_report, nc_files
@@ -37,36 +42,62 @@ def nc_step(out: OutputSet, spec, built, report: dict):
 
 
 def register(sub) -> None:
-    p = sub.add_parser("run", help="run the whole flow for a spec")
-    p.add_argument("spec", help="spec file (TOML)")
+    p = sub.add_parser("run", help="run the whole flow for a spec (default: the bundled sample job)")
+    p.add_argument("spec", nargs="?", help="spec file (TOML); omitted: the bundled default job")
     p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.set_defaults(func=run)
 
 
+def _load(spec_arg):
+    from camcam.spec import load_spec
+
+    if spec_arg is not None:
+        return load_spec(spec_arg)
+    with resources.as_file(resources.files("camcam.data") / DEFAULT_SPEC) as path:
+        return load_spec(path)
+
+
 def run(args) -> int:
-    spec = load_spec(args.spec)
+    from camcam.cli.motion import motion_outputs, motion_summary, print_summary
+    from camcam.export.files import OutputSet
+
+    spec = _load(args.spec)
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
     out = OutputSet(Path(args.output))
-    motion_outputs(out, spec.name, program, 0.5)
+    with step("motion table and plot"):
+        svaj = motion_outputs(out, spec.name, program, 0.5)
     summary = {"name": spec.name, "motion": motion_summary(program)}
     if spec.cam is not None:
         from camcam.export.cam_report import cam_report
         from camcam.export.stl import stl_bytes
         from camcam.geometry.build import build_cam
         from camcam.plots.profile import cam_png
+        from camcam.report.job import job_report
 
-        built = build_cam(spec.cam, spec.follower, program)
-        report = cam_report(built)
+        with step("cam geometry, analysis and mesh"):
+            built = build_cam(spec.cam, spec.follower, program)
+            report = cam_report(built)
+        machining = None
         if spec.machining is not None:
-            nc_step(out, spec, built, report)
-        out.add(f"{spec.name}.stl", stl_bytes(built.mesh))
-        out.add(f"{spec.name}-profile.png", cam_png(built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower"))
-        out.add(f"{spec.name}-report.json", to_json(report) + "\n")
+            with step("NC second fitting and program"):
+                machining = nc_step(out, spec, built, report)
+        with step("drawing, model and report"):
+            out.add(f"{spec.name}.stl", stl_bytes(built.mesh))
+            profile_png = cam_png(built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
+            out.add(f"{spec.name}-profile.png", profile_png)
+            page = job_report(spec.name, spec, program, svaj, built, report, profile_png, machining,
+                              spec.report.inspection_step_deg)
+            for name, data in page.files.items():
+                out.add(name, data)
+            report.update(page.figures)
+            out.add(f"{spec.name}-report.html", page.html)
+            out.add(f"{spec.name}-report.json", to_json(report) + "\n")
         summary["cam"] = report
-    written = out.commit()
+    with step("writing files"):
+        written = out.commit()
     summary["files"] = [str(p) for p in written]
     if args.json:
         print_json(summary)

@@ -122,6 +122,18 @@ class MotionLaw(ABC):
         )
 
 
+def _coefficient_table(pieces) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Padded polynomial coefficients (n, degree+1) and sinusoid a, b, ω (n,) of TrigPoly pieces."""
+    deg = max(len(p.poly) for p in pieces)
+    coef = np.zeros((len(pieces), deg))
+    for i, p in enumerate(pieces):
+        coef[i, : len(p.poly)] = p.poly
+    a = np.array([p.a for p in pieces])
+    b = np.array([p.b for p in pieces])
+    w = np.array([p.omega if p.has_trig else 0.0 for p in pieces])
+    return coef, a, b, w
+
+
 def _check_T(T) -> np.ndarray:
     T = np.asarray(T, dtype=float)
     if T.size and (np.nanmin(T) < -1e-12 or np.nanmax(T) > 1 + 1e-12 or np.isnan(T).any()):
@@ -157,6 +169,7 @@ class PiecewiseLaw(MotionLaw):
     pieces: tuple[TrigPoly, ...]
     rest_to_rest: bool = True
     _derivs: tuple = field(init=False, repr=False)
+    _tables: tuple = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         b = np.asarray(self.breaks, dtype=float)
@@ -164,6 +177,7 @@ class PiecewiseLaw(MotionLaw):
             raise ValueError(f"breaks must rise from 0 to 1 with one more entry than pieces, got {self.breaks!r}")
         derivs = tuple(tuple(p.derivative(k) for p in self.pieces) for k in range(5))
         object.__setattr__(self, "_derivs", derivs)
+        object.__setattr__(self, "_tables", tuple(_coefficient_table(fs) for fs in derivs))
 
     def _index(self, T: np.ndarray) -> np.ndarray:
         idx = np.searchsorted(self.breaks, T, side="right") - 1
@@ -174,11 +188,15 @@ class PiecewiseLaw(MotionLaw):
             raise ValueError(f"order must be 0..4, got {order!r}")
         T = _check_T(T)
         idx = self._index(T)
-        out = np.empty_like(T)
-        fs = self._derivs[order]
-        for i in np.unique(idx):
-            m = idx == i
-            out[m] = fs[i](T[m] - self.breaks[i])
+        u = T - np.asarray(self.breaks)[idx]
+        coef, a, b, w = self._tables[order]
+        c = coef[idx]  # all pieces at once: a table with hundreds of pieces costs one gather
+        out = c[..., -1]
+        for j in range(coef.shape[1] - 2, -1, -1):
+            out = out * u + c[..., j]
+        if w.any():
+            wu = w[idx] * u
+            out = out + a[idx] * np.sin(wu) + b[idx] * np.cos(wu)
         return out
 
     def one_sided(self, order: int, rest_ends: bool) -> tuple[np.ndarray, np.ndarray]:

@@ -15,6 +15,6 @@ __all__ = ["plt", "png_bytes"]
 def png_bytes(fig, dpi: int = 110) -> bytes:
     """Render and close ``fig``; no timestamp or software tag, so output is reproducible."""
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None}, bbox_inches="tight")
+    fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None})
     plt.close(fig)
     return buf.getvalue()

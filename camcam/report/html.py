@@ -11,7 +11,7 @@ import html
 from dataclasses import dataclass
 from typing import Sequence, Union
 
-__all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Section", "render_html"]
+__all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Code", "Section", "render_html"]
 
 
 @dataclass(frozen=True)
@@ -43,7 +43,15 @@ class Paragraph:
     text: str
 
 
-Block = Union[Figure, KeyValues, DataTable, Paragraph]
+@dataclass(frozen=True)
+class Code:
+    """Preformatted text (a piece of the NC program) with a caption."""
+
+    text: str
+    caption: str = ""
+
+
+Block = Union[Figure, KeyValues, DataTable, Paragraph, Code]
 
 
 @dataclass(frozen=True)
@@ -59,6 +67,7 @@ h1{font-size:1.6em;margin-bottom:.2em}h2{font-size:1.25em;border-bottom:2px soli
 td,th{border:1px solid #ccc;padding:.25em .6em;text-align:right}th{background:#eef3f8}
 td:first-child,th:first-child{text-align:left}table.kv td:first-child{font-weight:600;background:#f7f7f7}
 figure{margin:1em 0}figure img{max-width:100%;border:1px solid #ddd}figcaption{color:#444;font-size:.9em}
+pre{background:#f6f8fa;border:1px solid #ddd;padding:.6em;font-size:.85em;overflow-x:auto}
 .ok{color:#176b2c;font-weight:600}.bad{color:#a11;font-weight:600}
 @media print{h2{page-break-after:avoid}figure,table{page-break-inside:avoid}}
 """
@@ -79,6 +88,9 @@ def _block(b: Block) -> str:
         return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
     if isinstance(b, Paragraph):
         return f"<p>{e(b.text)}</p>"
+    if isinstance(b, Code):
+        cap = f"<figcaption>{e(b.caption)}</figcaption>" if b.caption else ""
+        return f"<figure><pre>{e(b.text)}</pre>{cap}</figure>"
     raise TypeError(f"not a report block: {type(b).__name__}")
 
 

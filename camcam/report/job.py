@@ -6,7 +6,7 @@ the as-machined follower motion, which is the report's own analysis).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -15,35 +15,13 @@ from camcam.geometry.disc import DiscCam
 from camcam.geometry.groove import GrooveCam
 from camcam.motion.program import MotionProgram
 from camcam.plots.report_plots import deviation_png, fitted_motion_png
-from camcam.plots.svaj import svaj_png
 from camcam.report.deviation_along import signed_deviation
 from camcam.report.fitted_motion import fitted_motion
-from camcam.report.html import DataTable, Figure, KeyValues, Paragraph, Section, render_html
+from camcam.report.html import Code, DataTable, Figure, KeyValues, Paragraph, Section, render_html
 from camcam.report.inspection import inspection_table
+from camcam.toolpath.machining import MachiningResult
 
-__all__ = ["MachiningView", "JobReport", "job_report"]
-
-
-@dataclass(frozen=True)
-class MachiningView:
-    """What the report needs from the NC stage (built by the run command)."""
-
-    post: str
-    tool_diameter_mm: float
-    tolerance_mm: float
-    mode: str
-    feed_mm_min: float
-    spindle_rpm: float
-    depth_mm: float
-    stepdown_mm: float
-    max_deviation_mm: float
-    line_blocks: int
-    arc_blocks: int
-    lower_bound_blocks: float
-    program_name: str
-    program_excerpt: str
-    contours: tuple = ()  # ((exact tool-centre PlanarCurve, printed elements), ...)
-    extra: dict = field(default_factory=dict)
+__all__ = ["JobReport", "job_report"]
 
 
 @dataclass(frozen=True)
@@ -53,29 +31,29 @@ class JobReport:
     files: dict  # name → bytes (plots also shown in the HTML, and the inspection CSV)
 
 
-def _job_rows(name, spec, built: BuiltCam | None, m: MachiningView | None):
+def _job_rows(name, spec, built: BuiltCam | None, m: MachiningResult | None):
     rows = [("job", name), ("cam speed", f"{spec.motion.rpm:g} rev/min")]
     if built is not None:
         c, cam = built.spec, built.cam
         rows += [("cam", f"{c.kind}, base radius {c.base_radius:g} mm, rotation {cam.rotation}"),
                  ("follower", f"{cam.kind}, roller radius {cam.roller_radius:g} mm" if cam.roller_radius else cam.kind)]
     if m is not None:
+        ms = spec.machining
         rows += [
-            ("post", m.post), ("program", m.program_name),
+            ("post", f"{m.post.name} ({m.post.description})"), ("program", m.program_filename),
             ("tool", f"Ø{m.tool_diameter_mm:g} mm"), ("tolerance", f"±{m.tolerance_mm:g} mm, two-sided, on the printed program"),
-            ("mode", m.mode), ("feed", f"{m.feed_mm_min:g} mm/min"), ("spindle", f"{m.spindle_rpm:g} rev/min"),
-            ("depth / stepdown", f"{m.depth_mm:g} / {m.stepdown_mm:g} mm"),
+            ("mode", m.mode), ("feed", f"{ms.feed_mm_min:g} mm/min"), ("spindle", f"{ms.spindle_rpm:g} rev/min"),
+            ("depth / stepdown", f"{ms.depth_mm:g} / {ms.stepdown_mm:g} mm"),
         ]
     return tuple(rows)
 
 
-def job_report(name: str, spec, program: MotionProgram, built: BuiltCam | None, cam_figures: dict,
-               cam_png: bytes | None, machining: MachiningView | None, inspection_step_deg: float = 10.0) -> JobReport:
+def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: BuiltCam | None, cam_figures: dict,
+               cam_png: bytes | None, machining: MachiningResult | None, inspection_step_deg: float = 10.0) -> JobReport:
     """Build the HTML page, the report's extra JSON figures and its files."""
     files: dict[str, bytes] = {}
     figures: dict = {}
     sections = [Section("Job", (KeyValues(_job_rows(name, spec, built, machining)),))]
-    svaj = svaj_png(program, title=f"{name}: design motion at {program.rpm:g} rpm")
     sections.append(Section("Motion (design)", (Figure(svaj, "Displacement, velocity, acceleration and jerk over the revolution; dashed: segment boundaries."),)))
     if built is not None:
         blocks = []
@@ -91,11 +69,15 @@ def job_report(name: str, spec, program: MotionProgram, built: BuiltCam | None, 
         blocks = [KeyValues((
             ("measured deviation (two-sided, printed program)", f"{m.max_deviation_mm:.5f} mm — {verdict} ±{m.tolerance_mm:g} mm"),
             ("blocks on the contour", f"{m.arc_blocks} arcs + {m.line_blocks} lines"),
-            ("lower bound for any arc spline (N_lb)", f"{m.lower_bound_blocks:.1f}"),
+            ("lower bound (N_lb; lines: ∫√(κ/8δ) ds)", f"{m.lower_bound_blocks:.1f}"),
+            *((f"contour {c.label}", f"{c.fit.arc_blocks} arcs + {c.fit.line_blocks} lines, deviation {c.deviation.max_deviation_mm:.5f} mm"
+               + (f", flank error top/bottom {c.error_top_mm:.4f}/{c.error_bottom_mm:.4f} mm" if c.error_top_mm is not None else ""))
+              for c in m.contours),
+            *(("note", n) for n in m.notes),
         ))]
         disc = built.cam if built is not None and isinstance(built.cam, (DiscCam, GrooveCam)) else None
-        if disc is not None and m.contours:
-            curve, elements = m.contours[0]
+        if disc is not None:
+            curve, elements = m.contours[0].curve, m.contours[0].printed
             ang = np.arange(0.0, 360.0, 0.25)
             th = np.radians(ang)
             # the sign (+ leaves stock) needs the material side: known for a disc's outside contour;
@@ -105,11 +87,12 @@ def job_report(name: str, spec, program: MotionProgram, built: BuiltCam | None, 
             files[f"{name}-deviation.png"] = deviation_png(ang, dev, m.tolerance_mm, f"{name}: printed tool path − exact tool-centre curve")
             blocks.append(Figure(files[f"{name}-deviation.png"], "Deviation of the printed tool path from the exact tool-centre curve along the cam angle (+ leaves stock)."))
             figures["deviation_along_profile_mm"] = {"min": float(dev.min()), "max": float(dev.max())}
-        blocks.append(DataTable(("first blocks of the program",), tuple((ln,) for ln in m.program_excerpt.splitlines())))
+        excerpt = m.program.text.splitlines()[:24]
+        blocks.append(Code("\n".join(excerpt), f"The first {len(excerpt)} lines of {m.program_filename}."))
         sections.append(Section("Tolerance", tuple(blocks)))
-        if isinstance(disc, DiscCam) and m.contours:
-            curve, elements = m.contours[0]
-            fm = fitted_motion(disc, elements, m.tool_diameter_mm / 2, np.arange(0.0, 360.0, 0.5))
+        if isinstance(disc, DiscCam):
+            c0 = m.contours[0]
+            fm = fitted_motion(disc, c0.printed, c0.offset_mm, np.arange(0.0, 360.0, 0.5))
             png = fitted_motion_png(fm, f"{name}: follower motion the fitted program will produce")
             files[f"{name}-fitted-motion.png"] = png
             ea, aa = fm.max_error(2)

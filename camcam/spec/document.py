@@ -18,6 +18,7 @@ from camcam.spec.machining import MachiningSpec, read_machining
 from camcam.spec.motion import MotionSpec, read_motion
 from camcam.spec.optimize import OptimizeSpec, read_optimize
 from camcam.spec.reader import Table, fmt
+from camcam.spec.report import DEFAULT_REPORT, ReportSpec, read_report
 
 __all__ = ["Spec", "load_spec", "parse_spec"]
 
@@ -35,6 +36,7 @@ class Spec:
     follower: FollowerSpec | None = None
     optimize: OptimizeSpec | None = None
     machining: MachiningSpec | None = None
+    report: ReportSpec = DEFAULT_REPORT
 
     @property
     def unit(self) -> str:
@@ -75,8 +77,10 @@ def parse_spec(data: dict, source: Path) -> Spec:
         optimize.done()
     machining = root.table("machining", None)
     machining_spec = read_machining(machining, base) if machining is not None else None
+    report_t = root.table("report", None)
+    report_spec = read_report(report_t) if report_t is not None else DEFAULT_REPORT
     root.done()
-    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec)
+    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec)
 
 
 def load_spec(path: str | Path) -> Spec:

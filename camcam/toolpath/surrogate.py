@@ -43,13 +43,31 @@ class ChebyshevCurve:
             raise ValueError(f"order must be 0..3, got {order!r}")
         t = np.atleast_1d(np.asarray(t, float))
         idx = np.clip(np.searchsorted(self.knots, t, side="right") - 1, 0, len(self.series) - 1)
-        out = np.empty((t.size, 2))
-        for k in np.unique(idx):
-            m = idx == k
-            lo, hi = self.knots[k], self.knots[k + 1]
-            u = (2.0 * t[m] - lo - hi) / (hi - lo)
-            out[m] = C.chebval(u, self.series[k][order]).T
-        return out
+        lo, hi = self.knots[idx], self.knots[idx + 1]
+        u = ((2.0 * t - lo - hi) / (hi - lo))[:, None]
+        c = self._tables[order][idx]  # (m, n+1, 2): every sub-interval at once
+        # Clenshaw's recurrence for Σ c_k T_k(u), vectorised over the points
+        b1 = np.zeros((t.size, 2))
+        b2 = np.zeros((t.size, 2))
+        for k in range(c.shape[1] - 1, 0, -1):
+            b1, b2 = c[:, k] + 2.0 * u * b1 - b2, b1
+        return c[:, 0] + u * b1 - b2
+
+    @property
+    def _tables(self) -> tuple:
+        """Per derivative order: the series of all sub-intervals padded to one length, (n_sub, n+1, 2)."""
+        cached = self.__dict__.get("_tables_cache")
+        if cached is None:
+            width = max(len(ser[0]) for ser in self.series)
+            cached = []
+            for order in range(4):
+                arr = np.zeros((len(self.series), width, 2))
+                for i, ser in enumerate(self.series):
+                    arr[i, : len(ser[order])] = ser[order]
+                cached.append(arr)
+            cached = tuple(cached)
+            object.__setattr__(self, "_tables_cache", cached)
+        return cached
 
 
 DEGREE = 12
