@@ -12,7 +12,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 __all__ = ["plt", "png_bytes"]
 
 
-def png_bytes(fig, dpi: int = 110) -> bytes:
+def png_bytes(fig, dpi: int = 96) -> bytes:
     """Render and close ``fig``; no timestamp or software tag, so output is reproducible."""
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None})
