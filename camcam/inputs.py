@@ -5,11 +5,16 @@ Every reader names the file in its one-line :class:`~camcam.errors.InputError`.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
+from typing import Iterator
 
 from camcam.errors import InputError
 
-__all__ = ["read_text"]
+__all__ = ["read_text", "data_rows"]
+
+#: Fields are separated by a comma (with any spaces around it) or by white space.
+_SPLIT = re.compile(r"\s*,\s*|\s+")
 
 
 def read_text(path: str | Path) -> str:
@@ -21,3 +26,19 @@ def read_text(path: str | Path) -> str:
         raise InputError(f"{path}: no such file") from None
     except (OSError, UnicodeDecodeError) as err:
         raise InputError(f"{path}: cannot read: {err}") from None
+
+
+def data_rows(text: str, source: str) -> Iterator[tuple[str, int, str, list[str]]]:
+    r"""(``"<source> row <n>"``, n, the stripped line, its fields) for every line that is
+    neither blank nor a ``#`` comment.
+
+    Examples
+    --------
+    >>> list(data_rows("# a table\n0, 1.5\n\n1 2\n", "t.csv"))
+    [('t.csv row 2', 2, '0, 1.5', ['0', '1.5']), ('t.csv row 4', 4, '1 2', ['1', '2'])]
+    """
+    for lineno, line in enumerate(text.splitlines(), start=1):
+        stripped = line.strip()
+        if not stripped or stripped.startswith("#"):
+            continue
+        yield f"{source} row {lineno}", lineno, stripped, _SPLIT.split(stripped)

@@ -85,19 +85,5 @@ class JetCurve:
 
 
 @dataclass(frozen=True)
-class SpaceCurve:
-    """A closed 3-D curve of the cam angle: ``evaluate(t, order)`` → (n, 3), order 0…3."""
-
-    func: JetFunc
-    breaks: np.ndarray
-    t_start: float = 0.0
-    t_end: float = 2 * math.pi
-    closed: bool = True
-
-    def jets(self, t, K: int, piece: int | None = None) -> tuple[Jet, ...]:
-        return self.func(np.atleast_1d(np.asarray(t, dtype=float)), K, piece)
-
-    def evaluate(self, t, order: int = 0, piece: int | None = None) -> np.ndarray:
-        if not 0 <= order <= 3:
-            raise ValueError(f"order must be 0..3, got {order!r}")
-        return np.stack([j.d[order] for j in self.jets(t, order, piece)], axis=-1)
+class SpaceCurve(JetCurve):
+    """A closed 3-D curve of the cam angle: the same jets, three of them; ``evaluate`` → (n, 3)."""

@@ -18,14 +18,13 @@ previous angle 12``.
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from camcam.errors import InputError
-from camcam.inputs import read_text
+from camcam.inputs import data_rows, read_text
 
 __all__ = ["LiftTable", "parse_lift_table", "load_lift_table", "CLOSE_ATOL", "MIN_ROWS"]
 
@@ -39,7 +38,6 @@ SPAN_ATOL_DEG = 1e-9
 #: Fewest rows: a cubic needs 4 points, the bad-point test 4 neighbours + 1.
 MIN_ROWS = 5
 
-_SPLIT = re.compile(r"\s*,\s*|\s+")
 
 
 @dataclass(frozen=True)
@@ -139,12 +137,7 @@ def parse_lift_table(text: str, source: str = "table") -> LiftTable:
     decimals = 0
     ncol = 2
     seen_content = False
-    for lineno, line in enumerate(text.splitlines(), start=1):
-        stripped = line.strip()
-        if not stripped or stripped.startswith("#"):
-            continue
-        where = f"{source} row {lineno}"
-        fields = _SPLIT.split(stripped)
+    for where, lineno, stripped, fields in data_rows(text, source):
         first_content = not seen_content
         seen_content = True
         if first_content and fields:

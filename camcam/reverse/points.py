@@ -11,21 +11,19 @@ naming the row (the line number in the file).
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from camcam.errors import InputError
-from camcam.inputs import read_text
+from camcam.inputs import data_rows, read_text
 
 __all__ = ["MeasuredPoints", "parse_points", "load_points", "MIN_POINTS"]
 
 #: Fewest points: the periodic fits and the three-point differences need a few per feature.
 MIN_POINTS = 20
 
-_SPLIT = re.compile(r"\s*,\s*|\s+")
 
 
 @dataclass(frozen=True)
@@ -65,12 +63,7 @@ def parse_points(text: str, source: str = "points") -> MeasuredPoints:
     lines: list[int] = []
     ncol = None
     seen = False
-    for lineno, line in enumerate(text.splitlines(), start=1):
-        stripped = line.strip()
-        if not stripped or stripped.startswith("#"):
-            continue
-        where = f"{source} row {lineno}"
-        fields = _SPLIT.split(stripped)
+    for where, lineno, stripped, fields in data_rows(text, source):
         if not seen:
             seen = True
             try:

@@ -3,7 +3,7 @@ import numpy as np
 
 from camcam.export.dxf import Circle, Polyline, Text, contour_dxf
 from camcam.toolpath.arcfit import fit_contour
-from nc_curves import ellipse
+from tests.nc_curves import ellipse
 
 
 def test_dxf_reads_back_and_audits_clean(tmp_path):

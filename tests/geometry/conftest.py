@@ -1,5 +1,5 @@
 import pytest
-from cam_programs import program
+from tests.geometry.cam_programs import program
 
 
 @pytest.fixture

@@ -10,7 +10,7 @@ from camcam.geometry.analysis import analyse_cylindrical
 from camcam.geometry.cylindrical import BarrelOscillatingRoller, BarrelTranslatingRoller, CylindricalCam
 from camcam.geometry.mesh import cylinder_mesh
 
-from cam_programs import program
+from tests.geometry.cam_programs import program
 
 T = np.linspace(0, 2 * math.pi, 721)
 

@@ -19,7 +19,7 @@ from camcam.motion.catalog import make_law
 from camcam.motion.program import MotionProgram, Segment
 from camcam.motion.standard import dwell
 
-from cam_programs import program
+from tests.geometry.cam_programs import program
 
 T = np.linspace(0, 2 * math.pi, 2001)
 

@@ -13,7 +13,7 @@ from camcam.geometry.followers import OscillatingRoller, TranslatingFlat, Transl
 from camcam.geometry.groove import GrooveCam
 from camcam.geometry.mesh import disc_mesh, groove_mesh
 
-from cam_programs import program
+from tests.geometry.cam_programs import program
 
 
 def _area(curve, n=4000):

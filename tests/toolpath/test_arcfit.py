@@ -11,7 +11,7 @@ from camcam.toolpath.arcfit import fit_contour, line_estimate_blocks, lower_boun
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Arc, Line
 from camcam.toolpath.path import _tangent_at  # noqa: PLC2701 (test of a private helper)
-from nc_curves import ellipse, polar_cam, wavy
+from tests.nc_curves import ellipse, polar_cam, wavy
 
 CASES = {
     ("ellipse", 0.01): ellipse, ("ellipse", 0.001): ellipse,

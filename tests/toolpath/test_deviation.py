@@ -4,7 +4,7 @@ import numpy as np
 
 from camcam.toolpath.deviation import closest_params, measure_deviation
 from camcam.toolpath.elements import Arc, Line
-from nc_curves import ellipse
+from tests.nc_curves import ellipse
 
 
 def circle_curve(r):

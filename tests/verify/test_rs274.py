@@ -13,7 +13,7 @@ from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Arc, Line
 from camcam.toolpath.path import CutSettings, contour_toolpath, rotary_toolpath
 from camcam.verify.rs274 import feed_passes, print_margin_mm, rs274_available, run_rs274
-from nc_curves import developed_groove, polar_cam, wavy
+from tests.nc_curves import developed_groove, polar_cam, wavy
 
 pytestmark = pytest.mark.skipif(not rs274_available(), reason="rs274 (Debian linuxcnc-uspace) is not installed")
 
