@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from camcam.geometry.curve import PlanarCurve
-from camcam.toolpath.elements import Arc, Line
+from camcam.toolpath.elements import Line
 
 __all__ = ["signed_deviation"]
 

@@ -34,7 +34,7 @@ from camcam.errors import GeometryError
 from camcam.geometry.curve import left_normal
 from camcam.geometry.disc import DiscCam
 from camcam.geometry.jet import Jet
-from camcam.toolpath.elements import Arc, Line, element_distance
+from camcam.toolpath.elements import Arc, element_distance
 
 __all__ = ["FittedMotion", "fitted_motion"]
 

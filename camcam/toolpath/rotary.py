@@ -27,7 +27,6 @@ follow.
 
 from __future__ import annotations
 
-import math
 
 import numpy as np
 

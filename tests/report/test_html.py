@@ -1,6 +1,5 @@
 """The HTML report renders in a real browser (headless Chromium)."""
 
-import io
 import shutil
 import subprocess
 
