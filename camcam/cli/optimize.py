@@ -9,11 +9,12 @@ from camcam.cli.progress import step
 from camcam.errors import SpecError
 from camcam.export.files import atomic_write
 from camcam.optimize.bspline_law import BSplineLaw
-from camcam.optimize.complex_method import ComplexSettings, complex_method
+from camcam.optimize.complex_method import ComplexSettings
 from camcam.optimize.evaluation import EvaluationFunction
 from camcam.optimize.exact import InfeasibleProblem, exact_optimum
 from camcam.optimize.lawfile import law_document
-from camcam.optimize.start import start_point
+from camcam.optimize.multistart import multistart
+from camcam.optimize.start import ranked_starts, start_point
 from camcam.spec import load_spec
 from camcam.spec.optimize import OptimizeSpec
 
@@ -50,12 +51,13 @@ def optimize(opt: OptimizeSpec) -> tuple[BSplineLaw, dict]:
     else:
         settings = ComplexSettings(max_evaluations=opt.evaluations)
         f = EvaluationFunction(problem)
-        x1, start_law = start_point(f, opt.start)
-        r = complex_method(f, x1, opt.seed, settings)
+        starts = ranked_starts(f) if opt.start == "auto" else [start_point(f, opt.start)]
+        r, start_law, ran = multistart(f, starts, opt.seed, settings)
         solver = {
             "method": "complex",
             "seed": opt.seed,
             "start": start_law,
+            "starts_run": list(ran),
             "evaluations": r.evaluations,
             "iterations": r.iterations,
             "restarts": r.restarts,

@@ -236,3 +236,21 @@ def test_cli_json_and_law_file_in_a_motion_spec(tmp_path, capsys):
     run.write_text(run.read_text().replace("laws/missing.json", "laws/bad.json"))
     with pytest.raises(SpecError, match=r'motion.segments\[0\].law: "file:laws/bad.json": not valid JSON'):
         load_spec(run)
+
+
+def test_multistart_hands_the_rest_of_the_budget_on_and_keeps_the_best():
+    from camcam.optimize.multistart import multistart
+    from camcam.optimize.start import ranked_starts
+
+    f = EvaluationFunction(Problem(5, 5, True, "A", (("V", 2.0), ("J", 61.4))))
+    starts = ranked_starts(f)
+    assert [name for _, name in starts] == ["polynomial-345", "cycloidal", "modified-trapezoid"]
+    quick = ComplexSettings(max_evaluations=2500, D_min=1e-2)  # D_min: each run converges after a few cycles
+    r, law, ran = multistart(f, starts, 1, quick)
+    assert len(ran) > 1 and r.evaluations <= 2500
+    first = complex_method(f, starts[0][0], 1, quick)  # multistart's first run is exactly this one
+    assert first.converged and first.evaluations < 2500  # it ended early, so the next start ran
+    assert max(r.violations) <= 1e-9  # violation_tol of the weight rule
+    assert r.objective <= first.objective  # the best feasible run is kept
+    again = multistart(f, starts, 1, quick)
+    assert np.array_equal(again[0].x, r.x) and again[1] == law  # same seed, same result
