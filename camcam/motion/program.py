@@ -111,6 +111,7 @@ class MotionProgram:
     rpm: float
     unit: str = "mm"
     _starts: np.ndarray = field(init=False, repr=False, compare=False)
+    _ends: np.ndarray = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if self.unit not in PHYSICAL_UNITS:
@@ -124,6 +125,7 @@ class MotionProgram:
             if abs(seg.start_deg - prev.end_deg) > TILE_ATOL_DEG:
                 raise MotionError(f"segment at {seg.start_deg:g}° does not start where the previous ends ({prev.end_deg:g}°)")
         object.__setattr__(self, "_starts", np.array([s.start_deg for s in self.segments]))
+        object.__setattr__(self, "_ends", np.array([s.end_deg for s in self.segments]))
 
     # -- evaluation ---------------------------------------------------------
     @property
@@ -136,7 +138,7 @@ class MotionProgram:
         deg = np.mod(np.degrees(np.asarray(theta_rad, dtype=float)), 360.0)
         idx = np.clip(np.searchsorted(self._starts, deg, side="right") - 1, 0, len(self.segments) - 1)
         start = self._starts[idx]
-        end = np.array([s.end_deg for s in self.segments])[idx]
+        end = self._ends[idx]
         T = np.clip((deg - start) / (end - start), 0.0, 1.0)
         return idx, T
 

@@ -12,30 +12,9 @@ from __future__ import annotations
 import numpy as np
 
 from camcam.geometry.curve import PlanarCurve
-from camcam.toolpath.elements import Line
+from camcam.toolpath.elements import element_nearest
 
 __all__ = ["signed_deviation"]
-
-
-def _nearest_on(e, q: np.ndarray) -> np.ndarray:
-    """Nearest points of element ``e`` to points ``q`` (n, 2)."""
-    if isinstance(e, Line):
-        a, b = np.asarray(e.start, float), np.asarray(e.end, float)
-        d = b - a
-        u = np.clip(((q - a) @ d) / (d @ d), 0.0, 1.0)
-        return a + u[:, None] * d
-    c = np.asarray(e.centre, float)
-    v = q - c
-    ang = np.arctan2(v[:, 1], v[:, 0])
-    a0 = np.arctan2(e.start[1] - c[1], e.start[0] - c[0])
-    sweep = e.sweep if e.ccw else -e.sweep
-    rel = np.mod((ang - a0) * np.sign(sweep), 2 * np.pi)
-    inside = rel <= abs(sweep)
-    on_circle = c + e.radius * v / np.hypot(v[:, 0], v[:, 1])[:, None]
-    ends = np.array([e.start, e.end], float)
-    de = np.hypot(*(q[:, None, :] - ends[None, :, :]).transpose(2, 0, 1))
-    nearest_end = ends[np.argmin(de, axis=1)]
-    return np.where(inside[:, None], on_circle, nearest_end)
 
 
 def signed_deviation(curve: PlanarCurve, elements, theta: np.ndarray, outward: np.ndarray | None) -> np.ndarray:
@@ -48,7 +27,7 @@ def signed_deviation(curve: PlanarCurve, elements, theta: np.ndarray, outward: n
     best = np.full(len(q), np.inf)
     best_pt = np.zeros_like(q)
     for e in elements:
-        p = _nearest_on(e, q)
+        p = element_nearest(e, q)
         d = np.hypot(*(p - q).T)
         m = d < best
         best[m] = d[m]

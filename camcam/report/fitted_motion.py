@@ -69,10 +69,9 @@ class FittedMotion:
         return int(np.count_nonzero(np.diff(self.element)))
 
 
-def _contacts(cam: DiscCam, elements, tool_radius: float, theta: np.ndarray):
-    """Per angle: (kind, centre/point, radius or normal, sign) of the contacted element."""
-    tool_curve = cam.offset_profile(tool_radius)
-    nominal = tool_curve.evaluate(theta, 0)
+def _contacts(cam: DiscCam, tool_curve, nominal: np.ndarray, elements, theta: np.ndarray):
+    """Per angle: the index of the element in contact (nearest to the exact tool-centre point
+    ``nominal``), and o, the side of travel the material is not on."""
     dists = np.array([element_distance(e, nominal) for e in elements])
     idx = np.argmin(dists, axis=0)
     # outward (away from material) = o · left normal of the direction of travel
@@ -114,8 +113,9 @@ def fitted_motion(cam: DiscCam, elements, tool_radius: float, angles_deg: np.nda
     program = cam.program
     scale = math.pi / 180.0 if cam.follower.unit == "deg" else 1.0
     flat = not cam.is_roller
-    idx, o = _contacts(cam, elements, tool_radius, theta)
-    nominal_tool = cam.offset_profile(tool_radius).evaluate(theta, 0)
+    tool_curve = cam.offset_profile(tool_radius)
+    nominal_tool = tool_curve.evaluate(theta, 0)
+    idx, o = _contacts(cam, tool_curve, nominal_tool, elements, theta)
     geo = [_element_geometry(elements[i], o, flat, nominal_tool[j]) for j, i in enumerate(idx)]
     s_design = [program.lift(theta, k) * scale for k in range(4)]
     h = STENCIL_STEP_RAD

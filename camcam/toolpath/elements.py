@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Line", "Arc", "arc_from_tangent", "element_points", "element_distance", "contour_length"]
+__all__ = ["Line", "Arc", "arc_from_tangent", "element_points", "element_nearest", "element_distance", "contour_length"]
 
 
 @dataclass(frozen=True)
@@ -132,26 +132,37 @@ def element_points(elements, spacing: float) -> tuple[np.ndarray, np.ndarray]:
     return np.concatenate(pts), np.concatenate(idx)
 
 
-def element_distance(e: Line | Arc, q: np.ndarray) -> np.ndarray:
-    """Exact distance from points ``q`` (n, 2) to element ``e``."""
-    q = np.atleast_2d(q)
-    a, b = np.asarray(e.start), np.asarray(e.end)
-    ends = np.minimum(np.hypot(*(q - a).T), np.hypot(*(q - b).T))
+def element_nearest(e: Line | Arc, q: np.ndarray) -> np.ndarray:
+    """Nearest points of element ``e`` to points ``q`` (n, 2), shape (n, 2).
+
+    A printed arc whose rounded end is off its circle is the spiral a controller
+    cuts: its radius is interpolated linearly in angle between the ends.
+    """
+    q = np.atleast_2d(np.asarray(q, dtype=float))
+    a, b = np.asarray(e.start, dtype=float), np.asarray(e.end, dtype=float)
     if isinstance(e, Line):
         d = b - a
         L2 = float(d @ d)
         u = np.clip(((q - a) @ d) / L2, 0.0, 1.0) if L2 > 0 else np.zeros(len(q))
-        foot = a + u[:, None] * d
-        return np.hypot(*(q - foot).T)
-    c = np.asarray(e.centre)
+        return a + u[:, None] * d
+    nearer_end = np.where((np.hypot(*(q - a).T) <= np.hypot(*(q - b).T))[:, None], a, b)
+    c = np.asarray(e.centre, dtype=float)
     rel = q - c
+    dist = np.hypot(rel[:, 0], rel[:, 1])
     ang = np.arctan2(rel[:, 1], rel[:, 0])
-    s = (1.0 if e.ccw else -1.0)
+    s = 1.0 if e.ccw else -1.0
     u = np.mod(s * (ang - e.start_angle), 2 * np.pi) / e.sweep
-    inside = u <= 1.0
     r = e.radius + (e.end_radius - e.radius) * np.clip(u, 0, 1)
-    radial = np.abs(np.hypot(rel[:, 0], rel[:, 1]) - r)
-    return np.where(inside, np.minimum(radial, ends), ends)
+    safe = np.where(dist > 0, dist, 1.0)  # a point at the centre: any ray will do
+    on_arc = c + (r / safe)[:, None] * np.where((dist > 0)[:, None], rel, a - c)
+    use_arc = (u <= 1.0) & (np.hypot(*(q - on_arc).T) < np.hypot(*(q - nearer_end).T))
+    return np.where(use_arc[:, None], on_arc, nearer_end)
+
+
+def element_distance(e: Line | Arc, q: np.ndarray) -> np.ndarray:
+    """Exact distance from points ``q`` (n, 2) to element ``e``."""
+    q = np.atleast_2d(np.asarray(q, dtype=float))
+    return np.hypot(*(q - element_nearest(e, q)).T)
 
 
 def contour_length(elements) -> float:

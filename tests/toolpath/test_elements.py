@@ -36,3 +36,21 @@ def test_distance_to_arc_matches_dense_sampling(r, sweep, a0, ccw, qx, qy):
     # the exact distance is a lower bound; dense sampling is within half a sample step (r·sweep/20000)
     assert exact <= dense + 1e-9
     assert dense - exact <= r * sweep / 20000 + 1e-9
+
+
+def test_element_nearest_is_on_the_element_and_nearest():
+    # against a dense sampling of the element: the exact nearest point can only be closer,
+    # and by at most the sampling's half spacing (sweep 1.5 rad · r 5 / 20000 ≈ 4e-4 mm)
+    import numpy as np
+
+    from camcam.toolpath.elements import Arc, Line, element_nearest
+
+    rng = np.random.default_rng(7)
+    q = rng.uniform(-10, 10, size=(200, 2))
+    for e in (Line((0.0, 0.0), (3.0, 4.0)), Arc((5.0, 0.0), (5 * np.cos(1.5), 5 * np.sin(1.5)), (0.0, 0.0), True)):
+        p = element_nearest(e, q)
+        dense = e.points(20001)
+        brute = np.min(np.hypot(*(q[:, None, :] - dense[None, :, :]).transpose(2, 0, 1)), axis=1)
+        exact = np.hypot(*(q - p).T)
+        assert np.all(exact <= brute + 1e-12)
+        assert np.all(brute - exact <= 5e-4)
