@@ -25,9 +25,9 @@ DEFAULT_SPEC = "default.toml"
 
 def nc_step(out, spec, built, report: dict):
     """The NC step: machine ``built`` per ``spec.machining``, add the program and DXF to ``out``
-    and the figures to ``report``; returns the :class:`~camcam.toolpath.machining.MachiningResult`."""
+    and the figures to ``report``; returns the :class:`~camcam.nc.job.MachiningResult`."""
     from camcam.export.nc import machining_report, nc_files
-    from camcam.toolpath.machining import machine
+    from camcam.nc.job import machine
 
     result = machine(built, spec.machining, spec.name)
     for name, data in nc_files(built, result).items():

@@ -8,7 +8,7 @@ import numpy as np
 
 from camcam.export.dxf import Circle, ExactCurve, Polyline, Text, contour_dxf
 from camcam.geometry.build import BuiltCam
-from camcam.toolpath.machining import MachiningResult
+from camcam.nc.job import MachiningResult
 
 __all__ = ["nc_files", "machining_report", "nc_dxf"]
 

@@ -19,7 +19,7 @@ from camcam.report.deviation_along import signed_deviation
 from camcam.report.fitted_motion import fitted_motion
 from camcam.report.html import Code, DataTable, Figure, KeyValues, Paragraph, Section, render_html
 from camcam.report.inspection import inspection_table
-from camcam.toolpath.machining import MachiningResult
+from camcam.nc.job import MachiningResult
 
 __all__ = ["JobReport", "job_report"]
 

@@ -50,7 +50,7 @@ class CutContour:
     surface the pass finishes (the tool radius; for a groove centre pass the
     roller radius from each flank).  ``error_top_mm``/``error_bottom_mm``:
     cylindrical cams only, the deviation of the cut from the exact surface at
-    the groove top and bottom (see :mod:`camcam.toolpath.rotary`).
+    the groove top and bottom (see :mod:`camcam.nc.rotary`).
     """
 
     label: str

@@ -37,7 +37,7 @@ from camcam.spec.machining import MachiningSpec
 from camcam.toolpath.contours import CutContour, OffsetCurve, fit_printed
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Line
-from camcam.toolpath.machining import SAME_TOOL_MM, MachiningResult, _join, _title
+from camcam.nc.job import SAME_TOOL_MM, MachiningResult, _join, _title
 from camcam.toolpath.path import depth_levels, rotary_toolpath
 
 __all__ = ["machine_cylindrical", "developed_printed", "printed_axes"]

@@ -14,7 +14,7 @@ from camcam.geometry.build import build_cam
 from camcam.spec import load_spec
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Line
-from camcam.toolpath.machining import machine
+from camcam.nc.job import machine
 from camcam.verify.rs274 import feed_passes, print_margin_mm, rs274_available, run_rs274
 
 ROOT = Path(__file__).resolve().parents[2]
