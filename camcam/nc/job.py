@@ -158,20 +158,20 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
         if free is not None:
             side = _stock_side(curve, free)
             cs = m.cut_settings(side)
-            paths.append(contour_toolpath(fit.elements, cs, title))
+            paths.append(contour_toolpath(fit.elements, cs, title, label))
             finals = (1 if cs.finish_allowance_mm > 0 else 0) + (1 if cs.spring_pass else 0)
             pass_finish += [cs.finish_allowance_mm == 0] * n_levels + [True] * finals
             pass_contours += [k] * (n_levels + finals)
         else:
             side = "both"
-            paths.append(slot_toolpath(fit.elements, m.cut_settings(), title))
+            paths.append(slot_toolpath(fit.elements, m.cut_settings(), title, label))
             extra = 1 if m.spring_pass else 0
             pass_finish += [True] * (n_levels + extra)
             pass_contours += [k] * (n_levels + extra)
         contours.append(CutContour(label, curve, fit, printed, dev, offset, free is not None, segs, side))
     toolpath = _join(title, paths)
     try:
-        program = write_program(toolpath, post, name)
+        program = write_program(toolpath, post, name, m.setup)
     except GeometryError as err:
         raise GeometryError(f"post {post.name}: {err}") from None
     notes = ()

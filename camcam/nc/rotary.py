@@ -102,13 +102,13 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> Machini
         # developed (u, x) → (x, arc length at ρ_ref); A = u/ρ_ref
         pts = np.array([fit.elements[0].start] + [e.end for e in fit.elements])
         try:
-            paths.append(rotary_toolpath(pts[:, ::-1], cam.base_radius, cs, title, developed_radius_mm=rho))
+            paths.append(rotary_toolpath(pts[:, ::-1], cam.base_radius, cs, title, developed_radius_mm=rho, label=label))
         except InputError as err:
             raise GeometryError(f"{name} {label}: {err}") from None
         contours.append(CutContour(label, curve, fit, path, dev, offset, False, segs, "both", errors[0], errors[1]))
     toolpath = _join(title, paths)
     try:
-        program = write_program(toolpath, post, name)
+        program = write_program(toolpath, post, name, m.setup)
     except (GeometryError, InputError) as err:
         raise GeometryError(f"post {post.name}: {err}") from None
     k = len(contours)

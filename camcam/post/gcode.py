@@ -1,7 +1,12 @@
 """The program writer: a neutral :class:`~camcam.toolpath.path.Toolpath` + a :class:`Post` → text.
 
 Coordinates are printed from integers on the 10^−d grid, so the same input
-gives the same bytes.  Arcs print X/Y and I/J (incremental or absolute) or R,
+gives the same bytes.  After the post's header come the generator line
+(camcam's version and the spec's file name, no date), the work offset, the
+tool length offset and coolant on (:class:`ProgramSetup`); each pass opens
+with a comment naming it (:class:`~camcam.toolpath.path.PassMark`); coolant
+off precedes the footer.  The writer times every move it prints
+(:mod:`camcam.post.timing`).  Arcs print X/Y and I/J (incremental or absolute) or R,
 or Heidenhain's CC/C pair.  A 4-axis path (``rotary``) is printed in inverse
 time (G93): every feed move carries F = feed / move length (1/min).
 """
@@ -11,23 +16,57 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from camcam import __version__
 from camcam.errors import GeometryError, InputError
-from camcam.post.post import Post
+from camcam.post.post import WORK_OFFSETS, Post
+from camcam.post.timing import CycleTime, MoveTimer
 from camcam.toolpath.elements import Arc, Line
-from camcam.toolpath.path import ArcMove, Feed, Rapid, Toolpath
+from camcam.toolpath.path import ArcMove, Feed, PassMark, Rapid, Toolpath
 
-__all__ = ["Program", "write_program", "format_number", "printed_elements"]
+__all__ = ["Program", "ProgramSetup", "write_program", "format_number", "printed_elements"]
+
+_COOLANTS = ("flood", "mist", "off")
+
+
+@dataclass(frozen=True)
+class ProgramSetup:
+    """What a program states besides its moves: work offset, coolant, program number, source.
+
+    ``program_number`` None takes the post's; ``source`` is the spec's file
+    name for the generator line.
+    """
+
+    work_offset: str = "G54"
+    coolant: str = "flood"
+    program_number: int | None = None
+    source: str = ""
+
+    def check(self, post: Post) -> None:
+        """Raise :class:`InputError` naming the field when ``post`` cannot print this setup."""
+        if self.work_offset not in WORK_OFFSETS:
+            raise InputError(f"work_offset: expected one of {', '.join(WORK_OFFSETS)}, got {self.work_offset!r}")
+        if self.coolant not in _COOLANTS:
+            raise InputError(f"coolant: expected one of {', '.join(_COOLANTS)}, got {self.coolant!r}")
+        if not post.coolant_word(self.coolant):
+            raise InputError(f"coolant: post {post.name} has no word for {self.coolant} coolant")
+        if self.program_number is not None:
+            if not post.uses_program_number:
+                raise InputError(f"program_number: post {post.name} does not print a program number")
+            if not 1 <= self.program_number <= post.program_number_max:
+                raise InputError(f"program_number: expected 1–{post.program_number_max} for post {post.name}, "
+                                 f"got {self.program_number}")
 
 
 @dataclass(frozen=True)
 class Program:
-    """A printed program and its block counts (moves only)."""
+    """A printed program, its block counts (moves only) and its estimated cycle time."""
 
     text: str
     extension: str
     line_blocks: int
     arc_blocks: int
     rapid_blocks: int
+    cycle_time: CycleTime | None = None
 
 
 def _grid(v: float, d: int) -> int:
@@ -96,6 +135,12 @@ class _Writer:
         self.a = None
         self.feed = None
         self.counts = {"line": 0, "arc": 0, "rapid": 0}
+        self.timer = MoveTimer(post.rapid_mm_min)
+
+    def where(self) -> tuple[float, float, float]:
+        """The printed position in mm (an axis never stated counts as 0, as rs274 starts)."""
+        scale = 10.0 ** -self.post.decimals
+        return tuple(0.0 if v is None else v * scale for v in self.pos)
 
     def n(self, v, signed=False):
         return _fmt_int(v, self.post, signed)
@@ -122,11 +167,16 @@ class _Writer:
 
     def gcode_move(self, m, rotary: bool):
         d = self.post.decimals
+        if isinstance(m, PassMark):
+            self.emit(self.comment(m.text()))
+            return
+        before = self.where()
         if isinstance(m, Rapid):
             w = self.axes(m.x, m.y, m.z)
             if w:
                 self.emit("G0 " + " ".join(w))
                 self.counts["rapid"] += 1
+                self.timer.rapid(before, self.where())
             return
         if isinstance(m, Feed):
             w = self.axes(m.x, m.y, m.z)
@@ -140,9 +190,12 @@ class _Writer:
             if rotary:
                 inv = m.feed_mm_min / max(m.length_mm, 10.0**-d)
                 w.append(f"F{self.n(_grid(inv, d))}")
-            elif m.feed_mm_min != self.feed:
-                w.append(f"F{self.n(_grid(m.feed_mm_min, d))}")
-                self.feed = m.feed_mm_min
+                self.timer.inverse_time(before, self.where(), _grid(inv, d) * 10.0**-d)
+            else:
+                if m.feed_mm_min != self.feed:
+                    w.append(f"F{self.n(_grid(m.feed_mm_min, d))}")
+                    self.feed = m.feed_mm_min
+                self.timer.line(before, self.where(), _grid(m.feed_mm_min, d) * 10.0**-d)
             self.emit("G1 " + " ".join(w))
             self.counts["line"] += 1
             return
@@ -162,6 +215,7 @@ class _Writer:
         if m.feed_mm_min != self.feed:
             w.append(f"F{self.n(_grid(m.feed_mm_min, d))}")
             self.feed = m.feed_mm_min
+        self.timer.arc(before, self.where(), (cx * 10.0**-d, cy * 10.0**-d), m.ccw, _grid(m.feed_mm_min, d) * 10.0**-d)
         self.emit(("G3 " if m.ccw else "G2 ") + " ".join(w))
         self.counts["arc"] += 1
 
@@ -184,10 +238,15 @@ class _Writer:
                                 f"max_arc_sweep_deg {self.post.max_arc_sweep_deg:g}")
 
     # -- Heidenhain --------------------------------------------------------------------
-    def hh_move(self, m, first: bool):
+    def hh_move(self, m, first_words: str):
+        """One move; ``first_words`` (spindle and coolant on) go on the first L block."""
         d = self.post.decimals
+        if isinstance(m, PassMark):
+            self.emit(self.comment(m.text()))
+            return False
         if isinstance(m, Feed) and m.a_deg is not None:
             raise InputError(f"post {self.post.name}: 4-axis programs are not supported by this dialect")
+        before = self.where()
         if isinstance(m, ArcMove):
             sx, sy = self.pos[0], self.pos[1]
             ex, ey, cx, cy = (_grid(v, d) for v in (m.x, m.y, m.cx, m.cy))
@@ -196,7 +255,8 @@ class _Writer:
             self.pos[0], self.pos[1] = ex, ey
             self.emit(f"C X{self.n(ex, True)} Y{self.n(ey, True)} DR{'+' if m.ccw else '-'} R0 F{self.n(_grid(m.feed_mm_min, d))}")
             self.counts["arc"] += 1
-            return
+            self.timer.arc(before, self.where(), (cx * 10.0**-d, cy * 10.0**-d), m.ccw, _grid(m.feed_mm_min, d) * 10.0**-d)
+            return False
         words = []
         for i, (name, v) in enumerate(zip("XYZ", (m.x, m.y, m.z))):
             if v is None:
@@ -206,53 +266,80 @@ class _Writer:
                 words.append(f"{name}{self.n(g, True)}")
             self.pos[i] = g
         if not words:
-            return
+            return False
         rapid = isinstance(m, Rapid)
         f = "FMAX" if rapid else f"F{self.n(_grid(m.feed_mm_min, d))}"
-        self.emit(f"L {' '.join(words)} R0 {f}" + (" M3" if first else ""))
+        self.emit(f"L {' '.join(words)} R0 {f}" + (f" {first_words}" if first_words else ""))
         self.counts["rapid" if rapid else "line"] += 1
+        if rapid:
+            self.timer.rapid(before, self.where())
+        else:
+            self.timer.line(before, self.where(), _grid(m.feed_mm_min, d) * 10.0**-d)
+        return True
 
 
-def write_program(toolpath: Toolpath, post: Post, name: str = "camcam") -> Program:
-    """Print ``toolpath`` for ``post``.
+def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: ProgramSetup = ProgramSetup()) -> Program:
+    """Print ``toolpath`` for ``post`` with the work offset, coolant and program number of ``setup``.
 
     Examples
     --------
     >>> from camcam.post.post import load_post
     >>> tp = Toolpath("demo", (Rapid(0.0, 0.0, 5.0), Feed(10.0, 0.0, 5.0, 300.0)), 1000)
-    >>> print(write_program(tp, load_post("linuxcnc")).text.splitlines()[-3])
+    >>> p = write_program(tp, load_post("linuxcnc"))
+    >>> print(p.text.splitlines()[-4])
     G1 X10 F300
+    >>> p.text.splitlines()[5:8]
+    ['G54', 'G43 H1', 'M8']
+    >>> round(p.cycle_time.total_s, 4)  # 10 s tool change + 5 mm rapid at 5 m/min + 10 mm at 300 mm/min
+    12.06
     """
     if toolpath.rotary and not post.inverse_time:
         raise InputError(f"post {post.name}: has no inverse-time feed (G93) for a 4-axis program")
+    setup.check(post)
+    number = post.program_number if setup.program_number is None else setup.program_number
     fields = {"title": toolpath.title.replace("(", "[").replace(")", "]"), "name": name,
               "tool": toolpath.tool_number, "spindle": int(round(toolpath.spindle_rpm)),
-              "program_number": post.program_number}
+              "program_number": number}
     w = _Writer(post)
     body: list[str] = []
     for line in post.header:
         body.append(line.format(**fields))
+    body.append(w.comment(f"camcam {__version__}" + (f", spec {setup.source}" if setup.source else "")))
     for c in toolpath.comments:
         body.append(w.comment(c))
+    body += post.work_offset_lines(setup.work_offset)
+    if post.tool_length_offset:
+        body.append(post.tool_length_offset.format(**fields))
+    coolant_on, coolant_off = post.coolant_word(setup.coolant), post.coolant_off
+    if post.tool_change:
+        w.timer.tool_change(post.tool_change_s)
     if post.dialect == "heidenhain":
-        for i, m in enumerate(toolpath.moves):
-            w.hh_move(m, i == 0)
+        first = f"M3 {coolant_on}"
+        for m in toolpath.moves:
+            if w.hh_move(m, first):
+                first = ""
+        last = max(i for i, line in enumerate(w.lines) if line.startswith("L "))
+        w.lines[last] += f" {coolant_off}"
     else:
+        body.append(coolant_on)
         if toolpath.rotary:
             w.emit("G93")
         for m in toolpath.moves:
             w.gcode_move(m, toolpath.rotary)
         if toolpath.rotary:
             w.emit("G94")
+        w.emit(coolant_off)
     body += w.lines
     body += [line.format(**fields) for line in post.footer]
     out = []
     k = post.line_number_start
     for line in body:
-        numbered = post.line_numbers and (post.dialect == "heidenhain" or not (line.startswith("%") or line.startswith("O")))
+        numbered = post.line_numbers and not line[:1].isspace() and (
+            post.dialect == "heidenhain" or not (line.startswith("%") or line.startswith("O")))
         if numbered:
             out.append(f"{k} {line}" if post.dialect == "heidenhain" else f"N{k} {line}")
             k += post.line_number_step
         else:
             out.append(line)
-    return Program("\n".join(out) + "\n", post.extension, w.counts["line"], w.counts["arc"], w.counts["rapid"])
+    return Program("\n".join(out) + "\n", post.extension, w.counts["line"], w.counts["arc"], w.counts["rapid"],
+                   w.timer.result())

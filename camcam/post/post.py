@@ -22,7 +22,21 @@ Keys (all required unless a default is given):
 ``inverse_time``              the controller has G93 (needed for 4-axis programs)
 ``header``, ``footer``        lists of lines; ``{title}``, ``{name}``, ``{tool}``,
                               ``{spindle}``, ``{program_number}`` are filled in
-``program_number``            default 1 (Fanuc O-number)
+``program_number``            default 1 (Fanuc O-number); a spec's ``[machining]
+                              program_number`` replaces it
+``program_number_max``        largest program number the controller takes (default 9999)
+``tool_length_offset``        line that applies the tool length offset, printed after the
+                              header (``"G43 H{tool}"``; default none: the header or the
+                              tool call does it)
+``work_offsets``              six program texts for ``G54`` … ``G59`` (a spec's
+                              ``work_offset``), in this dialect's words; a ``\\n`` splits
+                              one into lines, an indented line is not numbered (default
+                              ``G54`` … ``G59``)
+``coolant_flood``,            coolant words (defaults ``M8``, ``M7``, ``M9``); ``""``: the
+``coolant_mist``,             controller has none, and a spec asking for it is refused
+``coolant_off``
+``rapid_mm_min``              rapid traverse rate for the cycle-time estimate (default 5000)
+``tool_change_s``             seconds per tool change for the estimate (default 10)
 ============================  =====================================================
 """
 
@@ -40,6 +54,14 @@ __all__ = ["Post", "load_post", "known_posts", "parse_post"]
 
 _ARC_FORMATS = {"gcode": ("ij_incremental", "ij_absolute", "r"), "heidenhain": ("cc_absolute",)}
 _FIELDS = {"title", "name", "tool", "spindle", "program_number"}
+
+#: The work offsets a spec may name, in the order of ``work_offsets``.
+WORK_OFFSETS = ("G54", "G55", "G56", "G57", "G58", "G59")
+
+#: ``work_offsets`` when a post does not give them: G-code's own words; Heidenhain's preset
+#: (datum) numbers 1–6 set by cycle 247.
+_DEFAULT_OFFSETS = {"gcode": WORK_OFFSETS,
+                    "heidenhain": tuple(f"CYCL DEF 247 DATUM SETTING ~\n  Q339=+{k} ;DATUM NUMBER" for k in range(1, 7))}
 
 
 @dataclass(frozen=True)
@@ -65,6 +87,27 @@ class Post:
     tool_change: bool = True
     inverse_time: bool = True
     program_number: int = 1
+    program_number_max: int = 9999
+    tool_length_offset: str = ""
+    work_offsets: tuple[str, ...] = WORK_OFFSETS
+    coolant_flood: str = "M8"
+    coolant_mist: str = "M7"
+    coolant_off: str = "M9"
+    rapid_mm_min: float = 5000.0
+    tool_change_s: float = 10.0
+
+    @property
+    def uses_program_number(self) -> bool:
+        """Whether the header or footer prints ``{program_number}``."""
+        return any("{program_number" in line for line in self.header + self.footer)
+
+    def work_offset_lines(self, work_offset: str) -> tuple[str, ...]:
+        """The program lines selecting ``work_offset`` (``"G54"`` … ``"G59"``)."""
+        return tuple(self.work_offsets[WORK_OFFSETS.index(work_offset)].split("\n"))
+
+    def coolant_word(self, coolant: str) -> str:
+        """The word switching ``coolant`` ("flood", "mist", "off") on; ``""`` when the controller has none."""
+        return {"flood": self.coolant_flood, "mist": self.coolant_mist, "off": self.coolant_off}[coolant]
 
 
 def _post_dir():
@@ -85,7 +128,9 @@ def parse_post(data: dict, name: str) -> Post:
              "arc_format": str, "max_arc_sweep_deg": (int, float), "max_radius_error_mm": (int, float),
              "decimal_point_always": bool, "line_numbers": bool, "line_number_start": int,
              "line_number_step": int, "comment": str, "tool_change": bool, "inverse_time": bool,
-             "header": list, "footer": list, "program_number": int}
+             "header": list, "footer": list, "program_number": int, "program_number_max": int,
+             "tool_length_offset": str, "work_offsets": list, "coolant_flood": str, "coolant_mist": str,
+             "coolant_off": str, "rapid_mm_min": (int, float), "tool_change_s": (int, float)}
     required = {"description", "extension", "units", "decimals", "arc_format", "max_arc_sweep_deg", "header", "footer"}
     for key in data:
         if key not in types:
@@ -113,19 +158,38 @@ def parse_post(data: dict, name: str) -> Post:
         fail("comment", f'expected "parentheses" or "semicolon", got {data["comment"]!r}')
     if not data["extension"].isalnum():
         fail("extension", f"expected letters/digits without a dot, got {data['extension']!r}")
-    for key in ("header", "footer"):
-        for i, line in enumerate(data[key]):
-            if not isinstance(line, str):
-                fail(f"{key}[{i}]", f"expected a string, got {line!r}")
-            try:
-                names = {f for _, f, _, _ in string.Formatter().parse(line) if f is not None}
-            except ValueError as err:
-                fail(f"{key}[{i}]", f"bad template: {err}")
-            bad = names - _FIELDS
-            if bad:
-                fail(f"{key}[{i}]", f"unknown field {{{sorted(bad)[0]}}}; known: {', '.join(sorted(_FIELDS))}")
-    fields = {k: (tuple(v) if isinstance(v, list) else (float(v) if k in ("max_arc_sweep_deg", "max_radius_error_mm") else v))
-              for k, v in data.items()}
+    if not 1 <= data.get("program_number_max", 9999) <= 99999999:
+        fail("program_number_max", f"expected 1–99999999, got {data['program_number_max']}")
+    if not 1 <= data.get("program_number", 1) <= data.get("program_number_max", 9999):
+        fail("program_number", f"expected 1–{data.get('program_number_max', 9999)}, got {data['program_number']}")
+    if not data.get("rapid_mm_min", 5000.0) > 0:
+        fail("rapid_mm_min", f"expected > 0, got {data['rapid_mm_min']}")
+    if not data.get("tool_change_s", 10.0) >= 0:
+        fail("tool_change_s", f"expected >= 0, got {data['tool_change_s']}")
+    offsets = data.get("work_offsets", list(_DEFAULT_OFFSETS[dialect]))
+    if len(offsets) != len(WORK_OFFSETS) or not all(isinstance(o, str) and o.strip() for o in offsets):
+        fail("work_offsets", f"expected {len(WORK_OFFSETS)} non-empty strings (the words for {', '.join(WORK_OFFSETS)}), "
+             f"got {offsets!r}")
+    if not data.get("coolant_flood", "M8") and not data.get("coolant_mist", "M7"):
+        fail("coolant_flood", "a post needs at least one coolant-on word (coolant_flood or coolant_mist)")
+    if not data.get("coolant_off", "M9"):
+        fail("coolant_off", "expected the coolant-off word, got an empty string")
+    templated = [(key, i, line) for key in ("header", "footer") for i, line in enumerate(data[key])]
+    templated += [("tool_length_offset", None, data["tool_length_offset"])] if "tool_length_offset" in data else []
+    for key, i, line in templated:
+        where = key if i is None else f"{key}[{i}]"
+        if not isinstance(line, str):
+            fail(where, f"expected a string, got {line!r}")
+        try:
+            names = {f for _, f, _, _ in string.Formatter().parse(line) if f is not None}
+        except ValueError as err:
+            fail(where, f"bad template: {err}")
+        bad = names - _FIELDS
+        if bad:
+            fail(where, f"unknown field {{{sorted(bad)[0]}}}; known: {', '.join(sorted(_FIELDS))}")
+    floats = ("max_arc_sweep_deg", "max_radius_error_mm", "rapid_mm_min", "tool_change_s")
+    fields = {k: (tuple(v) if isinstance(v, list) else (float(v) if k in floats else v)) for k, v in data.items()}
+    fields.setdefault("work_offsets", _DEFAULT_OFFSETS[dialect])
     return Post(name=name, **fields)
 
 

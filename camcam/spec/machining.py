@@ -10,6 +10,9 @@ feed = 400.0               # mm/min
 spindle = 3000             # rev/min
 depth = 12.0               # mm
 stepdown = 4.0             # mm
+work_offset = "G54"        # G54 … G59, printed in the post's words
+coolant = "flood"          # "flood", "mist" or "off"
+program_number = 1234      # only for posts that print one (Fanuc, Haas)
 ```
 """
 
@@ -19,7 +22,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from camcam.errors import InputError
-from camcam.post.post import Post, load_post
+from camcam.post.gcode import ProgramSetup
+from camcam.post.post import WORK_OFFSETS, Post, load_post
 from camcam.spec.reader import Table
 from camcam.toolpath.arcfit import rounding_budget
 from camcam.toolpath.path import CutSettings
@@ -46,6 +50,7 @@ class MachiningSpec:
     finish_allowance_mm: float
     spring_pass: bool
     tool_number: int
+    setup: ProgramSetup = ProgramSetup()
 
     def cut_settings(self, stock_side: str = "right") -> CutSettings:
         """Settings for :func:`camcam.toolpath.path.contour_toolpath`."""
@@ -57,8 +62,8 @@ class MachiningSpec:
                            tool_number=self.tool_number, tool_diameter_mm=self.tool_diameter_mm)
 
 
-def read_machining(t: Table, base: Path) -> MachiningSpec:
-    """Validate ``[machining]``; ``base`` anchors a relative post path."""
+def read_machining(t: Table, base: Path, source: str = "") -> MachiningSpec:
+    """Validate ``[machining]``; ``base`` anchors a relative post path, ``source`` is the spec's file name."""
     name = t.string("post", "linuxcnc")
     try:
         post = load_post(name, base)
@@ -81,6 +86,15 @@ def read_machining(t: Table, base: Path) -> MachiningSpec:
     allowance = t.number("finish_allowance", 0.0, minimum=0.0, unit="mm")
     spring = t.boolean("spring_pass", False)
     tool_number = t.integer("tool_number", 1, minimum=0, maximum=999)
+    work_offset = t.string("work_offset", "G54", choices=WORK_OFFSETS)
+    coolant = t.string("coolant", "flood", choices=("flood", "mist", "off"))
+    number = t.integer("program_number", None, minimum=1)
+    setup = ProgramSetup(work_offset, coolant, number, source)
+    try:
+        setup.check(post)
+    except InputError as err:
+        key, _, message = str(err).partition(": ")
+        raise t.error(key, message) from None
     t.done()
     return MachiningSpec(post, tool, tol, mode, feed, spindle, depth, stepdown, plunge, safe, clearance, lead,
-                         allowance, spring, tool_number)
+                         allowance, spring, tool_number, setup)

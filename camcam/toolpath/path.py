@@ -17,7 +17,7 @@ import numpy as np
 from camcam.errors import InputError
 from camcam.toolpath.elements import Arc, Line
 
-__all__ = ["Rapid", "Feed", "ArcMove", "Toolpath", "CutSettings", "contour_toolpath", "offset_elements",
+__all__ = ["Rapid", "Feed", "ArcMove", "PassMark", "Toolpath", "CutSettings", "contour_toolpath", "offset_elements",
            "rotary_toolpath", "slot_toolpath", "depth_levels"]
 
 
@@ -53,6 +53,52 @@ class ArcMove:
     ccw: bool
     z: float
     feed_mm_min: float
+
+
+@dataclass(frozen=True)
+class PassMark:
+    """Not a move: the start of a pass, printed as a comment naming it ("profile: rough 1/3, depth 4 mm").
+
+    ``kind`` is "rough", "finish" or "spring"; ``index``/``count`` number the
+    roughing passes of the contour ``contour``; ``z`` is the pass's Z,
+    ``depth_mm`` its depth below the top; ``allowance_mm`` is the stock the
+    pass leaves on the finished surface.
+    """
+
+    contour: str
+    kind: str
+    index: int
+    count: int
+    z: float
+    depth_mm: float
+    allowance_mm: float
+    feed_mm_min: float
+
+    @property
+    def name(self) -> str:
+        """"rough 1/3", "finish", "spring"."""
+        return f"{self.kind} {self.index}/{self.count}" if self.kind == "rough" else self.kind
+
+    def text(self) -> str:
+        """The comment line: ``profile: rough 1/3, depth 4 mm, allowance 0.3 mm``."""
+        left = f", allowance {self.allowance_mm:g} mm" if self.allowance_mm > 0 else ""
+        return f"{self.contour}: {self.name}, depth {self.depth_mm:.6g} mm{left}"
+
+
+def _marks(contour: str, levels: list[float], top: float, allowance_mm: float, spring: bool, feed: float,
+           separate_finish: bool) -> list[PassMark]:
+    """Pass marks of a contour cut at ``levels``: roughing passes, the finish pass, the spring pass.
+
+    ``separate_finish``: the roughing passes all run at the allowance and a
+    finish pass at full depth follows; otherwise the last level is the finish.
+    """
+    n = len(levels) if separate_finish else len(levels) - 1
+    marks = [PassMark(contour, "rough", k + 1, n, z, top - z, allowance_mm if separate_finish else 0.0, feed)
+             for k, z in enumerate(levels[:n])]
+    marks.append(PassMark(contour, "finish", 1, 1, levels[-1], top - levels[-1], 0.0, feed))
+    if spring:
+        marks.append(PassMark(contour, "spring", 1, 1, levels[-1], top - levels[-1], 0.0, feed))
+    return marks
 
 
 @dataclass(frozen=True)
@@ -183,7 +229,7 @@ def _contour_moves(elements, z, feed):
     return moves
 
 
-def slot_toolpath(elements, cs: CutSettings, title: str = "camcam") -> Toolpath:
+def slot_toolpath(elements, cs: CutSettings, title: str = "camcam", label: str = "contour") -> Toolpath:
     """Depth passes along a contour inside a slot or groove: plunge at its start, no leads.
 
     For a groove both sides of the path are walls, so there is no free side
@@ -205,17 +251,18 @@ def slot_toolpath(elements, cs: CutSettings, title: str = "camcam") -> Toolpath:
     plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
     start = elements[0].start
     moves: list = [Rapid(None, None, cs.safe_z_mm)]
-    for z in levels + ([levels[-1]] if cs.spring_pass else []):
-        moves += [Rapid(float(start[0]), float(start[1]), None), Rapid(None, None, cs.clearance_z_mm),
+    for mark in _marks(label, levels, cs.top_z_mm, 0.0, cs.spring_pass, cs.feed_mm_min, False):
+        z = mark.z
+        moves += [mark, Rapid(float(start[0]), float(start[1]), None), Rapid(None, None, cs.clearance_z_mm),
                   Feed(None, None, z, plunge)]
         moves += _contour_moves(elements, z, cs.feed_mm_min)
         moves.append(Rapid(None, None, cs.clearance_z_mm))
     moves.append(Rapid(None, None, cs.safe_z_mm))
     return Toolpath(title, tuple(moves), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False,
-                    (f"{len(levels)} depth passes to {levels[-1]:g} mm, plunged in the groove",))
+                    (f"{label}: plunged in the groove",))
 
 
-def contour_toolpath(elements, cs: CutSettings, title: str = "camcam") -> Toolpath:
+def contour_toolpath(elements, cs: CutSettings, title: str = "camcam", label: str = "contour") -> Toolpath:
     """Depth passes over a fitted contour (tool-centre elements in the direction of cut).
 
     Passes go down in equal steps no deeper than ``stepdown_mm``; with a
@@ -239,18 +286,17 @@ def contour_toolpath(elements, cs: CutSettings, title: str = "camcam") -> Toolpa
     rough = offset_elements(elements, cs.finish_allowance_mm * (1 if away_left else -1)) \
         if cs.finish_allowance_mm > 0 else tuple(elements)
     moves: list = [Rapid(None, None, cs.safe_z_mm)]
-    for z in levels:
-        moves += _pass_moves(rough, z, cs.feed_mm_min, plunge, cs.lead_radius_mm, away_left, cs)
-    finals = (1 if cs.finish_allowance_mm > 0 else 0) + (1 if cs.spring_pass else 0)
-    for _ in range(finals):
-        moves += _pass_moves(tuple(elements), levels[-1], cs.feed_mm_min, plunge, cs.lead_radius_mm, away_left, cs)
+    separate = cs.finish_allowance_mm > 0
+    for mark in _marks(label, levels, cs.top_z_mm, cs.finish_allowance_mm, cs.spring_pass, cs.feed_mm_min, separate):
+        path = rough if mark.kind == "rough" and separate else tuple(elements)
+        moves.append(mark)
+        moves += _pass_moves(path, mark.z, cs.feed_mm_min, plunge, cs.lead_radius_mm, away_left, cs)
     moves.append(Rapid(None, None, cs.safe_z_mm))
-    return Toolpath(title, tuple(moves), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False,
-                    (f"{n} depth passes to {levels[-1]:g} mm",))
+    return Toolpath(title, tuple(moves), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False, ())
 
 
 def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "camcam",
-                    developed_radius_mm: float | None = None) -> Toolpath:
+                    developed_radius_mm: float | None = None, label: str = "contour") -> Toolpath:
     """4-axis moves from a developed polyline: x stays X, y/radius becomes A (degrees).
 
     ``points_xy`` is (n, 2) on the developed plane at ``developed_radius_mm``
@@ -270,8 +316,9 @@ def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "
     seg = np.hypot(*np.diff(pts, axis=0).T)
     plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
     moves: list = [Rapid(None, None, radius_mm + cs.safe_z_mm)]
-    for z in levels:
-        moves.append(Rapid(float(pts[0, 0]), None, None))
+    for mark in _marks(label, levels, radius_mm, 0.0, False, cs.feed_mm_min, False):
+        z = mark.z
+        moves += [mark, Rapid(float(pts[0, 0]), None, None)]
         moves.append(Feed(None, None, radius_mm + cs.clearance_z_mm, plunge, float(a[0]), cs.safe_z_mm))
         moves.append(Feed(None, None, z, plunge, float(a[0]), cs.clearance_z_mm + radius_mm - z))
         for k in range(1, len(pts)):
