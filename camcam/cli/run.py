@@ -11,6 +11,7 @@ nothing.
 
 from __future__ import annotations
 
+import sys
 from importlib import resources
 from pathlib import Path
 
@@ -33,12 +34,28 @@ def nc_step(out, spec, built, report: dict):
     for name, data in nc_files(built, result).items():
         out.add(name, data)
     nc = machining_report(result)
-    for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks"):
+    for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks", "cycle_time_s"):
         report[key] = nc[key]
     report["machining"] = nc
     for note in result.notes:
         warn(note)
     return result
+
+
+def job_verdict(spec, built, machining):
+    """The run's :class:`~camcam.verdict.Verdict`: the NC deviation against the tolerance and the design checks."""
+    from camcam.design_checks import design_checks
+    from camcam.verdict import Check, Verdict
+
+    checks = []
+    if machining is not None:
+        worst = max(machining.contours, key=lambda c: c.deviation.max_deviation_mm)
+        checks.append(Check("NC deviation", machining.max_deviation_mm, machining.tolerance_mm, "mm",
+                            machining.max_deviation_mm <= machining.tolerance_mm, "fail",
+                            f"contour {worst.label}, two-sided on the printed program",
+                            "use a post with more decimals or a larger tolerance"))
+    checks += design_checks(built, spec.machining, spec.report.strict)
+    return Verdict(tuple(checks))
 
 
 def register(sub) -> None:
@@ -63,6 +80,7 @@ def run(args) -> int:
     from camcam.export.files import OutputSet
 
     spec = _load(args.spec)
+    verdict = None
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
@@ -72,7 +90,7 @@ def run(args) -> int:
     summary = {"name": spec.name, "motion": motion_summary(program)}
     if spec.cam is not None:
         from camcam.export.cam_report import cam_report
-        from camcam.export.stl import stl_bytes
+        from camcam.export.stl import program_frame, stl_bytes
         from camcam.geometry.build import build_cam
         from camcam.plots.profile import cam_png
         from camcam.report.job import job_report
@@ -84,12 +102,14 @@ def run(args) -> int:
         if spec.machining is not None:
             with step("NC second fitting and program"):
                 machining = nc_step(out, spec, built, report)
+        verdict = job_verdict(spec, built, machining)
+        report["verdict"] = verdict.as_dict()
         with step("drawing, model and report"):
-            out.add(f"{spec.name}.stl", stl_bytes(built.mesh))
+            out.add(f"{spec.name}.stl", stl_bytes(program_frame(built)))
             profile_png = cam_png(built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
             out.add(f"{spec.name}-profile.png", profile_png)
             page = job_report(spec.name, spec, program, svaj, built, report, profile_png, machining,
-                              spec.report.inspection_step_deg)
+                              spec.report.inspection_step_deg, verdict)
             for name, data in page.files.items():
                 out.add(name, data)
             report.update(page.figures)
@@ -110,6 +130,14 @@ def run(args) -> int:
             if "machining" in c:
                 print(f"NC: {c['line_blocks']} line + {c['arc_blocks']} arc blocks (lower bound {c['lower_bound_blocks']:.1f}), "
                       f"max deviation {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm on the printed program")
+                print(f"cycle time {machining.program.cycle_time.describe()}, rapids at "
+                      f"{machining.post.rapid_mm_min:g} mm/min, acceleration not counted")
         for p in written:
             print(f"wrote {p}")
+    if verdict is not None:
+        for c in verdict.warnings:
+            warn(c.describe())
+        if not verdict.passed:
+            print(f"camcam: {verdict.line()}", file=sys.stderr)
+        return verdict.exit_status
     return 0

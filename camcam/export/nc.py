@@ -94,4 +94,5 @@ def machining_report(r: MachiningResult) -> dict:
         "lower_bound_kind": "arcs: ∫(|κ′|/192δ)^⅓ ds" if r.mode == "arcs" else "lines: ∫√(|κ|/8δ) ds",
         "program_blocks": {"line": r.program.line_blocks, "arc": r.program.arc_blocks, "rapid": r.program.rapid_blocks},
         "reference_radius_mm": r.reference_radius_mm, "contours": contours, "notes": list(r.notes),
+        "cycle_time_s": r.program.cycle_time.total_s, "cycle_time": r.program.cycle_time.as_dict(),
     }

@@ -11,7 +11,7 @@ import html
 from dataclasses import dataclass
 from typing import Sequence, Union
 
-__all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Code", "Section", "render_html"]
+__all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Code", "Banner", "Section", "render_html"]
 
 
 @dataclass(frozen=True)
@@ -51,7 +51,15 @@ class Code:
     caption: str = ""
 
 
-Block = Union[Figure, KeyValues, DataTable, Paragraph, Code]
+@dataclass(frozen=True)
+class Banner:
+    """The verdict line: ``ok`` shows it green, otherwise red."""
+
+    text: str
+    ok: bool
+
+
+Block = Union[Figure, KeyValues, DataTable, Paragraph, Code, Banner]
 
 
 @dataclass(frozen=True)
@@ -65,11 +73,16 @@ body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,sans-serif;margin:2em
 h1{font-size:1.6em;margin-bottom:.2em}h2{font-size:1.25em;border-bottom:2px solid #2a6fb0;padding-bottom:.2em;margin-top:1.8em}
 .sub{color:#555;margin-top:0}table{border-collapse:collapse;margin:.6em 0;font-size:.92em}
 td,th{border:1px solid #ccc;padding:.25em .6em;text-align:right}th{background:#eef3f8}
-td:first-child,th:first-child{text-align:left}table.kv td:first-child{font-weight:600;background:#f7f7f7}
+td:first-child,th:first-child{text-align:left}table.kv td{text-align:left}table.kv td:first-child{font-weight:600;background:#f7f7f7}
 figure{margin:1em 0}figure img{max-width:100%;border:1px solid #ddd}figcaption{color:#444;font-size:.9em}
 pre{background:#f6f8fa;border:1px solid #ddd;padding:.6em;font-size:.85em;overflow-x:auto}
 .ok{color:#176b2c;font-weight:600}.bad{color:#a11;font-weight:600}
-@media print{h2{page-break-after:avoid}figure,table{page-break-inside:avoid}}
+p.banner{font-size:1.3em;padding:.4em .6em;border:2px solid}p.banner.ok{border-color:#176b2c;background:#eef8f0}
+p.banner.bad{border-color:#a11;background:#fbeeee}
+@page{size:A4;margin:12mm}
+@media print{body{max-width:none;margin:0;padding:0;font-size:10pt}h2{page-break-after:avoid}
+figure,tr{page-break-inside:avoid}table{font-size:8pt}td,th{padding:.1em .3em}
+pre{white-space:pre-wrap;word-break:break-all;font-size:7.5pt}figure img{max-height:240mm}}
 """
 
 
@@ -88,6 +101,8 @@ def _block(b: Block) -> str:
         return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
     if isinstance(b, Paragraph):
         return f"<p>{e(b.text)}</p>"
+    if isinstance(b, Banner):
+        return f'<p class="banner {"ok" if b.ok else "bad"}">{e(b.text)}</p>'
     if isinstance(b, Code):
         cap = f"<figcaption>{e(b.caption)}</figcaption>" if b.caption else ""
         return f"<figure><pre>{e(b.text)}</pre>{cap}</figure>"

@@ -17,7 +17,8 @@ from camcam.motion.program import MotionProgram
 from camcam.plots.report_plots import deviation_png, fitted_motion_png
 from camcam.report.deviation_along import signed_deviation
 from camcam.report.fitted_motion import fitted_motion
-from camcam.report.html import Code, DataTable, Figure, KeyValues, Paragraph, Section, render_html
+from camcam.report.html import Banner, Code, DataTable, Figure, KeyValues, Paragraph, Section, render_html
+from camcam.report.setup_sheet import setup_blocks
 from camcam.report.inspection import inspection_table
 from camcam.nc.job import MachiningResult
 
@@ -48,12 +49,37 @@ def _job_rows(name, spec, built: BuiltCam | None, m: MachiningResult | None):
     return tuple(rows)
 
 
+def _verdict_blocks(verdict) -> tuple:
+    """The status line (a warning shows its figure) and every check with its figure and limit."""
+    text = verdict.line()
+    if verdict.passed and verdict.warnings:
+        text = f"PASS with {len(verdict.warnings)} warning(s): {verdict.warnings[0].describe()}"
+    if verdict.accepted and not verdict.passed:
+        text += " (accepted by the spec: exit status 0)"
+    head = Banner(text, verdict.passed)
+    rows = tuple((c.name, f"{c.value:.4g} {c.unit}", f"{c.limit:g} {c.unit}",
+                  "ok" if c.ok else ("FAIL" if c.severity == "fail" else "warning"), c.where,
+                  "" if c.ok else c.advice) for c in verdict.checks)
+    return (head, DataTable(("check", "figure", "limit", "result", "where", "way out"), rows))
+
+
 def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: BuiltCam | None, cam_figures: dict,
-               cam_png: bytes | None, machining: MachiningResult | None, inspection_step_deg: float = 10.0) -> JobReport:
-    """Build the HTML page, the report's extra JSON figures and its files."""
+               cam_png: bytes | None, machining: MachiningResult | None, inspection_step_deg: float = 10.0,
+               verdict=None) -> JobReport:
+    """Build the HTML page, the report's extra JSON figures and its files.
+
+    The page opens with ``verdict`` (a :class:`~camcam.verdict.Verdict`) and,
+    with a machining job, the setup sheet; then the job, motion, cam,
+    tolerance and inspection sections.
+    """
     files: dict[str, bytes] = {}
     figures: dict = {}
-    sections = [Section("Job", (KeyValues(_job_rows(name, spec, built, machining)),))]
+    sections = []
+    if verdict is not None:
+        sections.append(Section("Verdict", _verdict_blocks(verdict)))
+    if machining is not None and built is not None:
+        sections.append(Section("Setup", setup_blocks(built, machining, spec.machining)))
+    sections.append(Section("Job", (KeyValues(_job_rows(name, spec, built, machining)),)))
     sections.append(Section("Motion (design)", (Figure(svaj, "Displacement, velocity, acceleration and jerk over the revolution; dashed: segment boundaries."),)))
     if built is not None:
         blocks = []

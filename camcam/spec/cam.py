@@ -10,6 +10,7 @@ rotation = "ccw"       # "ccw" or "cw" (about +Z for discs, +X for cylinders)
 groove_depth = 8.0     # disc-groove and cylindrical, mm
 outer_radius = 90.0    # disc-groove: blank radius, mm (default: groove + one roller radius of wall)
 length = 120.0         # cylindrical, mm
+max_pressure_angle_deg = 30.0  # design check limit (default 30° translating, 35° oscillating followers)
 ```
 """
 
@@ -34,6 +35,7 @@ class CamSpec:
     groove_depth: float | None = None
     outer_radius: float | None = None
     length: float | None = None
+    max_pressure_angle_deg: float | None = None  # None: 30° translating, 35° oscillating (design check)
 
 
 def read_cam(t: Table) -> CamSpec:
@@ -54,5 +56,6 @@ def read_cam(t: Table) -> CamSpec:
         t.check("groove_depth", groove < base, f"{groove:g} must be smaller than base_radius = {base:g}")
     if bore:
         t.check("bore", bore / 2 < base - (groove or 0.0), f"{bore:g} mm leaves no material around the bore")
+    max_pa = t.number("max_pressure_angle_deg", None, minimum=0.0, maximum=90.0, inclusive=False, unit="degrees")
     t.done()
-    return CamSpec(kind, base, bore, rotation, thickness, groove, outer, length)
+    return CamSpec(kind, base, bore, rotation, thickness, groove, outer, length, max_pa)

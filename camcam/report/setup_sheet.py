@@ -1,0 +1,102 @@
+"""The setup sheet: what the machinist needs at the machine, from the values the stages returned.
+
+Blank, work zero, angular datum, tool (T, length offset, diameter, flute
+length), the passes (:class:`~camcam.toolpath.path.PassMark` of the program),
+work offset, coolant and cycle time.  The report puts it right after the
+verdict.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from camcam.nc.job import MachiningResult
+from camcam.post.post import Post
+from camcam.report.html import DataTable, KeyValues
+from camcam.toolpath.path import PassMark
+
+__all__ = ["setup_blocks", "length_offset_text", "pass_marks"]
+
+
+def length_offset_text(post: Post, tool: int) -> str:
+    """How the program applies the tool length: ``H3 (G43)``, ``D1``, the tool call, or nothing (GRBL)."""
+    lines = post.header + ((post.tool_length_offset,) if post.tool_length_offset else ())
+    for line in lines:
+        if "G43" in line and "{tool" in line:
+            return f"H{line.split('H', 1)[1].format(tool=tool)} (G43 in the program)"
+    if post.dialect == "heidenhain":
+        return f"from the tool table (TOOL CALL {tool})"
+    for line in lines:
+        if "D1" in line:
+            return "D1 with the tool call (tool table)"
+    return "none: the controller has no tool table; set Z0 on the top face with this tool"
+
+
+def pass_marks(r: MachiningResult) -> tuple[PassMark, ...]:
+    return tuple(m for m in r.toolpath.moves if isinstance(m, PassMark))
+
+
+def _blank_and_zero(built, r: MachiningResult) -> list[tuple[str, str]]:
+    spec, cam = built.spec, built.cam
+    v = built.mesh.vertices
+    if r.rotary:
+        return [("part", f"cylinder Ø{2 * cam.base_radius:g} × {cam.length:g} mm"
+                 + (f", bore Ø{spec.bore:g} mm" if spec.bore else "")),
+                ("work zero", "X0 on the cam's left end face, Y0 Z0 on the cam axis; A turns the part about +X "
+                              "(A0 = cam angle 0)")]
+    r_max = float(np.hypot(v[:, 0], v[:, 1]).max())
+    what = "cam" if spec.kind == "disc" else "grooved disc"
+    rows = [("part", f"{what} Ø{2 * r_max:.2f} × {spec.thickness:g} mm (largest radius {r_max:.3f} mm)"
+             + (f", bore Ø{spec.bore:g} mm (not machined by this program)" if spec.bore else "")),
+            ("work zero", f"X0 Y0 on the cam axis (the bore centre), Z0 on the top face; the part lies below, "
+                          f"Z −{spec.thickness:g} … 0 (the STL and the DXF share this frame)")]
+    return rows
+
+
+def _datum(built) -> str:
+    cam = built.cam
+    p0 = cam.profile.evaluate(np.array([cam.profile.t_start]))[0]
+    ang = math.degrees(math.atan2(p0[1], p0[0])) % 360.0
+    if cam.kind.startswith("translating"):
+        off = getattr(getattr(cam, "follower", None), "offset", 0.0)
+        where = f"the follower rides on the line X{off:g}, moving along +Y"
+    else:
+        where = "the follower arm pivots on the +X axis"
+    turn = "counter-clockwise" if cam.rotation == "ccw" else "clockwise"
+    return (f"program and drawing show the cam at cam angle 0: {where}; the cam-angle-0 contact point lies at "
+            f"{ang:.2f}° from +X (DXF layer ANGLE-ZERO, X0 Y0 through that point). Clamp the part with its "
+            f"keyway or dowel where the drawing puts it relative to that line; in service the cam turns {turn}.")
+
+
+def setup_blocks(built, r: MachiningResult, machining) -> tuple:
+    """KeyValues of the setup and a table of the passes, in cutting order (``machining``: the spec's table)."""
+    post, setup, spindle_rpm = r.post, machining.setup, machining.spindle_rpm
+    tool = r.toolpath.tool_number
+    marks = pass_marks(r)
+    depth = max((m.depth_mm for m in marks), default=0.0)
+    rows = _blank_and_zero(built, r)
+    if not r.rotary:
+        rows.append(("angular datum", _datum(built)))
+    else:
+        rows.append(("angular datum", "A0 is cam angle 0: the developed drawing's u = 0 line (DXF layer ANGLE-ZERO)"))
+    number = setup.program_number if setup.program_number is not None else post.program_number
+    offset_words = " / ".join(s.strip() for s in post.work_offset_lines(setup.work_offset))
+    rows += [
+        ("program", f"{r.program_filename} (post {post.name}" + (f", program number {number}" if post.uses_program_number
+                                                               else "") + ")"),
+        ("work offset", f"{setup.work_offset}: {offset_words}"),
+        ("tool", f"T{tool}, Ø{r.tool_diameter_mm:g} mm flat end mill, flute length ≥ {depth:g} mm "
+                 f"(deepest pass {depth:g} mm below the top)"),
+        ("tool length offset", length_offset_text(post, tool)),
+        ("spindle", f"{spindle_rpm:g} rev/min clockwise"),
+        ("coolant", f"{setup.coolant} ({post.coolant_word(setup.coolant)} on, {post.coolant_off} off)"),
+        ("cycle time (estimate)", f"{r.program.cycle_time.describe()}; rapids at {post.rapid_mm_min:g} mm/min, "
+                                  f"tool change {post.tool_change_s:g} s, acceleration not counted"),
+    ]
+    table = DataTable(("pass", "depth mm", "Z", "allowance mm", "feed mm/min", "spindle rev/min"),
+                      tuple((f"{m.contour}: {m.name}", f"{m.depth_mm:g}", f"{m.z:g}", f"{m.allowance_mm:g}",
+                             f"{m.feed_mm_min:g}", f"{spindle_rpm:g}") for m in marks),
+                      "The passes in cutting order (each opens with this name as a comment in the program).")
+    return (KeyValues(tuple(rows)), table)
