@@ -27,13 +27,15 @@ DEFAULT_SPEC = "default.toml"
 def nc_step(out, spec, built, report: dict):
     """The NC step: machine ``built`` per ``spec.machining``, add the program and DXF to ``out``
     and the figures to ``report``; returns the :class:`~camcam.nc.job.MachiningResult`."""
-    from camcam.export.nc import machining_report, nc_files
+    from camcam.export.nc import machining_report, nc_files, part_of
     from camcam.nc.job import machine
 
     result = machine(built, spec.machining, spec.name)
-    for name, data in nc_files(built, result).items():
+    part = part_of(built, result)
+    for name, data in nc_files(built, result, part).items():
         out.add(name, data)
     nc = machining_report(result)
+    nc["dxf_part_deviation_mm"] = part.deviation_mm
     for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks", "cycle_time_s"):
         report[key] = nc[key]
     report["machining"] = nc

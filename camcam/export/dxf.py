@@ -1,10 +1,13 @@
 """DXF drawing of a fitted contour with ezdxf.
 
-Layers: ``CONTOUR`` holds the fitted lines and arcs exactly as machined (the
-printed numbers), ``EXACT`` the exact curve as cubic SPLINEs (one per analytic
-piece, interpolating the curve; their measured deviation is returned and
-written as a text), plus any extra layers the caller supplies (pitch curve,
-base circle, bore, roller circles, angle-zero mark, title block).
+Layers: ``CONTOUR`` (or the caller's ``contour_layer``) holds the fitted
+lines and arcs exactly as machined (the printed numbers), ``EXACT`` the exact
+curve as cubic SPLINEs (one per analytic piece, interpolating the curve; their
+measured deviation is returned and written as a text), plus any extra layers
+the caller supplies (part outline, pitch curve, base circle, bore, roller
+circles, angle-zero mark, title block).  Every layer gets its own colour
+(:data:`LAYER_COLOURS`, in the order the layers are made) and the header's
+``$EXTMIN``/``$EXTMAX`` hold the drawing's extents.
 """
 
 from __future__ import annotations
@@ -14,12 +17,16 @@ from dataclasses import dataclass
 
 import ezdxf
 import numpy as np
-from ezdxf import units
+from ezdxf import bbox, units
 from scipy.interpolate import make_interp_spline
 
 from camcam.toolpath.elements import Arc, Line
 
-__all__ = ["Polyline", "Circle", "Text", "ExactCurve", "DxfDrawing", "contour_dxf", "spline_of_curve"]
+__all__ = ["Polyline", "Circle", "Text", "ExactCurve", "DxfDrawing", "contour_dxf", "spline_of_curve", "LAYER_COLOURS"]
+
+#: AutoCAD colour indices given to the layers in the order they are made (red, green, blue, magenta,
+#: cyan, yellow, then darker shades); all distinct and visible on a white or a black background.
+LAYER_COLOURS = (1, 3, 5, 6, 4, 2, 30, 8, 150, 210, 90, 40, 130, 230, 70, 180, 20, 110)
 
 
 @dataclass(frozen=True)
@@ -82,11 +89,12 @@ _FIXED_HEADER = {"$TDINDWG": 0.0, "$TDUSRTIMER": 0.0}
 
 
 def contour_dxf(elements, curve=None, extras: dict | None = None, spline_deviation_mm: float = 1e-4,
-                title: str | None = None) -> DxfDrawing:
+                title: str | None = None, contour_layer: str = "CONTOUR") -> DxfDrawing:
     """Build the drawing in memory (no file I/O); the same input gives the same bytes.
 
     ``extras`` maps a layer name to a list of :class:`Polyline`, :class:`Circle`,
-    :class:`Text` and :class:`ExactCurve` items.  ezdxf's time stamps and GUIDs
+    :class:`Text`, :class:`ExactCurve`, :class:`~camcam.toolpath.elements.Line`
+    and :class:`~camcam.toolpath.elements.Arc` items.  ezdxf's time stamps and GUIDs
     (``$TDCREATE``, ``$TDUPDATE``, ``$FINGERPRINTGUID``, ``$VERSIONGUID``, the
     ezdxf marker) are written as its fixed test values; ``$TDINDWG`` and
     ``$TDUSRTIMER`` are 0.
@@ -94,7 +102,7 @@ def contour_dxf(elements, curve=None, extras: dict | None = None, spline_deviati
     saved = ezdxf.options.write_fixed_meta_data_for_testing
     ezdxf.options.write_fixed_meta_data_for_testing = True
     try:
-        return _build(elements, curve, extras, spline_deviation_mm, title)
+        return _build(elements, curve, extras, spline_deviation_mm, title, contour_layer)
     finally:
         ezdxf.options.write_fixed_meta_data_for_testing = saved
 
@@ -110,7 +118,30 @@ def _add_splines(msp, curve, layer, deviation_mm) -> tuple[float, int]:
     return worst, count
 
 
-def _build(elements, curve, extras, spline_deviation_mm, title) -> DxfDrawing:
+def _add_element(msp, e, layer) -> None:
+    if isinstance(e, Line):
+        msp.add_line(e.start, e.end, dxfattribs={"layer": layer})
+    else:
+        a0, a1 = _deg(np.subtract(e.start, e.centre)), _deg(np.subtract(e.end, e.centre))
+        if not e.ccw:
+            a0, a1 = a1, a0
+        msp.add_arc(e.centre, e.radius, a0, a1, dxfattribs={"layer": layer})
+
+
+class _Layers:
+    """Layers made on first use, each with the next colour of :data:`LAYER_COLOURS`."""
+
+    def __init__(self, doc):
+        self.doc = doc
+
+    def __call__(self, name: str) -> str:
+        if name not in self.doc.layers:
+            k = sum(1 for layer in self.doc.layers if layer.dxf.name not in ("0", "Defpoints"))
+            self.doc.layers.add(name, color=LAYER_COLOURS[k % len(LAYER_COLOURS)])
+        return name
+
+
+def _build(elements, curve, extras, spline_deviation_mm, title, contour_layer="CONTOUR") -> DxfDrawing:
     doc = ezdxf.new("R2010", setup=False)
     for key, value in _FIXED_HEADER.items():
         doc.header[key] = value
@@ -118,28 +149,23 @@ def _build(elements, curve, extras, spline_deviation_mm, title) -> DxfDrawing:
     doc.header["$INSUNITS"] = units.MM
     doc.header["$MEASUREMENT"] = 1
     msp = doc.modelspace()
-    doc.layers.add("CONTOUR", color=1)
+    layer_of = _Layers(doc)
+    layer_of(contour_layer)
     count = 0
     for e in elements:
-        if isinstance(e, Line):
-            msp.add_line(e.start, e.end, dxfattribs={"layer": "CONTOUR"})
-        elif isinstance(e, Arc):
-            a0, a1 = _deg(np.subtract(e.start, e.centre)), _deg(np.subtract(e.end, e.centre))
-            if not e.ccw:
-                a0, a1 = a1, a0
-            msp.add_arc(e.centre, e.radius, a0, a1, dxfattribs={"layer": "CONTOUR"})
+        _add_element(msp, e, contour_layer)
         count += 1
     worst = 0.0
     if curve is not None:
-        doc.layers.add("EXACT", color=3)
-        worst, n = _add_splines(msp, curve, "EXACT", spline_deviation_mm)
+        worst, n = _add_splines(msp, curve, layer_of("EXACT"), spline_deviation_mm)
         count += n
     splines = curve is not None
     for layer, items in (extras or {}).items():
-        if layer not in doc.layers:
-            doc.layers.add(layer)
+        layer_of(layer)
         for it in items:
-            if isinstance(it, Polyline):
+            if isinstance(it, (Line, Arc)):
+                _add_element(msp, it, layer)
+            elif isinstance(it, Polyline):
                 msp.add_lwpolyline(it.points, close=it.closed, dxfattribs={"layer": layer})
             elif isinstance(it, Circle):
                 msp.add_circle(it.centre, it.radius, dxfattribs={"layer": layer})
@@ -155,15 +181,16 @@ def _build(elements, curve, extras, spline_deviation_mm, title) -> DxfDrawing:
     if splines:
         where = curve if curve is not None else next(it.curve for items in (extras or {}).values()
                                                        for it in items if isinstance(it, ExactCurve))
-        if "EXACT" not in doc.layers:
-            doc.layers.add("EXACT", color=3)
         msp.add_text(f"EXACT: cubic splines within {worst:.2g} mm of the exact curve", height=1.0,
-                     dxfattribs={"layer": "EXACT"}).set_placement(tuple(where.evaluate([where.t_start], 0)[0]))
+                     dxfattribs={"layer": layer_of("EXACT")}).set_placement(tuple(where.evaluate([where.t_start], 0)[0]))
         count += 1
     if title:
-        doc.layers.add("TITLE")
-        msp.add_text(title, height=3.5, dxfattribs={"layer": "TITLE"}).set_placement((0.0, -10.0))
+        msp.add_text(title, height=3.5, dxfattribs={"layer": layer_of("TITLE")}).set_placement((0.0, -10.0))
         count += 1
+    box = bbox.extents(msp, fast=True)
+    if box.has_data:  # ezdxf copies the model space's extents to $EXTMIN/$EXTMAX when it writes
+        msp.dxf.extmin = tuple(float(v) for v in box.extmin)
+        msp.dxf.extmax = tuple(float(v) for v in box.extmax)
     buf = io.StringIO()
     doc.write(buf)
     return DxfDrawing(buf.getvalue().encode("utf-8"), worst, count)

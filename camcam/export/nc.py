@@ -6,11 +6,63 @@ import math
 
 import numpy as np
 
+from dataclasses import dataclass
+
 from camcam.export.dxf import Circle, ExactCurve, Polyline, Text, contour_dxf
 from camcam.geometry.build import BuiltCam
 from camcam.nc.job import MachiningResult
+from camcam.toolpath.deviation import measure_deviation
+from camcam.toolpath.outline import part_outline
 
-__all__ = ["nc_files", "machining_report", "nc_dxf"]
+__all__ = ["nc_files", "machining_report", "nc_dxf", "PartOutline", "part_of"]
+
+
+@dataclass(frozen=True)
+class PartOutline:
+    """The finished surfaces as the program cuts them: lines and arcs, and their deviation from the design.
+
+    ``outlines`` are the fitted tool-centre paths of the finishing contours
+    offset by the tool radius to the material (:func:`~camcam.toolpath.outline.part_outline`);
+    ``deviation_mm`` the largest two-sided deviation of one from its exact
+    surface (the profile, or a groove's flank); ``None`` for a cylindrical cam,
+    whose developed drawing has no planar offset.
+    """
+
+    outlines: tuple[tuple, ...]
+    deviation_mm: float | None
+
+
+def _near(elements, curve) -> float:
+    """Distance from an outline's first element's middle to ``curve`` (a coarse side test)."""
+    e = elements[0]
+    p = np.asarray(e.points(3)[1])
+    q = curve.evaluate(np.linspace(curve.t_start, curve.t_end, 2001))
+    return float(np.hypot(*(q - p).T).min())
+
+
+def part_of(built: BuiltCam, r: MachiningResult) -> PartOutline:
+    """The part outline of a disc or face-groove cam's finishing contours (see :class:`PartOutline`)."""
+    if r.rotary:
+        return PartOutline((), None)
+    r_t = r.tool_diameter_mm / 2
+    cam = built.cam
+    outlines, worst = [], 0.0
+    for c in r.contours:
+        if abs(c.offset_mm - r_t) > 1e-6:
+            continue  # a groove's rough centre pass finishes no surface
+        if c.stock_side in ("left", "right"):
+            pairs = [(part_outline(c.fit.elements, r_t if c.stock_side == "left" else -r_t), cam.profile)]
+        else:
+            pairs = []
+            for d in (r_t, -r_t):
+                out = part_outline(c.fit.elements, d)
+                flank = min(cam.flanks, key=lambda f: _near(out, f))
+                if _near(out, flank) < 0.5 * r_t:
+                    pairs.append((out, flank))
+        for out, surface in pairs:
+            outlines.append(out)
+            worst = max(worst, measure_deviation(surface, out, margin_mm=0.02 * r.tolerance_mm).max_deviation_mm)
+    return PartOutline(tuple(outlines), worst)
 
 
 def _title_lines(built: BuiltCam, r: MachiningResult) -> list[str]:
@@ -27,6 +79,8 @@ def _disc_extras(built: BuiltCam, r: MachiningResult) -> dict:
     extras: dict = {"PROFILE": [ExactCurve(cam.profile)]}
     if spec.kind == "disc-groove":
         extras["PROFILE"].append(ExactCurve(cam.flanks[1]))
+        v = built.mesh.vertices
+        extras["OUTER-CIRCLE"] = [Circle((0.0, 0.0), float(np.hypot(v[:, 0], v[:, 1]).max()))]
     extras["TOOLPATH-EXACT"] = [ExactCurve(c.curve) for c in r.contours]
     extras["BASE-CIRCLE"] = [Circle((0.0, 0.0), cam.base_radius)]
     if spec.bore > 0:
@@ -59,21 +113,28 @@ def _cyl_extras(built: BuiltCam, r: MachiningResult) -> dict:
     return extras
 
 
-def nc_dxf(built: BuiltCam, r: MachiningResult):
-    """The drawing: machined contours (``CONTOUR``), exact profile/flanks and tool-centre curves as SPLINEs, …"""
+def nc_dxf(built: BuiltCam, r: MachiningResult, part: PartOutline | None = None):
+    """The drawing: the part outline as LINE/ARC (``PART``), the tool-centre path as printed (``TOOL_CENTRE``),
+    the exact profile/flanks (``PROFILE``) and tool-centre curves (``TOOLPATH-EXACT``) as SPLINEs, …"""
     machined = [e for c in r.contours for e in c.printed]
-    extras = _cyl_extras(built, r) if r.rotary else _disc_extras(built, r)
+    part = part_of(built, r) if part is None else part
+    extras = {"PART": [e for out in part.outlines for e in out]} if part.outlines else {}
+    extras.update(_cyl_extras(built, r) if r.rotary else _disc_extras(built, r))
     lines = _title_lines(built, r)
     low = -12.0 if not r.rotary else -20.0
     if not r.rotary:
         low = -float(np.abs(r.contours[-1].curve.evaluate(np.linspace(0, 2 * np.pi, 721))).max()) - 15.0
     extras["TITLE-BLOCK"] = [Text(t, (0.0, low - 5.0 * i), 3.0) for i, t in enumerate(lines)]
-    return contour_dxf(machined, None, extras)
+    if part.deviation_mm is not None:
+        lines.append(f"PART: tool path offset by the tool radius, lines and arcs within {part.deviation_mm:.4f} mm "
+                     f"of the design; TOOL_CENTRE: the tool centre as programmed")
+        extras["TITLE-BLOCK"].append(Text(lines[-1], (0.0, low - 5.0 * (len(lines) - 1)), 3.0))
+    return contour_dxf(machined, None, extras, contour_layer="TOOL_CENTRE")
 
 
-def nc_files(built: BuiltCam, r: MachiningResult) -> dict[str, bytes]:
+def nc_files(built: BuiltCam, r: MachiningResult, part: PartOutline | None = None) -> dict[str, bytes]:
     """``{<name>.<ext>: program, <name>.dxf: drawing}``."""
-    return {r.program_filename: r.program.text.encode("utf-8"), f"{r.name}.dxf": nc_dxf(built, r).data}
+    return {r.program_filename: r.program.text.encode("utf-8"), f"{r.name}.dxf": nc_dxf(built, r, part).data}
 
 
 def machining_report(r: MachiningResult) -> dict:

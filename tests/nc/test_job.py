@@ -103,8 +103,8 @@ def test_dxf_reads_and_audits(tmp_path, sample):
     assert not auditor.has_errors
     assert doc.header["$INSUNITS"] == 4  # millimetres
     layers = {e.dxf.layer for e in doc.modelspace()}
-    assert {"CONTOUR", "PROFILE", "TITLE-BLOCK", "ANGLE-ZERO", "ROLLER", "PITCH"} <= layers
-    kinds = {e.dxftype() for e in doc.modelspace().query("*[layer=='CONTOUR']")}
+    assert {"TOOL_CENTRE", "PROFILE", "TITLE-BLOCK", "ANGLE-ZERO", "ROLLER", "PITCH"} <= layers
+    kinds = {e.dxftype() for e in doc.modelspace().query("*[layer=='TOOL_CENTRE']")}
     assert kinds <= {"LINE", "ARC"} and kinds
 
 

@@ -1,0 +1,152 @@
+"""The part outline a closed tool-centre path of lines and arcs cuts: its exact offset by the tool radius.
+
+An offset line is a line and an offset arc is a concentric arc, so the
+outline is lines and arcs too.  At a joint where the path turns away from
+the material the offsets leave a gap that the tool closes by turning about
+the joint: an arc of the tool radius about it.  Where the path turns into the
+material the offsets overlap and are cut back to their intersection.  Joints
+whose offsets meet within ``snap_mm`` (tangent joints of a fitted arc spline)
+are joined at the midpoint of the two ends.
+
+Examples
+--------
+>>> from camcam.toolpath.elements import Line
+>>> square = (Line((0.0, 0.0), (10.0, 0.0)), Line((10.0, 0.0), (10.0, 10.0)),
+...           Line((10.0, 10.0), (0.0, 10.0)), Line((0.0, 10.0), (0.0, 0.0)))
+>>> out = part_outline(square, -2.0)  # material outside (right of a ccw path): corners rounded
+>>> [type(e).__name__ for e in out][:2], round(sum(e.length for e in out), 9)
+(['Line', 'Arc'], 52.566370614)
+>>> inner = part_outline(square, 2.0)  # material inside: the offsets are cut back at the corners
+>>> [e.start for e in inner][:2]
+[(2.0, 2.0), (8.0, 2.0)]
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from camcam.errors import GeometryError
+from camcam.toolpath.elements import Arc, Line
+
+__all__ = ["part_outline", "offset_element"]
+
+
+def _tangent(e, at_end: bool) -> np.ndarray:
+    if isinstance(e, Line):
+        v = np.subtract(e.end, e.start)
+        return v / np.hypot(*v)
+    r = np.subtract(e.end if at_end else e.start, e.centre)
+    r = r / np.hypot(*r)
+    return np.array([-r[1], r[0]]) if e.ccw else np.array([r[1], -r[0]])
+
+
+def offset_element(e, distance_mm: float):
+    """``e`` moved ``distance_mm`` to the left of its direction of travel (negative: right)."""
+    if isinstance(e, Line):
+        t = _tangent(e, False)
+        n = np.array([-t[1], t[0]]) * distance_mm
+        return Line(tuple(map(float, np.add(e.start, n))), tuple(map(float, np.add(e.end, n))))
+    r = e.radius - (distance_mm if e.ccw else -distance_mm)
+    if r <= 0:
+        raise GeometryError(f"the tool radius {abs(distance_mm):g} mm exceeds a path arc's radius {e.radius:g} mm "
+                            f"on the material side; the part outline is undefined there")
+    c = np.asarray(e.centre)
+
+    def move(p):
+        d = np.subtract(p, c)
+        return tuple(map(float, c + d / np.hypot(*d) * r))
+
+    return Arc(move(e.start), move(e.end), e.centre, e.ccw)
+
+
+def _circle(e):
+    return np.asarray(e.centre, float), e.radius
+
+
+def _intersections(a, b) -> list[np.ndarray]:
+    """Points common to the carriers (infinite line or full circle) of ``a`` and ``b``."""
+    if isinstance(a, Line) and isinstance(b, Line):
+        p, r = np.asarray(a.start), np.subtract(a.end, a.start)
+        q, s = np.asarray(b.start), np.subtract(b.end, b.start)
+        den = r[0] * s[1] - r[1] * s[0]
+        if den == 0:
+            return []
+        t = ((q[0] - p[0]) * s[1] - (q[1] - p[1]) * s[0]) / den
+        return [p + t * r]
+    if isinstance(a, Arc) and isinstance(b, Line):
+        a, b = b, a
+    if isinstance(a, Line):
+        c, rad = _circle(b)
+        p, d = np.asarray(a.start), np.subtract(a.end, a.start)
+        f = p - c
+        A, B, C = d @ d, 2 * f @ d, f @ f - rad * rad
+        disc = B * B - 4 * A * C
+        if disc < 0:
+            return []
+        sq = math.sqrt(disc)
+        return [p + (-B + s * sq) / (2 * A) * d for s in (-1.0, 1.0)]
+    c0, r0 = _circle(a)
+    c1, r1 = _circle(b)
+    v = c1 - c0
+    dist = float(np.hypot(*v))
+    if dist == 0 or dist > r0 + r1 or dist < abs(r0 - r1):
+        return []
+    x = (dist * dist + r0 * r0 - r1 * r1) / (2 * dist)
+    h = math.sqrt(max(r0 * r0 - x * x, 0.0))
+    u = v / dist
+    m = c0 + x * u
+    return [m + h * np.array([-u[1], u[0]]), m - h * np.array([-u[1], u[0]])]
+
+
+def _with_ends(e, start=None, end=None):
+    s = tuple(map(float, start)) if start is not None else e.start
+    t = tuple(map(float, end)) if end is not None else e.end
+    return Line(s, t) if isinstance(e, Line) else Arc(s, t, e.centre, e.ccw)
+
+
+def part_outline(elements, distance_mm: float, snap_mm: float = 1e-4) -> tuple:
+    """The closed outline at ``distance_mm`` to the left of the closed path ``elements`` (negative: right).
+
+    ``elements`` run in the direction of travel and close (last end = first
+    start).  Raises :class:`GeometryError` where an arc is tighter than the
+    offset on its inner side.
+    """
+    els = tuple(elements)
+    if math.dist(els[-1].end, els[0].start) > snap_mm:
+        raise GeometryError("part outline: the tool path is not closed")
+    off = [offset_element(e, distance_mm) for e in els]
+    n = len(off)
+    starts: list = [None] * n
+    ends: list = [None] * n
+    corners: list = [None] * n  # corner arc after element i
+    for i in range(n):
+        a, b, joint = off[i], off[(i + 1) % n], np.asarray(els[i].end)
+        pa, pb = np.asarray(a.end), np.asarray(b.start)
+        if math.dist(pa, pb) <= snap_mm:
+            m = (pa + pb) / 2
+            ends[i], starts[(i + 1) % n] = m, m
+            continue
+        ta, tb = _tangent(els[i], True), _tangent(els[(i + 1) % n], False)
+        turn = ta[0] * tb[1] - ta[1] * tb[0]  # > 0: the path turns left
+        into_material = (turn > 0) == (distance_mm > 0)
+        if into_material:
+            cands = _intersections(a, b)
+            if not cands:
+                raise GeometryError(f"part outline: offsets at ({joint[0]:.4f}, {joint[1]:.4f}) do not meet")
+            p = min(cands, key=lambda q: float(np.hypot(*(q - joint))))
+            ends[i], starts[(i + 1) % n] = p, p
+        else:
+            # the tool turns about the joint the way the path turns
+            corners[i] = Arc(tuple(map(float, pa)), tuple(map(float, pb)), tuple(map(float, joint)), turn > 0)
+    out = []
+    for i in range(n):
+        e = _with_ends(off[i], starts[i], ends[i])
+        if isinstance(e, Line) and float(np.dot(_tangent(els[i], False), np.subtract(e.end, e.start))) <= 0:
+            raise GeometryError(f"part outline: the line ending at ({els[i].end[0]:.4f}, {els[i].end[1]:.4f}) is "
+                                f"shorter than the tool radius cuts back from it")
+        out.append(e)
+        if corners[i] is not None:
+            out.append(corners[i])
+    return tuple(out)
