@@ -49,6 +49,7 @@ from importlib import resources
 from pathlib import Path
 
 from camcam.errors import InputError
+from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["Post", "load_post", "known_posts", "parse_post"]
 
@@ -108,6 +109,11 @@ class Post:
     def coolant_word(self, coolant: str) -> str:
         """The word switching ``coolant`` ("flood", "mist", "off") on; ``""`` when the controller has none."""
         return {"flood": self.coolant_flood, "mist": self.coolant_mist, "off": self.coolant_off}[coolant]
+
+    @property
+    def quantizer(self) -> Quantizer:
+        """The printed rounding of this post (decimals and arc format): the one model of what it prints."""
+        return Quantizer(self.decimals, self.arc_format)
 
 
 def _post_dir():
