@@ -44,8 +44,9 @@ def nc_step(out, spec, built, report: dict):
     return result
 
 
-def job_verdict(spec, built, machining):
-    """The run's :class:`~camcam.verdict.Verdict`: the NC deviation against the tolerance and the design checks."""
+def job_verdict(spec, built, machining, part_deviation_mm=None):
+    """The run's :class:`~camcam.verdict.Verdict`: the NC deviation and the DXF part outline against the
+    tolerance, and the design checks."""
     from camcam.design_checks import design_checks
     from camcam.verdict import Check, Verdict
 
@@ -55,6 +56,10 @@ def job_verdict(spec, built, machining):
         checks.append(Check("NC deviation", machining.max_deviation_mm, machining.tolerance_mm, "mm",
                             machining.max_deviation_mm <= machining.tolerance_mm, "fail",
                             f"contour {worst.label}, two-sided on the printed program",
+                            "use a post with more decimals or a larger tolerance"))
+    if part_deviation_mm is not None:
+        checks.append(Check("DXF part outline deviation", part_deviation_mm, machining.tolerance_mm, "mm",
+                            part_deviation_mm <= machining.tolerance_mm, "fail", "layer PART against the design",
                             "use a post with more decimals or a larger tolerance"))
     checks += design_checks(built, spec.machining, spec.report.strict)
     return Verdict(tuple(checks))
@@ -104,7 +109,7 @@ def run(args) -> int:
         if spec.machining is not None:
             with step("NC second fitting and program"):
                 machining = nc_step(out, spec, built, report)
-        verdict = job_verdict(spec, built, machining)
+        verdict = job_verdict(spec, built, machining, report.get("machining", {}).get("dxf_part_deviation_mm"))
         report["verdict"] = verdict.as_dict()
         with step("drawing, model and report"):
             out.add(f"{spec.name}.stl", stl_bytes(program_frame(built)))

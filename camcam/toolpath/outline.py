@@ -5,8 +5,9 @@ outline is lines and arcs too.  At a joint where the path turns away from
 the material the offsets leave a gap that the tool closes by turning about
 the joint: an arc of the tool radius about it.  Where the path turns into the
 material the offsets overlap and are cut back to their intersection.  Joints
-whose offsets meet within ``snap_mm`` (tangent joints of a fitted arc spline)
-are joined at the midpoint of the two ends.
+whose offsets meet within ``snap_mm`` (1 µm: tangent joints of a fitted arc spline, rounded)
+are joined at the midpoint of the two ends, as are overlapping ends within
+``near_mm`` whose carriers miss each other.
 
 Examples
 --------
@@ -106,12 +107,15 @@ def _with_ends(e, start=None, end=None):
     return Line(s, t) if isinstance(e, Line) else Arc(s, t, e.centre, e.ccw)
 
 
-def part_outline(elements, distance_mm: float, snap_mm: float = 1e-4) -> tuple:
+def part_outline(elements, distance_mm: float, snap_mm: float = 1e-3, near_mm: float = 0.01) -> tuple:
     """The closed outline at ``distance_mm`` to the left of the closed path ``elements`` (negative: right).
 
     ``elements`` run in the direction of travel and close (last end = first
-    start).  Raises :class:`GeometryError` where an arc is tighter than the
-    offset on its inner side.
+    start).  Overlapping offsets whose carriers miss each other (nearly
+    tangent arcs of a path rounded to a post's decimals) are joined halfway
+    when their ends lie within ``near_mm``; the caller measures the result.
+    Raises :class:`GeometryError` where an arc is tighter than the offset on
+    its inner side, or offsets cannot be joined.
     """
     els = tuple(elements)
     if math.dist(els[-1].end, els[0].start) > snap_mm:
@@ -132,10 +136,16 @@ def part_outline(elements, distance_mm: float, snap_mm: float = 1e-4) -> tuple:
         turn = ta[0] * tb[1] - ta[1] * tb[0]  # > 0: the path turns left
         into_material = (turn > 0) == (distance_mm > 0)
         if into_material:
-            cands = _intersections(a, b)
-            if not cands:
+            gap = math.dist(pa, pb)
+            cands = [q for q in _intersections(a, b)
+                     if max(math.dist(q, pa), math.dist(q, pb)) <= max(10.0 * gap, 1e-3)]
+            if cands:
+                p = min(cands, key=lambda q: float(np.hypot(*(q - joint))))
+            elif gap <= near_mm:
+                # nearly tangent carriers (a rounded arc spline) that miss or meet far off: join halfway
+                p = (pa + pb) / 2
+            else:
                 raise GeometryError(f"part outline: offsets at ({joint[0]:.4f}, {joint[1]:.4f}) do not meet")
-            p = min(cands, key=lambda q: float(np.hypot(*(q - joint))))
             ends[i], starts[(i + 1) % n] = p, p
         else:
             # the tool turns about the joint the way the path turns

@@ -36,7 +36,7 @@ def _elements_from_dxf(doc, layer):
     return out
 
 
-@pytest.mark.parametrize("sample", ["disc-translating-roller", "disc-translating-flat", "disc-groove"])
+@pytest.mark.parametrize("sample", ["disc-translating-roller", "disc-translating-flat", "disc-groove", "post-fanuc"])
 def test_part_layer_is_lines_and_arcs_within_tolerance_of_the_design(tmp_path, sample):
     spec, built, result = built_and_result(sample)
     part = part_of(built, result)
