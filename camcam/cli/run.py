@@ -15,26 +15,28 @@ import sys
 from importlib import resources
 from pathlib import Path
 
-from camcam.cli.output import print_json, to_json, warn
-from camcam.cli.progress import step
+from camcam.cli.commands import help_of
+from camcam.cli.output import publish, to_json, warn
+from camcam.cli.progress import Progress, add_progress_flag
+from camcam.verdict import Verdict
 
-__all__ = ["register", "nc_step", "DEFAULT_SPEC"]
+__all__ = ["register", "nc_step", "job_verdict", "DEFAULT_SPEC"]
 
 #: The bundled job `camcam run` runs without a spec.
 DEFAULT_SPEC = "default.toml"
 
 
 def nc_step(out, spec, built, report: dict):
-    """The NC step: machine ``built`` per ``spec.machining``, add the program and DXF to ``out``
-    and the figures to ``report``; returns the :class:`~camcam.nc.job.MachiningResult`."""
-    from camcam.export.nc import machining_report, nc_files, part_of
-    from camcam.nc.job import machine
+    """The NC step's I/O half: run the job (:func:`camcam.nc.machine`), add the program and DXF to
+    ``out`` and the figures to ``report``; returns the :class:`~camcam.nc.MachiningResult`."""
+    from camcam.export.nc import nc_files, part_of
+    from camcam.nc import machine
 
     result = machine(built, spec.machining, spec.name)
     part = part_of(built, result)
     for name, data in nc_files(built, result, part).items():
         out.add(name, data)
-    nc = machining_report(result)
+    nc = result.figures()
     nc["dxf_part_deviation_mm"] = part.deviation_mm
     for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks", "cycle_time_s"):
         report[key] = nc[key]
@@ -44,32 +46,34 @@ def nc_step(out, spec, built, report: dict):
     return result
 
 
-def job_verdict(spec, built, machining, part_deviation_mm=None):
-    """The run's :class:`~camcam.verdict.Verdict`: the NC deviation and the DXF part outline against the
-    tolerance, and the design checks."""
-    from camcam.design_checks import design_checks
-    from camcam.verdict import Check, Verdict
+def job_verdict(machining, machining_spec, built=None, strict: bool = False,
+                part_deviation_mm: float | None = None) -> Verdict:
+    """Every check of the job in one verdict; accepted when the spec accepts out-of-tolerance results.
 
-    checks = []
-    if machining is not None:
-        worst = max(machining.contours, key=lambda c: c.deviation.max_deviation_mm)
-        checks.append(Check("NC deviation", machining.max_deviation_mm, machining.tolerance_mm, "mm",
-                            machining.max_deviation_mm <= machining.tolerance_mm, "fail",
-                            f"contour {worst.label}, two-sided on the printed program",
-                            "use a post with more decimals or a larger tolerance"))
+    The NC job's checks, the DXF part outline against the tolerance, and the
+    design checks of ``built`` (:mod:`camcam.nc.design_checks`: warnings, or
+    failures with ``strict``).
+    """
+    from camcam.nc.design_checks import design_checks
+    from camcam.verdict import Check
+
+    checks = list(machining.checks) if machining is not None else []
     if part_deviation_mm is not None:
         checks.append(Check("DXF part outline deviation", part_deviation_mm, machining.tolerance_mm, "mm",
-                            part_deviation_mm <= machining.tolerance_mm, "fail", "layer PART against the design",
-                            "use a post with more decimals or a larger tolerance"))
-    checks += design_checks(built, spec.machining, spec.report.strict)
-    return Verdict(tuple(checks))
+                            part_deviation_mm <= machining.tolerance_mm, where="layer PART against the design",
+                            advice="use a post with more decimals or a larger tolerance"))
+    if built is not None:
+        checks += design_checks(built, machining_spec, strict)
+    accepted = machining_spec.accept_out_of_tolerance if machining_spec is not None else False
+    return Verdict(tuple(checks), accepted)
 
 
 def register(sub) -> None:
-    p = sub.add_parser("run", help="run the whole flow for a spec (default: the bundled sample job)")
+    p = sub.add_parser("run", help=help_of("run"))
     p.add_argument("spec", nargs="?", help="spec file (TOML); omitted: the bundled default job")
     p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
+    add_progress_flag(p)
     p.set_defaults(func=run)
 
 
@@ -83,37 +87,41 @@ def _load(spec_arg):
 
 
 def run(args) -> int:
+    progress = Progress.from_args(args)
     from camcam.cli.motion import motion_outputs, motion_summary, print_summary
     from camcam.export.files import OutputSet
 
     spec = _load(args.spec)
-    verdict = None
+    verdict = Verdict(())
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
     out = OutputSet(Path(args.output))
-    with step("motion table and plot"):
+    with progress.step("motion table and plot"):
         svaj = motion_outputs(out, spec.name, program, 0.5)
     summary = {"name": spec.name, "motion": motion_summary(program)}
     if spec.cam is not None:
         from camcam.export.cam_report import cam_report
         from camcam.export.stl import program_frame, stl_bytes
         from camcam.geometry.build import build_cam
+        from camcam.plots.concurrent import render_later
         from camcam.plots.profile import cam_png
         from camcam.report.job import job_report
 
-        with step("cam geometry, analysis and mesh"):
+        with progress.step("cam geometry, analysis and mesh"):
             built = build_cam(spec.cam, spec.follower, program)
+            # drawn in a child process while the NC step runs (camcam.plots.concurrent)
+            profile_png = render_later(cam_png, built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
             report = cam_report(built)
         machining = None
         if spec.machining is not None:
-            with step("NC second fitting and program"):
+            with progress.step("NC second fitting and program"):
                 machining = nc_step(out, spec, built, report)
-        verdict = job_verdict(spec, built, machining, report.get("machining", {}).get("dxf_part_deviation_mm"))
+        verdict = job_verdict(machining, spec.machining, built, spec.report.strict,
+                              report.get("machining", {}).get("dxf_part_deviation_mm"))
         report["verdict"] = verdict.as_dict()
-        with step("drawing, model and report"):
+        with progress.step("drawing, model and report"):
             out.add(f"{spec.name}.stl", stl_bytes(program_frame(built)))
-            profile_png = cam_png(built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
             out.add(f"{spec.name}-profile.png", profile_png)
             page = job_report(spec.name, spec, program, svaj, built, report, profile_png, machining,
                               spec.report.inspection_step_deg, verdict)
@@ -123,12 +131,7 @@ def run(args) -> int:
             out.add(f"{spec.name}-report.html", page.html)
             out.add(f"{spec.name}-report.json", to_json(report) + "\n")
         summary["cam"] = report
-    with step("writing files"):
-        written = out.commit()
-    summary["files"] = [str(p) for p in written]
-    if args.json:
-        print_json(summary)
-    else:
+    def show(summary: dict) -> None:
         print_summary(summary["motion"])
         if "cam" in summary:
             c = summary["cam"]
@@ -139,12 +142,12 @@ def run(args) -> int:
                       f"max deviation {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm on the printed program")
                 print(f"cycle time {machining.program.cycle_time.describe()}, rapids at "
                       f"{machining.post.rapid_mm_min:g} mm/min, acceleration not counted")
-        for p in written:
-            print(f"wrote {p}")
-    if verdict is not None:
-        for c in verdict.warnings:
-            warn(c.describe())
-        if not verdict.passed:
-            print(f"camcam: {verdict.line()}", file=sys.stderr)
-        return verdict.exit_status
-    return 0
+
+    with progress.step("writing files"):
+        publish(out, summary, args.json, show, (verdict.line(),) if verdict.checks else ())
+    for c in verdict.warnings:
+        warn(c.describe())
+    if not verdict.passed:
+        accepted = " (accepted: accept_out_of_tolerance = true)" if verdict.accepted else ""
+        print(f"camcam: {verdict.line()}{accepted}", file=sys.stderr)
+    return verdict.exit_status

@@ -4,9 +4,9 @@ Coordinates are printed from integers on the 10^−d grid, so the same input
 gives the same bytes.  After the post's header come the generator line
 (camcam's version and the spec's file name, no date), the work offset, the
 tool length offset and coolant on (:class:`ProgramSetup`); each pass opens
-with a comment naming it (:class:`~camcam.toolpath.path.PassMark`); coolant
+with a comment naming it (from its :class:`~camcam.toolpath.path.Pass` record); coolant
 off precedes the footer.  The writer times every move it prints
-(:mod:`camcam.post.timing`).  Arcs print X/Y and I/J (incremental or absolute) or R,
+(:mod:`camcam.nc.timing`).  Arcs print X/Y and I/J (incremental or absolute) or R,
 or Heidenhain's CC/C pair.  A 4-axis path (``rotary``) is printed in inverse
 time (G93): every feed move carries F = feed / move length (1/min).
 """
@@ -16,57 +16,46 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from typing import TYPE_CHECKING
+
 from camcam import __version__
 from camcam.errors import InputError, PostError
-from camcam.post.post import WORK_OFFSETS, Post
-from camcam.post.timing import CycleTime, MoveTimer
-from camcam.toolpath.elements import Arc, Line
-from camcam.toolpath.path import ArcMove, Feed, PassMark, Rapid, Toolpath
+from camcam.nc.result import Program
+from camcam.nc.settings import ProgramSetup
+from camcam.nc.timing import MoveTimer
+from camcam.toolpath.path import ArcMove, Feed, Pass, Rapid, Toolpath
 
-__all__ = ["Program", "ProgramSetup", "write_program", "format_number", "printed_elements"]
+if TYPE_CHECKING:  # annotations only: post.post imports this module to print its programs
+    from camcam.post.post import Post
 
-_COOLANTS = ("flood", "mist", "off")
+__all__ = ["Program", "write_program", "format_number", "printed_elements", "pass_comment", "numbered_passes"]
 
 
-@dataclass(frozen=True)
-class ProgramSetup:
-    """What a program states besides its moves: work offset, coolant, program number, source.
+def pass_comment(p: Pass, index: int, count: int) -> str:
+    """The comment opening pass ``p``, the ``index``-th of ``count`` passes of its kind on its contour.
 
-    ``program_number`` None takes the post's; ``source`` is the spec's file
-    name for the generator line.
+    Examples
+    --------
+    >>> p = Pass(0, "rough", -6.0, (), "profile", 6.0, 0.3)
+    >>> pass_comment(p, 1, 2), pass_comment(Pass(0, "spring", -12.0, (), "profile", 12.0), 1, 1)
+    ('profile: rough 1/2, depth 6 mm, allowance 0.3 mm', 'profile: spring, depth 12 mm')
     """
-
-    work_offset: str = "G54"
-    coolant: str = "flood"
-    program_number: int | None = None
-    source: str = ""
-
-    def check(self, post: Post) -> None:
-        """Raise :class:`InputError` naming the field when ``post`` cannot print this setup."""
-        if self.work_offset not in WORK_OFFSETS:
-            raise InputError(f"work_offset: expected one of {', '.join(WORK_OFFSETS)}, got {self.work_offset!r}")
-        if self.coolant not in _COOLANTS:
-            raise InputError(f"coolant: expected one of {', '.join(_COOLANTS)}, got {self.coolant!r}")
-        if not post.coolant_word(self.coolant):
-            raise InputError(f"coolant: post {post.name} has no word for {self.coolant} coolant")
-        if self.program_number is not None:
-            if not post.uses_program_number:
-                raise InputError(f"program_number: post {post.name} does not print a program number")
-            if not 1 <= self.program_number <= post.program_number_max:
-                raise InputError(f"program_number: expected 1–{post.program_number_max} for post {post.name}, "
-                                 f"got {self.program_number}")
+    name = f"{p.kind} {index}/{count}" if count > 1 or p.kind == "rough" else p.kind
+    left = f", allowance {p.allowance_mm:g} mm" if p.allowance_mm > 0 else ""
+    return f"{p.label}: {name}, depth {p.depth_mm:.6g} mm{left}"
 
 
-@dataclass(frozen=True)
-class Program:
-    """A printed program, its block counts (moves only) and its estimated cycle time."""
-
-    text: str
-    extension: str
-    line_blocks: int
-    arc_blocks: int
-    rapid_blocks: int
-    cycle_time: CycleTime | None = None
+def numbered_passes(passes) -> list[tuple[Pass, int, int]]:
+    """Each pass with its number among the passes of its kind on its contour, and their count."""
+    counts: dict = {}
+    for p in passes:
+        counts[(p.contour, p.kind)] = counts.get((p.contour, p.kind), 0) + 1
+    seen: dict = {}
+    out = []
+    for p in passes:
+        seen[(p.contour, p.kind)] = seen.get((p.contour, p.kind), 0) + 1
+        out.append((p, seen[(p.contour, p.kind)], counts[(p.contour, p.kind)]))
+    return out
 
 
 def format_number(v: float, post: Post, signed: bool = False) -> str:
@@ -139,9 +128,6 @@ class _Writer:
 
     def gcode_move(self, m, rotary: bool):
         d = self.post.decimals
-        if isinstance(m, PassMark):
-            self.emit(self.comment(m.text()))
-            return
         before = self.where()
         if isinstance(m, Rapid):
             w = self.axes(m.x, m.y, m.z)
@@ -213,9 +199,6 @@ class _Writer:
     def hh_move(self, m, first_words: str):
         """One move; ``first_words`` (spindle and coolant on) go on the first L block."""
         d = self.post.decimals
-        if isinstance(m, PassMark):
-            self.emit(self.comment(m.text()))
-            return False
         if isinstance(m, Feed) and m.a_deg is not None:
             raise InputError(f"post {self.post.name}: 4-axis programs are not supported by this dialect")
         before = self.where()
@@ -250,13 +233,25 @@ class _Writer:
         return True
 
 
+def _print_moves(toolpath: Toolpath, w, move) -> None:
+    """``move(m)`` for every move in order; each pass opens with its comment."""
+    for m in toolpath.opening:
+        move(m)
+    for p, k, n in numbered_passes(toolpath.passes):
+        w.emit(w.comment(pass_comment(p, k, n)))
+        for m in p.moves:
+            move(m)
+    for m in toolpath.closing:
+        move(m)
+
+
 def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: ProgramSetup = ProgramSetup()) -> Program:
     """Print ``toolpath`` for ``post`` with the work offset, coolant and program number of ``setup``.
 
     Examples
     --------
     >>> from camcam.post.post import load_post
-    >>> tp = Toolpath("demo", (Rapid(0.0, 0.0, 5.0), Feed(10.0, 0.0, 5.0, 300.0)), 1000)
+    >>> tp = Toolpath.of_moves("demo", (Rapid(0.0, 0.0, 5.0), Feed(10.0, 0.0, 5.0, 300.0)), 1000)
     >>> p = write_program(tp, load_post("linuxcnc"))
     >>> print(p.text.splitlines()[-4])
     G1 X10 F300
@@ -286,18 +281,20 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: P
     if post.tool_change:
         w.timer.tool_change(post.tool_change_s)
     if post.dialect == "heidenhain":
-        first = f"M3 {coolant_on}"
-        for m in toolpath.moves:
-            if w.hh_move(m, first):
-                first = ""
+        first = [f"M3 {coolant_on}"]  # spindle and coolant on ride on the first L block
+
+        def hh(m):
+            if w.hh_move(m, first[0]):
+                first[0] = ""
+
+        _print_moves(toolpath, w, hh)
         last = max(i for i, line in enumerate(w.lines) if line.startswith("L "))
         w.lines[last] += f" {coolant_off}"
     else:
         body.append(coolant_on)
         if toolpath.rotary:
             w.emit("G93")
-        for m in toolpath.moves:
-            w.gcode_move(m, toolpath.rotary)
+        _print_moves(toolpath, w, lambda m: w.gcode_move(m, toolpath.rotary))
         if toolpath.rotary:
             w.emit("G94")
         w.emit(coolant_off)

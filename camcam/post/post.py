@@ -49,15 +49,17 @@ from importlib import resources
 from pathlib import Path
 
 from camcam.errors import InputError
+from camcam.nc.result import Program
+from camcam.nc.settings import WORK_OFFSETS, ProgramSetup
+from camcam.post.gcode import write_program
+from camcam.toolpath.path import Toolpath
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["Post", "load_post", "known_posts", "parse_post"]
+__all__ = ["Post", "load_post", "known_posts", "parse_post", "WORK_OFFSETS"]
 
 _ARC_FORMATS = {"gcode": ("ij_incremental", "ij_absolute", "r"), "heidenhain": ("cc_absolute",)}
 _FIELDS = {"title", "name", "tool", "spindle", "program_number"}
 
-#: The work offsets a spec may name, in the order of ``work_offsets``.
-WORK_OFFSETS = ("G54", "G55", "G56", "G57", "G58", "G59")
 
 #: ``work_offsets`` when a post does not give them: G-code's own words; Heidenhain's preset
 #: (datum) numbers 1–6 set by cycle 247.
@@ -114,6 +116,11 @@ class Post:
     def quantizer(self) -> Quantizer:
         """The printed rounding of this post (decimals and arc format): the one model of what it prints."""
         return Quantizer(self.decimals, self.arc_format)
+
+    def write_program(self, toolpath: Toolpath, name: str = "camcam", setup: ProgramSetup = ProgramSetup()) -> Program:
+        """``toolpath`` printed in this dialect with ``setup``'s work offset, coolant and number
+        (:func:`camcam.post.gcode.write_program`)."""
+        return write_program(toolpath, self, name, setup)
 
 
 def _post_dir():

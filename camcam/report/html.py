@@ -11,14 +11,17 @@ import html
 from dataclasses import dataclass
 from typing import Sequence, Union
 
-__all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Code", "Banner", "Section", "render_html"]
+from camcam.plots.concurrent import PendingPNG, resolve
+from camcam.verdict import Verdict
+
+__all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Code", "VerdictBlock", "Section", "render_html"]
 
 
 @dataclass(frozen=True)
 class Figure:
     """A PNG plot with a caption."""
 
-    png: bytes
+    png: bytes | PendingPNG  # a plot still being drawn is collected when the page is rendered
     caption: str
 
 
@@ -52,14 +55,13 @@ class Code:
 
 
 @dataclass(frozen=True)
-class Banner:
-    """The verdict line: ``ok`` shows it green, otherwise red."""
+class VerdictBlock:
+    """The PASS/FAIL banner and the table of checks (:class:`camcam.verdict.Verdict`)."""
 
-    text: str
-    ok: bool
+    verdict: Verdict
 
 
-Block = Union[Figure, KeyValues, DataTable, Paragraph, Code, Banner]
+Block = Union[Figure, KeyValues, DataTable, Paragraph, Code, VerdictBlock]
 
 
 @dataclass(frozen=True)
@@ -77,8 +79,8 @@ td:first-child,th:first-child{text-align:left}table.kv td{text-align:left}table.
 figure{margin:1em 0}figure img{max-width:100%;border:1px solid #ddd}figcaption{color:#444;font-size:.9em}
 pre{background:#f6f8fa;border:1px solid #ddd;padding:.6em;font-size:.85em;overflow-x:auto}
 .ok{color:#176b2c;font-weight:600}.bad{color:#a11;font-weight:600}
-p.banner{font-size:1.3em;padding:.4em .6em;border:2px solid}p.banner.ok{border-color:#176b2c;background:#eef8f0}
-p.banner.bad{border-color:#a11;background:#fbeeee}
+.verdict{font-size:1.5em;font-weight:700;padding:.4em .8em;border-radius:4px;color:#fff;display:inline-block}
+.verdict.pass{background:#176b2c}.verdict.fail{background:#b3191f}
 @page{size:A4;margin:12mm}
 @media print{body{max-width:none;margin:0;padding:0;font-size:10pt}h2{page-break-after:avoid}
 figure,tr{page-break-inside:avoid}table{font-size:8pt}td,th{padding:.1em .3em}
@@ -88,8 +90,19 @@ pre{white-space:pre-wrap;word-break:break-all;font-size:7.5pt}figure img{max-hei
 
 def _block(b: Block) -> str:
     e = html.escape
+    if isinstance(b, VerdictBlock):
+        v = b.verdict
+        head = f'<p class="verdict {v.status.lower()}">{e(v.status)}</p>'
+        if v.accepted and not v.passed:
+            head += "<p>Out of tolerance, accepted by the spec (accept_out_of_tolerance = true).</p>"
+        head += "".join(f'<p class="bad">warning: {e(c.describe())}</p>' for c in v.warnings)
+        rows = "".join(f'<tr><td>{e(c.name)}</td><td>{c.value:.5g} {e(c.unit)}</td><td>{c.limit:g} {e(c.unit)}</td>'
+                       f'<td class="{"ok" if c.ok else "bad"}">{"within" if c.ok else ("FAIL" if c.fails else "warning")}'
+                       f'</td><td>{e(c.where)}</td><td>{e("" if c.ok else c.advice)}</td></tr>' for c in v.checks)
+        return (head + "<table><thead><tr><th>check</th><th>measured</th><th>limit</th><th>result</th><th>where</th>"
+                f"<th>way out</th></tr></thead><tbody>{rows}</tbody></table>")
     if isinstance(b, Figure):
-        data = base64.b64encode(b.png).decode("ascii")
+        data = base64.b64encode(resolve(b.png)).decode("ascii")
         return f'<figure><img alt="{e(b.caption)}" src="data:image/png;base64,{data}"><figcaption>{e(b.caption)}</figcaption></figure>'
     if isinstance(b, KeyValues):
         rows = "".join(f"<tr><td>{e(k)}</td><td>{e(v)}</td></tr>" for k, v in b.rows)
@@ -101,8 +114,6 @@ def _block(b: Block) -> str:
         return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
     if isinstance(b, Paragraph):
         return f"<p>{e(b.text)}</p>"
-    if isinstance(b, Banner):
-        return f'<p class="banner {"ok" if b.ok else "bad"}">{e(b.text)}</p>'
     if isinstance(b, Code):
         cap = f"<figcaption>{e(b.caption)}</figcaption>" if b.caption else ""
         return f"<figure><pre>{e(b.text)}</pre>{cap}</figure>"

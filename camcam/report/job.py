@@ -14,13 +14,15 @@ from camcam.geometry.build import BuiltCam
 from camcam.geometry.disc import DiscCam
 from camcam.geometry.groove import GrooveCam
 from camcam.motion.program import MotionProgram
+from camcam.plots.concurrent import PendingPNG, render_later
 from camcam.plots.report_plots import deviation_png, fitted_motion_png
 from camcam.report.deviation_along import signed_deviation
 from camcam.report.fitted_motion import fitted_motion
-from camcam.report.html import Banner, Code, DataTable, Figure, KeyValues, Paragraph, Section, render_html
+from camcam.report.html import Code, DataTable, Figure, KeyValues, Paragraph, Section, VerdictBlock, render_html
 from camcam.report.setup_sheet import setup_blocks
+from camcam.verdict import Verdict
 from camcam.report.inspection import inspection_table
-from camcam.nc.job import MachiningResult
+from camcam.nc.result import MachiningResult
 
 __all__ = ["JobReport", "job_report"]
 
@@ -29,7 +31,7 @@ __all__ = ["JobReport", "job_report"]
 class JobReport:
     html: str
     figures: dict  # extra JSON keys
-    files: dict  # name → bytes (plots also shown in the HTML, and the inspection CSV)
+    files: dict  # name → bytes, or PendingPNG for a plot being drawn (also shown in the HTML), and the inspection CSV
 
 
 def _job_rows(name, spec, built: BuiltCam | None, m: MachiningResult | None):
@@ -49,34 +51,13 @@ def _job_rows(name, spec, built: BuiltCam | None, m: MachiningResult | None):
     return tuple(rows)
 
 
-def _verdict_blocks(verdict) -> tuple:
-    """The status line (a warning shows its figure) and every check with its figure and limit."""
-    text = verdict.line()
-    if verdict.passed and verdict.warnings:
-        text = f"PASS with {len(verdict.warnings)} warning(s): {verdict.warnings[0].describe()}"
-    if verdict.accepted and not verdict.passed:
-        text += " (accepted by the spec: exit status 0)"
-    head = Banner(text, verdict.passed)
-    rows = tuple((c.name, f"{c.value:.4g} {c.unit}", f"{c.limit:g} {c.unit}",
-                  "ok" if c.ok else ("FAIL" if c.severity == "fail" else "warning"), c.where,
-                  "" if c.ok else c.advice) for c in verdict.checks)
-    return (head, DataTable(("check", "figure", "limit", "result", "where", "way out"), rows))
-
-
-def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: BuiltCam | None, cam_figures: dict,
-               cam_png: bytes | None, machining: MachiningResult | None, inspection_step_deg: float = 10.0,
-               verdict=None) -> JobReport:
-    """Build the HTML page, the report's extra JSON figures and its files.
-
-    The page opens with ``verdict`` (a :class:`~camcam.verdict.Verdict`) and,
-    with a machining job, the setup sheet; then the job, motion, cam,
-    tolerance and inspection sections.
-    """
+def job_report(name: str, spec, program: MotionProgram, svaj: bytes | PendingPNG, built: BuiltCam | None, cam_figures: dict,
+               cam_png: bytes | PendingPNG | None, machining: MachiningResult | None, inspection_step_deg: float = 10.0,
+               verdict: Verdict | None = None) -> JobReport:
+    """Build the HTML page, the report's extra JSON figures and its files; the verdict opens the page."""
     files: dict[str, bytes] = {}
     figures: dict = {}
-    sections = []
-    if verdict is not None:
-        sections.append(Section("Verdict", _verdict_blocks(verdict)))
+    sections = [Section("Verdict", (VerdictBlock(verdict),))] if verdict is not None else []
     if machining is not None and built is not None:
         sections.append(Section("Setup", setup_blocks(built, machining, spec.machining)))
     sections.append(Section("Job", (KeyValues(_job_rows(name, spec, built, machining)),)))
@@ -110,7 +91,8 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: Buil
             # a groove's flanks are drawn unsigned
             normal = disc.normal(th) if isinstance(disc, DiscCam) else None
             dev = signed_deviation(curve, elements, th, normal)
-            files[f"{name}-deviation.png"] = deviation_png(ang, dev, m.tolerance_mm, f"{name}: printed tool path − exact tool-centre curve")
+            files[f"{name}-deviation.png"] = render_later(deviation_png, ang, dev, m.tolerance_mm,
+                                                          f"{name}: printed tool path − exact tool-centre curve")
             blocks.append(Figure(files[f"{name}-deviation.png"], "Deviation of the printed tool path from the exact tool-centre curve along the cam angle (+ leaves stock)."))
             figures["deviation_along_profile_mm"] = {"min": float(dev.min()), "max": float(dev.max())}
         excerpt = m.program.text.splitlines()[:24]
@@ -119,7 +101,8 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: Buil
         if isinstance(disc, DiscCam):
             c0 = m.contours[0]
             fm = fitted_motion(disc, c0.printed, c0.offset_mm, np.arange(0.0, 360.0, 0.5))
-            png = fitted_motion_png(fm, f"{name}: follower motion the fitted program will produce")
+            png = render_later(fitted_motion_png, fm.angles_deg, fm.design, fm.fitted, fm.units,
+                               f"{name}: follower motion the fitted program will produce")
             files[f"{name}-fitted-motion.png"] = png
             ea, aa = fm.max_error(2)
             ej, aj = fm.max_error(3)

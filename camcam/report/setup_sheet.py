@@ -1,7 +1,7 @@
 """The setup sheet: what the machinist needs at the machine, from the values the stages returned.
 
 Blank, work zero, angular datum, tool (T, length offset, diameter, flute
-length), the passes (:class:`~camcam.toolpath.path.PassMark` of the program),
+length), the passes (the program's :class:`~camcam.toolpath.path.Pass` records),
 work offset, coolant and cycle time.  The report puts it right after the
 verdict.
 """
@@ -12,12 +12,12 @@ import math
 
 import numpy as np
 
-from camcam.nc.job import MachiningResult
+from camcam.nc.result import MachiningResult
+from camcam.post.gcode import numbered_passes, pass_comment
 from camcam.post.post import Post
 from camcam.report.html import DataTable, KeyValues
-from camcam.toolpath.path import PassMark
 
-__all__ = ["setup_blocks", "length_offset_text", "pass_marks"]
+__all__ = ["setup_blocks", "length_offset_text"]
 
 
 def length_offset_text(post: Post, tool: int) -> str:
@@ -32,10 +32,6 @@ def length_offset_text(post: Post, tool: int) -> str:
         if "D1" in line:
             return "D1 with the tool call (tool table)"
     return "none: the controller has no tool table; set Z0 on the top face with this tool"
-
-
-def pass_marks(r: MachiningResult) -> tuple[PassMark, ...]:
-    return tuple(m for m in r.toolpath.moves if isinstance(m, PassMark))
 
 
 def _blank_and_zero(built, r: MachiningResult) -> list[tuple[str, str]]:
@@ -74,8 +70,8 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
     """KeyValues of the setup and a table of the passes, in cutting order (``machining``: the spec's table)."""
     post, setup, spindle_rpm = r.post, machining.setup, machining.spindle_rpm
     tool = r.toolpath.tool_number
-    marks = pass_marks(r)
-    depth = max((m.depth_mm for m in marks), default=0.0)
+    passes = r.toolpath.passes
+    depth = max((p.depth_mm for p in passes), default=0.0)
     rows = _blank_and_zero(built, r)
     if not r.rotary:
         rows.append(("angular datum", _datum(built)))
@@ -95,8 +91,9 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
         ("cycle time (estimate)", f"{r.program.cycle_time.describe()}; rapids at {post.rapid_mm_min:g} mm/min, "
                                   f"tool change {post.tool_change_s:g} s, acceleration not counted"),
     ]
+    names = [pass_comment(p, k, n).split(", depth")[0] for p, k, n in numbered_passes(passes)]
     table = DataTable(("pass", "depth mm", "Z", "allowance mm", "feed mm/min", "spindle rev/min"),
-                      tuple((f"{m.contour}: {m.name}", f"{m.depth_mm:g}", f"{m.z:g}", f"{m.allowance_mm:g}",
-                             f"{m.feed_mm_min:g}", f"{spindle_rpm:g}") for m in marks),
+                      tuple((name, f"{p.depth_mm:g}", f"{p.z:g}", f"{p.allowance_mm:g}", f"{machining.feed_mm_min:g}",
+                             f"{spindle_rpm:g}") for name, p in zip(names, passes)),
                       "The passes in cutting order (each opens with this name as a comment in the program).")
     return (KeyValues(tuple(rows)), table)

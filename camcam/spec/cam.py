@@ -16,27 +16,10 @@ max_pressure_angle_deg = 30.0  # design check limit (default 30° translating, 3
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
+from camcam.geometry.params import CAM_KINDS, CamSpec
 from camcam.spec.reader import Table
 
 __all__ = ["CamSpec", "read_cam", "CAM_KINDS"]
-
-CAM_KINDS = ("disc", "disc-groove", "cylindrical")
-
-
-@dataclass(frozen=True)
-class CamSpec:
-    kind: str
-    base_radius: float
-    bore: float = 0.0
-    rotation: str = "ccw"
-    thickness: float | None = None
-    groove_depth: float | None = None
-    outer_radius: float | None = None
-    length: float | None = None
-    max_pressure_angle_deg: float | None = None  # None: 30° translating, 35° oscillating (design check)
-
 
 def read_cam(t: Table) -> CamSpec:
     kind = t.string("kind", "disc", choices=CAM_KINDS)

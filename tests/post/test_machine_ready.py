@@ -7,7 +7,8 @@ import pytest
 
 from camcam import __version__
 from camcam.errors import InputError
-from camcam.post.gcode import ProgramSetup, write_program
+from camcam.nc.settings import ProgramSetup
+from camcam.post.gcode import write_program
 from camcam.post.post import load_post
 from camcam.toolpath.elements import Arc
 from camcam.toolpath.path import CutSettings, contour_toolpath, slot_toolpath
@@ -35,7 +36,7 @@ EXPECTED = {
 
 
 def program(name, setup=SETUP, cut=CUT):
-    return write_program(contour_toolpath(CIRCLE, cut, "demo", "profile"), load_post(name), "demo", setup)
+    return write_program(contour_toolpath(CIRCLE, cut, "demo", label="profile"), load_post(name), "demo", setup)
 
 
 @pytest.mark.parametrize("name", sorted(EXPECTED))
@@ -67,9 +68,10 @@ def test_pass_comments_name_each_pass(name):
 def test_pass_comments_without_allowance_and_in_a_groove():
     cut = CutSettings(depth_mm=8, stepdown_mm=4, feed_mm_min=400, spindle_rpm=3000)
     text = program("linuxcnc", cut=cut).text
-    assert re.findall(r"\(profile: ([^,]+),", text) == ["rough 1/1", "finish"]
-    slot = write_program(slot_toolpath(CIRCLE, cut, "demo", "groove centre"), load_post("linuxcnc")).text
-    assert re.findall(r"\(groove centre: ([^,)]+),", slot) == ["rough 1/1", "finish"]
+    # without an allowance every depth level cuts the contour itself: finish passes, numbered
+    assert re.findall(r"\(profile: ([^,]+),", text) == ["finish 1/2", "finish 2/2"]
+    slot = write_program(slot_toolpath(CIRCLE, cut, "demo", label="groove centre"), load_post("linuxcnc")).text
+    assert re.findall(r"\(groove centre: ([^,)]+),", slot) == ["slot 1/2", "slot 2/2"]
 
 
 def test_program_number_and_refusals():

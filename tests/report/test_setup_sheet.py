@@ -14,7 +14,7 @@ from types import SimpleNamespace
 import pytest
 
 from camcam.cli import main
-from camcam.design_checks import design_checks
+from camcam.nc.design_checks import design_checks
 from camcam.verify.rs274 import rs274_available
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -32,7 +32,7 @@ def test_report_opens_with_verdict_then_setup(run_dir):
     html = (run_dir / "disc-translating-roller-report.html").read_text()
     titles = re.findall(r"<h2>([^<]+)</h2>", html)
     assert titles[:3] == ["Verdict", "Setup", "Job"]
-    assert re.search(r'<p class="banner ok">PASS: ', html)
+    assert '<p class="verdict pass">PASS</p>' in html
     setup = html.split("<h2>Setup</h2>")[1].split("<h2>Job</h2>")[0]
     for label in ("part", "work zero", "angular datum", "work offset", "tool", "tool length offset", "coolant",
                   "cycle time (estimate)"):
@@ -148,7 +148,7 @@ def test_pressure_angle_warns_then_fails_when_strict(tmp_path, capsys):
     err = capsys.readouterr().err.strip().splitlines()
     assert err[-1].startswith("camcam: FAIL: pressure angle 22.26 deg over the limit 20 deg")
     html = (tmp_path / "b" / "disc-translating-roller-report.html").read_text()
-    assert '<p class="banner bad">FAIL: pressure angle' in html  # written, and the page opens with the FAIL
+    assert html.index('<p class="verdict fail">FAIL</p>') < html.index("pressure angle")  # written, opens with FAIL
     assert main(["run", str(_spec_without_machining(tmp_path)), "-o", str(tmp_path / "c")]) == 0
     assert "pressure angle" not in capsys.readouterr().err  # 22.26° within the 30° default for a translating roller
 

@@ -1,0 +1,104 @@
+"""The settings of a machining job: the validated ``[machining]`` table as the NC stage reads it.
+
+:func:`camcam.spec.machining.read_machining` builds a :class:`MachiningSpec`
+from a spec file; the NC stage takes it from there.  The post is reached
+through :class:`PostDialect` only (what a job needs of a controller dialect),
+so the NC stage does not depend on the post package that prints its result.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+from camcam.errors import InputError
+from camcam.toolpath.path import CutSettings, Toolpath
+from camcam.toolpath.quantizer import Quantizer
+
+__all__ = ["MachiningSpec", "PostDialect", "ProgramSetup", "WORK_OFFSETS", "COOLANTS"]
+
+#: The work offsets a spec may name; a post prints each in its own words (``Post.work_offsets``).
+WORK_OFFSETS = ("G54", "G55", "G56", "G57", "G58", "G59")
+
+#: The coolant a spec may ask for.
+COOLANTS = ("flood", "mist", "off")
+
+
+@dataclass(frozen=True)
+class ProgramSetup:
+    """What a program states besides its moves: work offset, coolant, program number, source.
+
+    ``program_number`` None takes the post's; ``source`` is the spec's file
+    name for the generator line.
+    """
+
+    work_offset: str = "G54"
+    coolant: str = "flood"
+    program_number: int | None = None
+    source: str = ""
+
+    def check(self, post) -> None:
+        """Raise :class:`InputError` naming the field when ``post`` (a :class:`camcam.post.Post`) cannot print this."""
+        if self.work_offset not in WORK_OFFSETS:
+            raise InputError(f"work_offset: expected one of {', '.join(WORK_OFFSETS)}, got {self.work_offset!r}")
+        if self.coolant not in COOLANTS:
+            raise InputError(f"coolant: expected one of {', '.join(COOLANTS)}, got {self.coolant!r}")
+        if not post.coolant_word(self.coolant):
+            raise InputError(f"coolant: post {post.name} has no word for {self.coolant} coolant")
+        if self.program_number is not None:
+            if not post.uses_program_number:
+                raise InputError(f"program_number: post {post.name} does not print a program number")
+            if not 1 <= self.program_number <= post.program_number_max:
+                raise InputError(f"program_number: expected 1–{post.program_number_max} for post {post.name}, "
+                                 f"got {self.program_number}")
+
+
+class PostDialect(Protocol):
+    """What a machining job needs of a controller dialect (:class:`camcam.post.Post` provides it)."""
+
+    name: str
+    max_arc_sweep_deg: float
+    inverse_time: bool
+
+    @property
+    def quantizer(self) -> Quantizer:
+        """The printed rounding."""
+
+    def write_program(self, toolpath: Toolpath, name: str, setup: ProgramSetup = ...):
+        """The printed program (:class:`camcam.post.Program`) with the work offset, coolant and number of ``setup``."""
+
+
+@dataclass(frozen=True)
+class MachiningSpec:
+    """The validated ``[machining]`` table (lengths in mm, feeds in mm/min).
+
+    ``post`` is the controller dialect (a :class:`camcam.post.Post`): the job
+    reads its :class:`PostDialect` face only.
+    """
+
+    post: PostDialect
+    tool_diameter_mm: float
+    tolerance_mm: float
+    mode: str
+    feed_mm_min: float
+    spindle_rpm: float
+    depth_mm: float
+    stepdown_mm: float
+    plunge_feed_mm_min: float
+    safe_z_mm: float
+    clearance_z_mm: float
+    lead_radius_mm: float
+    finish_allowance_mm: float
+    spring_pass: bool
+    tool_number: int
+    accept_out_of_tolerance: bool = False
+    setup: ProgramSetup = ProgramSetup()
+
+    def cut_settings(self, stock_side: str = "right") -> CutSettings:
+        """Settings for :func:`camcam.toolpath.path.contour_toolpath`."""
+        return CutSettings(depth_mm=self.depth_mm, stepdown_mm=self.stepdown_mm, feed_mm_min=self.feed_mm_min,
+                           spindle_rpm=self.spindle_rpm, plunge_feed_mm_min=self.plunge_feed_mm_min,
+                           safe_z_mm=self.safe_z_mm, clearance_z_mm=self.clearance_z_mm,
+                           lead_radius_mm=self.lead_radius_mm, stock_side=stock_side,
+                           finish_allowance_mm=self.finish_allowance_mm, spring_pass=self.spring_pass,
+                           tool_number=self.tool_number, tool_diameter_mm=self.tool_diameter_mm)
