@@ -20,7 +20,7 @@ from camcam.cli.output import publish, to_json, warn
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
 
-__all__ = ["register", "nc_step", "job_verdict", "DEFAULT_SPEC"]
+__all__ = ["register", "nc_step", "job_verdict", "design_and_drawing_checks", "DEFAULT_SPEC"]
 
 #: The bundled job `camcam run` runs without a spec.
 DEFAULT_SPEC = "default.toml"
@@ -46,26 +46,25 @@ def nc_step(out, spec, built, report: dict):
     return result
 
 
-def job_verdict(machining, machining_spec, built=None, strict: bool = False,
-                part_deviation_mm: float | None = None) -> Verdict:
-    """Every check of the job in one verdict; accepted when the spec accepts out-of-tolerance results.
+def job_verdict(machining, machining_spec) -> Verdict:
+    """Every check of the job in one verdict; accepted when the spec accepts out-of-tolerance results."""
+    checks = machining.checks if machining is not None else ()
+    accepted = machining_spec.accept_out_of_tolerance if machining_spec is not None else False
+    return Verdict(tuple(checks), accepted)
 
-    The NC job's checks, the DXF part outline against the tolerance, and the
-    design checks of ``built`` (:mod:`camcam.nc.design_checks`: warnings, or
-    failures with ``strict``).
-    """
+
+def design_and_drawing_checks(built, machining, machining_spec, strict: bool, part_deviation_mm: float | None):
+    """The DXF part outline against the tolerance and the design checks (:mod:`camcam.nc.design_checks`:
+    warnings, or failures with ``[report] strict``)."""
     from camcam.nc.design_checks import design_checks
     from camcam.verdict import Check
 
-    checks = list(machining.checks) if machining is not None else []
+    checks = []
     if part_deviation_mm is not None:
         checks.append(Check("DXF part outline deviation", part_deviation_mm, machining.tolerance_mm, "mm",
                             part_deviation_mm <= machining.tolerance_mm, where="layer PART against the design",
                             advice="use a post with more decimals or a larger tolerance"))
-    if built is not None:
-        checks += design_checks(built, machining_spec, strict)
-    accepted = machining_spec.accept_out_of_tolerance if machining_spec is not None else False
-    return Verdict(tuple(checks), accepted)
+    return tuple(checks) + design_checks(built, machining_spec, strict)
 
 
 def register(sub) -> None:
@@ -117,8 +116,10 @@ def run(args) -> int:
         if spec.machining is not None:
             with progress.step("NC second fitting and program"):
                 machining = nc_step(out, spec, built, report)
-        verdict = job_verdict(machining, spec.machining, built, spec.report.strict,
-                              report.get("machining", {}).get("dxf_part_deviation_mm"))
+        verdict = job_verdict(machining, spec.machining)
+        verdict = Verdict(verdict.checks + design_and_drawing_checks(
+            built, machining, spec.machining, spec.report.strict,
+            report.get("machining", {}).get("dxf_part_deviation_mm")), verdict.accepted)
         report["verdict"] = verdict.as_dict()
         with progress.step("drawing, model and report"):
             out.add(f"{spec.name}.stl", stl_bytes(program_frame(built)))
