@@ -49,16 +49,17 @@ from camcam.spec.machining import MachiningSpec
 from camcam.toolpath.contours import CutContour, OffsetCurve, fit_printed
 from camcam.toolpath.elements import Line
 from camcam.toolpath.path import depth_levels, rotary_toolpath
+from camcam.toolpath.quantizer import Quantizer
 from camcam.verdict import Check
 
 __all__ = ["machine_cylindrical", "developed_printed", "printed_axes", "groove_check", "machine_frame_lines"]
 
 
-def printed_axes(elements, decimals: int, radius_mm: float, turn: int = 1) -> np.ndarray:
-    """(X, A°) of the contour's vertices as printed: x and turn·u/ρ in degrees rounded to ``decimals``."""
+def printed_axes(elements, quantizer: Quantizer, radius_mm: float, turn: int = 1) -> np.ndarray:
+    """(X, A°) of the contour's vertices as printed: x and turn·u/ρ in degrees on the post's grid."""
     pts = np.array([elements[0].start] + [e.end for e in elements])
-    x = np.round(pts[:, 1], decimals)
-    a = np.round(turn * np.degrees(pts[:, 0] / radius_mm), decimals)
+    x = quantizer.snap(pts[:, 1])
+    a = quantizer.snap(turn * np.degrees(pts[:, 0] / radius_mm))
     return np.stack([x, a], axis=-1)
 
 
@@ -149,9 +150,9 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> Machini
         tol = fit_tol if label.startswith("flank") else m.tolerance_mm
 
         def printed(elements):
-            return developed_printed(printed_axes(elements, post.decimals, rho_d, turn), rho_d, turn)
+            return developed_printed(printed_axes(elements, post.quantizer, rho_d, turn), rho_d, turn)
 
-        fit, path, dev, segs = fit_printed(curve, tol, "lines", post.decimals, post.max_arc_sweep_deg,
+        fit, path, dev, segs = fit_printed(curve, tol, "lines", post.quantizer, post.max_arc_sweep_deg,
                                            printed, f"{name} {label}")
         pts = np.array([fit.elements[0].start] + [e.end for e in fit.elements])
         pts = np.stack([pts[:, 1], turn * pts[:, 0]], axis=-1)  # (x, turn·u): A = turn·θ
