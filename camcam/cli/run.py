@@ -11,6 +11,7 @@ nothing.
 
 from __future__ import annotations
 
+import sys
 from importlib import resources
 from pathlib import Path
 
@@ -63,6 +64,7 @@ def run(args) -> int:
     from camcam.export.files import OutputSet
 
     spec = _load(args.spec)
+    verdict = None
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
@@ -84,6 +86,11 @@ def run(args) -> int:
         if spec.machining is not None:
             with step("NC second fitting and program"):
                 machining = nc_step(out, spec, built, report)
+        if machining is not None and machining.checks:
+            from camcam.verdict import Verdict
+
+            verdict = Verdict(machining.checks, accepted=spec.machining.accept_out_of_tolerance)
+            report["verdict"] = verdict.as_dict()
         with step("drawing, model and report"):
             out.add(f"{spec.name}.stl", stl_bytes(built.mesh))
             profile_png = cam_png(built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
@@ -108,8 +115,15 @@ def run(args) -> int:
             print(f"max pressure angle {c['max_pressure_angle_deg']:.4f}° at {c['max_pressure_angle_at_deg']:.2f}°; "
                   f"min radius of curvature {c['min_curvature_radius_mm']:.4f} mm at {c['min_curvature_radius_at_deg']:.2f}°")
             if "machining" in c:
+                what = ("3-D groove deviation" if "flank_deviation" in c["machining"] else "max deviation")
+                where = (" (both walls, every radius)" if "flank_deviation" in c["machining"] else "")
                 print(f"NC: {c['line_blocks']} line + {c['arc_blocks']} arc blocks (lower bound {c['lower_bound_blocks']:.1f}), "
-                      f"max deviation {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm on the printed program")
+                      f"{what} {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm{where} on the printed program")
         for p in written:
             print(f"wrote {p}")
-    return 0
+    if verdict is not None and not verdict.passed:
+        if verdict.accepted:
+            warn(f"{verdict.line()} (accepted: accept_out_of_tolerance = true)")
+        else:
+            print(f"camcam: {verdict.line()}", file=sys.stderr)
+    return 0 if verdict is None else verdict.exit_status

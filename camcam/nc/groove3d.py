@@ -66,7 +66,7 @@ from camcam.geometry.cylindrical import BarrelOscillatingRoller, CylindricalCam
 
 __all__ = ["ToolPoses", "CylinderTool", "WallExtreme", "WallDeviation", "GrooveMeasurement", "measure_groove",
            "poses_from_program", "poses_from_canon", "follower_poses", "A_AXIS_SENSE", "WALL_LABELS",
-           "design_walls"]
+           "design_walls", "cut_walls"]
 
 #: Sign of the part's turn for a positive A: Rx(sign·A).
 A_AXIS_SENSE = {"right-hand": 1, "left-hand": -1}
@@ -712,3 +712,14 @@ def design_walls(cam: CylindricalCam, radius_mm: float, cam_angle_deg, pose_step
     g = -cam.sigma * np.radians(np.atleast_1d(np.asarray(cam_angle_deg, float)))
     e0, e1 = _envelope(motion, s, motion.pose(s), float(radius_mm), g)
     return np.stack([-e0.value, e1.value], axis=-1)
+
+
+def cut_walls(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, radius_mm: float, cam_angle_deg,
+              pose_step_mm: float = 0.1) -> np.ndarray:
+    """The cut walls' x (−X wall, +X wall) at radius ρ and program cam angles θc: (n, 2), mm; NaN where uncut."""
+    motion = _ProgramMotion(poses, tool)
+    s = motion.samples(pose_step_mm, cam.base_radius)
+    g = -cam.sigma * np.radians(np.atleast_1d(np.asarray(cam_angle_deg, float)))
+    e0, e1 = _envelope(motion, s, motion.pose(s), float(radius_mm), g)
+    out = np.stack([-e0.value, e1.value], axis=-1)
+    return np.where(np.isfinite(out), out, np.nan)

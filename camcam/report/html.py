@@ -51,7 +51,15 @@ class Code:
     caption: str = ""
 
 
-Block = Union[Figure, KeyValues, DataTable, Paragraph, Code]
+@dataclass(frozen=True)
+class Status:
+    """One line in green (``ok``) or red: a verdict."""
+
+    text: str
+    ok: bool
+
+
+Block = Union[Figure, KeyValues, DataTable, Paragraph, Code, Status]
 
 
 @dataclass(frozen=True)
@@ -88,6 +96,8 @@ def _block(b: Block) -> str:
         return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
     if isinstance(b, Paragraph):
         return f"<p>{e(b.text)}</p>"
+    if isinstance(b, Status):
+        return f'<p class="{"ok" if b.ok else "bad"}">{e(b.text)}</p>'
     if isinstance(b, Code):
         cap = f"<figcaption>{e(b.caption)}</figcaption>" if b.caption else ""
         return f"<figure><pre>{e(b.text)}</pre>{cap}</figure>"

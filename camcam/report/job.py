@@ -18,9 +18,10 @@ from camcam.plots.groove_map import groove_map_png
 from camcam.plots.report_plots import deviation_png, fitted_motion_png
 from camcam.report.deviation_along import signed_deviation
 from camcam.report.fitted_motion import fitted_motion
-from camcam.report.html import Code, DataTable, Figure, KeyValues, Paragraph, Section, render_html
+from camcam.report.html import Code, DataTable, Figure, KeyValues, Paragraph, Section, Status, render_html
 from camcam.report.inspection import inspection_table
 from camcam.nc.job import MachiningResult
+from camcam.verdict import Verdict
 
 __all__ = ["JobReport", "job_report"]
 
@@ -77,6 +78,13 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: Buil
     files: dict[str, bytes] = {}
     figures: dict = {}
     sections = [Section("Job", (KeyValues(_job_rows(name, spec, built, machining)),))]
+    if machining is not None and machining.checks:
+        verdict = Verdict(machining.checks, accepted=spec.machining.accept_out_of_tolerance)
+        lines = [Status(verdict.line(), verdict.passed)]
+        if not verdict.passed and verdict.accepted:
+            lines.append(Paragraph("accept_out_of_tolerance = true: the run exits 0 with this FAIL."))
+        lines += [Paragraph(c.describe()) for c in machining.checks]
+        sections.insert(0, Section("Verdict", tuple(lines)))
     sections.append(Section("Motion (design)", (Figure(svaj, "Displacement, velocity, acceleration and jerk over the revolution; dashed: segment boundaries."),)))
     if built is not None:
         blocks = []
