@@ -2,22 +2,13 @@
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 from pathlib import Path
 
-from camcam.cli import main
+from tests.cli.test_exit_status import cli
 
 ROOT = Path(__file__).resolve().parents[2]
 SMALL = ROOT / "samples" / "cylindrical-translating-small-tool.toml"
-
-
-def cli(*args) -> tuple[int, str, str]:
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        code = main(list(args))
-    return code, out.getvalue(), err.getvalue()
 
 
 def test_small_tool_fails_with_advice_and_exit_3(tmp_path):
