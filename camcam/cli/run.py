@@ -120,8 +120,10 @@ def run(args) -> int:
             print(f"max pressure angle {c['max_pressure_angle_deg']:.4f}° at {c['max_pressure_angle_at_deg']:.2f}°; "
                   f"min radius of curvature {c['min_curvature_radius_mm']:.4f} mm at {c['min_curvature_radius_at_deg']:.2f}°")
             if "machining" in c:
+                what = ("3-D groove deviation" if "flank_deviation" in c["machining"] else "max deviation")
+                where = (" (both walls, every radius)" if "flank_deviation" in c["machining"] else "")
                 print(f"NC: {c['line_blocks']} line + {c['arc_blocks']} arc blocks (lower bound {c['lower_bound_blocks']:.1f}), "
-                      f"max deviation {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm on the printed program")
+                      f"{what} {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm{where} on the printed program")
 
     with progress.step("writing files"):
         publish(out, summary, args.json, show, (verdict.line(),) if verdict.checks else ())
