@@ -15,7 +15,8 @@ arc sweep; its deviation is measured on the path the post prints.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -24,9 +25,16 @@ from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
 from camcam.post.gcode import Program, printed_elements, write_program
 from camcam.post.post import Post
+from camcam.nc.bore import bore_passes
+from camcam.nc.passes import Pass, finish_moves, ramp_loop_passes, spiral_moves, with_markers
+from camcam.nc.roughing import RING_STEP_FRACTION, disc_spiral
+from camcam.nc.stock import Blank, blank_for
 from camcam.spec.machining import MachiningSpec
+from camcam.spec.stock import DEFAULT_STOCK, StockSpec
 from camcam.toolpath.contours import CutContour, fit_printed
-from camcam.toolpath.path import Toolpath, contour_toolpath, depth_levels, slot_toolpath
+from camcam.toolpath.path import Rapid, Toolpath, depth_levels
+from camcam.verdict import Check
+from camcam.verify.removal import RemovalReport, check_program
 
 __all__ = ["MachiningResult", "machine", "SAME_TOOL_MM"]
 
@@ -57,6 +65,10 @@ class MachiningResult:
     pass_finish: tuple[bool, ...]
     reference_radius_mm: float | None = None
     notes: tuple[str, ...] = ()
+    passes: tuple = ()
+    blank: Blank | None = None
+    removal: RemovalReport | None = None
+    checks: tuple[Check, ...] = ()
 
     @property
     def rotary(self) -> bool:
@@ -135,14 +147,35 @@ def _title(name: str, built: BuiltCam, m: MachiningSpec, mode: str) -> str:
             f"{mode} within {m.tolerance_mm:g} mm, post {m.post.name}")
 
 
-def machine(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
-    """Tool-centre curves, fitted contours, tool path and program for ``built`` (no I/O).
+def _narrow_groove_plan(built: BuiltCam, r_t: float, step_mm: float):
+    """Rough offsets of the centre line between the centre pass and each flank pass, no wider apart than ``step_mm``."""
+    cam = built.cam
+    r_r = cam.roller_radius
+    span = r_r - r_t  # from the centre line to a flank pass
+    n = max(0, math.ceil(span / step_mm - 1e-9) - 1)
+    out = []
+    for i, name in ((0, "inner"), (1, "outer")):
+        for j in range(1, n + 1):
+            d = span * j / (n + 1)
+            out.append((f"groove rough {name} {j}", cam.offset_flank(i, r_r - d), r_t, None))
+    return out
+
+
+def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK) -> MachiningResult:
+    """Tool-centre curves, fitted contours, passes, tool path and program for ``built`` (no I/O).
+
+    A disc cam is roughed from the blank of ``stock`` at every depth level
+    (:mod:`camcam.nc.roughing`), then finished and spring-passed on the fitted
+    contour; a face groove is cut by ramped laps.  The printed program is read
+    back and checked against the blank (:mod:`camcam.verify.removal`).
 
     Raises
     ------
     GeometryError
         A tool too large for a concave part of the profile, wider than a
         groove, or too small to clear it; a post that cannot hold the program.
+    SpecError
+        A blank smaller than the cam, a bore too large, a helical bore the tool does not fit.
     """
     if built.spec.kind == "cylindrical":
         from camcam.nc.rotary import machine_cylindrical
@@ -150,26 +183,50 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
         return machine_cylindrical(built, m, name)
     post, r_t = m.post, m.tool_diameter_mm / 2
     title = _title(name, built, m, m.mode)
-    contours, paths, pass_contours, pass_finish = [], [], [], []
-    n_levels = len(depth_levels(m.cut_settings()))
-    for k, (label, curve, offset, free) in enumerate(_disc_plan(built, r_t)):
+    blank = blank_for(built, stock, m.tool_diameter_mm, m.bore)
+    z_clear = blank.top_z_mm + m.clearance_z_mm
+    levels = depth_levels(m.cut_settings())
+    plan = _disc_plan(built, r_t)
+    if built.spec.kind == "disc-groove" and len(plan) > 1:
+        plan = plan[:1] + _narrow_groove_plan(built, r_t, RING_STEP_FRACTION * m.stepover_mm) + plan[1:]
+    contours, passes = [], []
+    for k, (label, curve, offset, free) in enumerate(plan):
         fit, printed, dev, segs = fit_printed(curve, m.tolerance_mm, m.mode, post.decimals, post.max_arc_sweep_deg,
                                               _printer(post), f"{name} {label}")
+        side = _stock_side(curve, free) if free is not None else "both"
+        cs = replace(m.cut_settings(side if free is not None else "right"), clearance_z_mm=z_clear,
+                     safe_z_mm=max(m.safe_z_mm, z_clear))
         if free is not None:
-            side = _stock_side(curve, free)
-            cs = m.cut_settings(side)
-            paths.append(contour_toolpath(fit.elements, cs, title))
-            finals = (1 if cs.finish_allowance_mm > 0 else 0) + (1 if cs.spring_pass else 0)
-            pass_finish += [cs.finish_allowance_mm == 0] * n_levels + [True] * finals
-            pass_contours += [k] * (n_levels + finals)
+            spiral = disc_spiral(blank.part, blank.region, r_t, m.finish_allowance_mm, m.stepover_mm,
+                                 clockwise=(side == "right"), max_sweep_deg=post.max_arc_sweep_deg)
+            a = m.finish_allowance_mm
+            for z in levels:
+                if spiral is not None:
+                    passes.append(Pass(None, "rough", z, spiral_moves(spiral, z, cs)))
+                if a == 0:
+                    passes.append(Pass(k, "finish", z, finish_moves(fit.elements, z, cs)))
+            if a > 0:
+                passes.append(Pass(k, "finish", levels[-1], finish_moves(fit.elements, levels[-1], cs)))
+            if m.spring_pass:
+                passes.append(Pass(k, "spring", levels[-1], finish_moves(fit.elements, levels[-1], cs)))
         else:
-            side = "both"
-            paths.append(slot_toolpath(fit.elements, m.cut_settings(), title))
-            extra = 1 if m.spring_pass else 0
-            pass_finish += [True] * (n_levels + extra)
-            pass_contours += [k] * (n_levels + extra)
+            kind = "slot" if k == 0 else "groove"
+            passes += ramp_loop_passes(k, kind, fit.elements, levels, blank.top_z_mm, m.ramp_angle_deg, cs,
+                                       m.spring_pass)
         contours.append(CutContour(label, curve, fit, printed, dev, offset, free is not None, segs, side))
-    toolpath = _join(title, paths)
+    if m.bore:
+        passes += bore_passes(blank, r_t, m, z_clear, levels[-1], built.spec.thickness)
+    labels = [c.label for c in contours]
+    moves = (Rapid(None, None, max(m.safe_z_mm, z_clear)),) + \
+        with_markers(passes, lambda p: labels[p.contour] if p.contour is not None else
+                     ("bore" if p.kind == "bore" else "spiral to the finish allowance")) + \
+        (Rapid(None, None, max(m.safe_z_mm, z_clear)),)
+    counts = {}
+    for p in passes:
+        counts[p.kind] = counts.get(p.kind, 0) + 1
+    summary = ", ".join(f"{n} {kind}" for kind, n in counts.items())
+    toolpath = Toolpath(title, moves, m.spindle_rpm, m.tool_number, m.tool_diameter_mm, False,
+                        (f"{len(passes)} passes ({summary}) in {len(levels)} depth levels to {levels[-1]:g} mm",))
     try:
         program = write_program(toolpath, post, name)
     except GeometryError as err:
@@ -177,5 +234,10 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
     notes = ()
     if m.finish_allowance_mm > 0 and built.spec.kind != "disc":
         notes = ("finish_allowance does not apply to groove passes (the flanks have their own passes)",)
+    pass_contours = tuple(p.contour if p.contour is not None else 0 for p in passes if p.kind != "bore")
+    pass_finish = tuple(p.kind in ("finish", "spring", "slot", "groove") and
+                        not contours[p.contour].label.startswith("groove rough") for p in passes if p.kind != "bore")
+    removal = check_program(program.text, post, blank, m, built, contours)
     return MachiningResult(name, built.spec.kind, built.cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, m.mode,
-                           tuple(contours), toolpath, program, tuple(pass_contours), tuple(pass_finish), None, notes)
+                           tuple(contours), toolpath, program, pass_contours, pass_finish, None, notes,
+                           tuple(passes), blank, removal, removal.checks())

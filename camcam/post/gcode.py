@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from camcam.errors import GeometryError, InputError
 from camcam.post.post import Post
 from camcam.toolpath.elements import Arc, Line
-from camcam.toolpath.path import ArcMove, Feed, Rapid, Toolpath
+from camcam.toolpath.path import ArcMove, Comment, Feed, Rapid, Toolpath
 
 __all__ = ["Program", "write_program", "format_number", "printed_elements"]
 
@@ -122,6 +122,9 @@ class _Writer:
 
     def gcode_move(self, m, rotary: bool):
         d = self.post.decimals
+        if isinstance(m, Comment):
+            self.emit(self.comment(m.text))
+            return
         if isinstance(m, Rapid):
             w = self.axes(m.x, m.y, m.z)
             if w:
@@ -186,9 +189,15 @@ class _Writer:
     # -- Heidenhain --------------------------------------------------------------------
     def hh_move(self, m, first: bool):
         d = self.post.decimals
+        if isinstance(m, Comment):
+            self.emit(self.comment(m.text))
+            return
         if isinstance(m, Feed) and m.a_deg is not None:
             raise InputError(f"post {self.post.name}: 4-axis programs are not supported by this dialect")
         if isinstance(m, ArcMove):
+            if self.pos[2] is not None and _grid(m.z, d) != self.pos[2]:
+                raise InputError(f"post {self.post.name}: helical arcs (ramped groove entries) are not supported by "
+                                 f"this dialect")
             sx, sy = self.pos[0], self.pos[1]
             ex, ey, cx, cy = (_grid(v, d) for v in (m.x, m.y, m.cx, m.cy))
             self.check_arc(sx, sy, ex, ey, cx, cy, m.ccw)
@@ -235,8 +244,10 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam") -> Progr
     for c in toolpath.comments:
         body.append(w.comment(c))
     if post.dialect == "heidenhain":
-        for i, m in enumerate(toolpath.moves):
-            w.hh_move(m, i == 0)
+        first = True  # M3 goes on the first move (comments are not moves)
+        for m in toolpath.moves:
+            w.hh_move(m, first)
+            first = first and isinstance(m, Comment)
     else:
         if toolpath.rotary:
             w.emit("G93")

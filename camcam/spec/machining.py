@@ -10,6 +10,9 @@ feed = 400.0               # mm/min
 spindle = 3000             # rev/min
 depth = 12.0               # mm
 stepdown = 4.0             # mm
+stepover = 0.4             # roughing: radial step, a fraction of the tool diameter
+ramp_angle = 3.0           # deg, steepest descent into material (grooves: ramped entries)
+bore = false               # true: cut the bore as a helical bore
 ```
 """
 
@@ -46,6 +49,14 @@ class MachiningSpec:
     finish_allowance_mm: float
     spring_pass: bool
     tool_number: int
+    stepover: float = 0.4
+    ramp_angle_deg: float = 3.0
+    bore: bool = False
+
+    @property
+    def stepover_mm(self) -> float:
+        """The largest radial engagement of a roughing pass (mm)."""
+        return self.stepover * self.tool_diameter_mm
 
     def cut_settings(self, stock_side: str = "right") -> CutSettings:
         """Settings for :func:`camcam.toolpath.path.contour_toolpath`."""
@@ -81,6 +92,9 @@ def read_machining(t: Table, base: Path) -> MachiningSpec:
     allowance = t.number("finish_allowance", 0.0, minimum=0.0, unit="mm")
     spring = t.boolean("spring_pass", False)
     tool_number = t.integer("tool_number", 1, minimum=0, maximum=999)
+    stepover = t.number("stepover", 0.4, minimum=0.0, maximum=1.0, inclusive=False)
+    ramp = t.number("ramp_angle", 3.0, minimum=0.0, maximum=45.0, inclusive=False, unit="deg")
+    bore = t.boolean("bore", False)
     t.done()
     return MachiningSpec(post, tool, tol, mode, feed, spindle, depth, stepdown, plunge, safe, clearance, lead,
-                         allowance, spring, tool_number)
+                         allowance, spring, tool_number, stepover, ramp, bore)

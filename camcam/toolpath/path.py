@@ -17,7 +17,7 @@ import numpy as np
 from camcam.errors import InputError
 from camcam.toolpath.elements import Arc, Line
 
-__all__ = ["Rapid", "Feed", "ArcMove", "Toolpath", "CutSettings", "contour_toolpath", "offset_elements",
+__all__ = ["Rapid", "Feed", "ArcMove", "Comment", "Toolpath", "CutSettings", "contour_toolpath", "offset_elements",
            "rotary_toolpath", "slot_toolpath", "depth_levels"]
 
 
@@ -53,6 +53,13 @@ class ArcMove:
     ccw: bool
     z: float
     feed_mm_min: float
+
+
+@dataclass(frozen=True)
+class Comment:
+    """A comment line between moves (a pass's name)."""
+
+    text: str
 
 
 @dataclass(frozen=True)
