@@ -11,6 +11,7 @@ nothing.
 
 from __future__ import annotations
 
+import sys
 from importlib import resources
 from pathlib import Path
 
@@ -29,13 +30,15 @@ def nc_step(out, spec, built, report: dict):
     from camcam.export.nc import machining_report, nc_files
     from camcam.nc.job import machine
 
-    result = machine(built, spec.machining, spec.name)
+    result = machine(built, spec.machining, spec.name, spec.stock)
     for name, data in nc_files(built, result).items():
         out.add(name, data)
     nc = machining_report(result)
     for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks"):
         report[key] = nc[key]
     report["machining"] = nc
+    if "material" in nc:
+        report["material"] = nc["material"]
     for note in result.notes:
         warn(note)
     return result
@@ -62,6 +65,7 @@ def run(args) -> int:
     from camcam.cli.motion import motion_outputs, motion_summary, print_summary
     from camcam.export.files import OutputSet
 
+    machining = None
     spec = _load(args.spec)
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
@@ -98,6 +102,7 @@ def run(args) -> int:
         summary["cam"] = report
     with step("writing files"):
         written = out.commit()
+    checks = tuple(machining.checks) if spec.cam is not None and machining is not None else ()
     summary["files"] = [str(p) for p in written]
     if args.json:
         print_json(summary)
@@ -110,6 +115,18 @@ def run(args) -> int:
             if "machining" in c:
                 print(f"NC: {c['line_blocks']} line + {c['arc_blocks']} arc blocks (lower bound {c['lower_bound_blocks']:.1f}), "
                       f"max deviation {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm on the printed program")
+            if "material" in c:
+                mt = c["material"]
+                print(f"material: {mt['blank']['description']}; {len(mt['passes'])} passes, largest engagement "
+                      f"{mt['max_engagement_mm']:.3f} mm of {mt['stepover_mm']:g} mm, {mt['plunges_into_material']} "
+                      f"plunges into material, left {mt['material_left_mm']:.4f} mm, overcut {mt['overcut_mm']:.4f} mm")
         for p in written:
             print(f"wrote {p}")
+    if checks:
+        from camcam.verdict import Verdict
+
+        verdict = Verdict(checks)
+        if not verdict.passed:
+            print(f"camcam: {verdict.line()}", file=sys.stderr)
+        return verdict.exit_status
     return 0

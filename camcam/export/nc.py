@@ -94,4 +94,19 @@ def machining_report(r: MachiningResult) -> dict:
         "lower_bound_kind": "arcs: ∫(|κ′|/192δ)^⅓ ds" if r.mode == "arcs" else "lines: ∫√(|κ|/8δ) ds",
         "program_blocks": {"line": r.program.line_blocks, "arc": r.program.arc_blocks, "rapid": r.program.rapid_blocks},
         "reference_radius_mm": r.reference_radius_mm, "contours": contours, "notes": list(r.notes),
+        **({"material": material_report(r)} if r.removal is not None else {}),
+        "checks": [c.as_dict() for c in r.checks],
+    }
+
+
+def material_report(r: MachiningResult) -> dict:
+    """The blank, the passes and the material-removal figures of a disc or face-groove job."""
+    b = r.blank
+    passes = [{"kind": p.kind, "z_mm": p.z, "contour": r.contours[p.contour].label if p.contour is not None else None}
+              for p in r.passes]
+    return {
+        "blank": {"kind": b.kind, "diameter_mm": b.diameter_mm, "allowance_mm": b.allowance_mm,
+                  "top_allowance_mm": b.top_z_mm, "stated": b.stated, "description": b.describe(),
+                  "cam_largest_radius_mm": b.cam_radius_mm, "top": b.top_note(), "bore": b.bore_note()},
+        "passes": passes, **r.removal.as_dict(),
     }

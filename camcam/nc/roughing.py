@@ -226,8 +226,9 @@ def cut_cyclic(elements, s_from: float, s_to: float) -> tuple:
     total = float(lengths.sum())
     out, pos = [], 0.0
     k = 0
+    run = max(s_to - s_from, 0.0)
     s_from = s_from % total
-    s_to = s_from + (s_to - s_from if s_to > s_from else 0.0)
+    s_to = s_from + run
     # walk whole laps of the contour until s_to is reached
     while pos < s_to - 1e-12:
         e = elements[k % len(elements)]

@@ -127,6 +127,10 @@ def blank_for(built: BuiltCam, stock: StockSpec, tool_diameter_mm: float, bore: 
         if spec.bore <= tool_diameter_mm:
             raise SpecError("machining.bore", f"the tool Ø{tool_diameter_mm:g} mm does not fit the bore "
                                               f"Ø{spec.bore:g} mm; expected a tool smaller than the bore")
+        if spec.bore / 2 > tool_diameter_mm:
+            raise SpecError("machining.bore", f"a Ø{tool_diameter_mm:g} mm tool on a helix in the Ø{spec.bore:g} mm "
+                                              f"bore leaves a core standing; expected a tool of at least "
+                                              f"Ø{spec.bore / 2:g} mm (half the bore)")
     if groove:
         outer = groove_outer_radius(cam, spec)
         radius, at = outer, 0.0

@@ -19,6 +19,7 @@ from camcam.report.deviation_along import signed_deviation
 from camcam.report.fitted_motion import fitted_motion
 from camcam.report.html import Code, DataTable, Figure, KeyValues, Paragraph, Section, render_html
 from camcam.report.inspection import inspection_table
+from camcam.report.material import material_section
 from camcam.nc.job import MachiningResult
 
 __all__ = ["JobReport", "job_report"]
@@ -90,6 +91,9 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: Buil
         excerpt = m.program.text.splitlines()[:24]
         blocks.append(Code("\n".join(excerpt), f"The first {len(excerpt)} lines of {m.program_filename}."))
         sections.append(Section("Tolerance", tuple(blocks)))
+        material = material_section(m)
+        if material is not None:
+            sections.append(material)
         if isinstance(disc, DiscCam):
             c0 = m.contours[0]
             fm = fitted_motion(disc, c0.printed, c0.offset_mm, np.arange(0.0, 360.0, 0.5))

@@ -170,7 +170,7 @@ class RemovalReport:
         return {
             "tool_radius_mm": self.tool_radius_mm, "stepover_mm": self.stepover_mm,
             "ramp_angle_deg": self.ramp_angle_deg, "tolerance_mm": self.tolerance_mm,
-            "finish_allowance_mm": self.allowance_mm, "levels_mm": list(self.levels), "passes": self.passes,
+            "finish_allowance_mm": self.allowance_mm, "levels_mm": list(self.levels), "passes_checked": self.passes,
             "max_engagement_mm": self.max_engagement_mm, "max_engagement_where": self.engagement_where,
             "max_slot_engagement_mm": self.max_slot_engagement_mm,
             "plunges_into_material": self.plunges, "plunge_where": self.plunge_where,
