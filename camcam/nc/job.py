@@ -1,101 +1,48 @@
-"""The machining stage: a built cam and its ``[machining]`` table → contours, tool path, program.
+"""The machining job: a built cam and its ``[machining]`` settings → contours, passes, program.
 
-Disc cams: the tool-centre curve is the profile offset by the tool radius away
-from the material (``offset_profile(r_t)``), cut with tangent leads on the free
-side.  Face grooves: a tool as wide as the groove (diameter = 2 · roller
-radius) cuts it in one centre pass along the pitch curve; a narrower one cuts
-a centre pass, then each flank at ``offset_flank(i, r_t)`` (a tool below a
-third of the groove width would leave a band between these passes and is
-refused), all plunged inside the groove without leads.  Cylindrical cams:
-:mod:`camcam.nc.rotary`.
+Disc cams are cut from the blank of ``[stock]`` (:mod:`camcam.nc.stock`): at
+every depth level a roughing spiral from the blank to the finish allowance
+(:mod:`camcam.nc.roughing`), then the finish contour, the profile offset by
+the tool radius away from the material (``offset_profile(r_t)``), cut with
+tangent leads on the free side, then the optional spring pass.  Face
+grooves: a tool as wide as the groove (diameter = 2 · roller radius) cuts it
+in one centre pass along the pitch curve (a stated slot); a narrower one
+cuts a centre pass, rough offsets no more than the stepover apart, then each
+flank at ``offset_flank(i, r_t)`` (:mod:`camcam.nc.tools`); every groove pass
+is ramped down along its contour at no more than the ramp angle.  With
+``[machining] bore = true`` the bore is cut as a helical bore
+(:mod:`camcam.nc.bore`).  Cylindrical cams: :mod:`camcam.nc.rotary`.
 
-Every contour is fitted at the spec's tolerance with the post's decimals and
-arc sweep; its deviation is measured on the path the post prints.
+The printed program is read back and checked against the blank, 2.5-D
+(:mod:`camcam.nc.removal`); its figures are checks of the job.
+
+Every contour is fitted at the spec's tolerance with the post's printed
+rounding (:attr:`Post.quantizer`) and arc sweep; its deviation is measured on
+the path the post prints.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
 from camcam.errors import GeometryError
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
-from camcam.post.gcode import Program, printed_elements, write_program
-from camcam.post.post import Post
-from camcam.nc.bore import bore_passes
-from camcam.nc.passes import Pass, finish_moves, ramp_loop_passes, spiral_moves, with_markers
+from camcam.nc.bore import bore_circle_radius, bore_curve, bore_passes
+from camcam.nc.passes import finish_moves, ramp_loop_passes, spiral_moves, with_markers
+from camcam.nc.removal import check_program
+from camcam.nc.result import MachiningResult, deviation_checks
 from camcam.nc.roughing import RING_STEP_FRACTION, disc_spiral
-from camcam.nc.stock import Blank, blank_for
-from camcam.spec.machining import MachiningSpec
-from camcam.spec.stock import DEFAULT_STOCK, StockSpec
+from camcam.nc.settings import MachiningSpec
+from camcam.nc.stock import DEFAULT_STOCK, StockSpec, blank_for
+from camcam.nc.tools import check_profile_tool, groove_passes, job_title
 from camcam.toolpath.contours import CutContour, fit_printed
-from camcam.toolpath.path import Rapid, Toolpath, depth_levels
-from camcam.verdict import Check
-from camcam.verify.removal import RemovalReport, check_program
+from camcam.toolpath.path import Pass, Rapid, Toolpath, depth_levels
 
-__all__ = ["MachiningResult", "machine", "SAME_TOOL_MM"]
-
-#: A tool whose diameter is within this of the groove width counts as the roller's size (mm).
-SAME_TOOL_MM = 1e-6
-
-
-@dataclass(frozen=True)
-class MachiningResult:
-    """Everything the NC step made for one cam (no files: exporters write them).
-
-    ``pass_contours[k]`` names the contour (index into ``contours``) that feed
-    pass k follows and ``pass_finish[k]`` whether the pass runs on it (False
-    for roughing at a finishing allowance), in the order the program cuts them.
-    """
-
-    name: str
-    cam_kind: str
-    follower_kind: str
-    post: Post
-    tool_diameter_mm: float
-    tolerance_mm: float
-    mode: str
-    contours: tuple[CutContour, ...]
-    toolpath: Toolpath
-    program: Program
-    pass_contours: tuple[int, ...]
-    pass_finish: tuple[bool, ...]
-    reference_radius_mm: float | None = None
-    notes: tuple[str, ...] = ()
-    passes: tuple = ()
-    blank: Blank | None = None
-    removal: RemovalReport | None = None
-    checks: tuple[Check, ...] = ()
-
-    @property
-    def rotary(self) -> bool:
-        return self.toolpath.rotary
-
-    @property
-    def program_filename(self) -> str:
-        return f"{self.name}.{self.program.extension}"
-
-    @property
-    def max_deviation_mm(self) -> float:
-        """Largest two-sided deviation of a printed contour from its exact tool-centre curve."""
-        return max(c.deviation.max_deviation_mm for c in self.contours)
-
-    @property
-    def line_blocks(self) -> int:
-        """Line blocks on the contours (one pass each; leads and depth repeats not counted)."""
-        return sum(c.fit.line_blocks for c in self.contours)
-
-    @property
-    def arc_blocks(self) -> int:
-        return sum(c.fit.arc_blocks for c in self.contours)
-
-    @property
-    def lower_bound_blocks(self) -> float:
-        """N_lb = ∫(|κ′|/192δ)^⅓ ds (arcs) or ∫√(|κ|/8δ) ds (lines), summed over the contours."""
-        return float(sum(c.lower_bound for c in self.contours))
+__all__ = ["machine"]
 
 
 def _stock_side(curve, free_dir: np.ndarray) -> str:
@@ -104,140 +51,113 @@ def _stock_side(curve, free_dir: np.ndarray) -> str:
     return "right" if float(n @ free_dir) > 0 else "left"
 
 
-def _printer(post: Post):
-    return lambda elements: printed_elements(elements, post)
-
-
-def _disc_plan(built: BuiltCam, r_t: float):
-    """[(label, tool-centre curve, offset, free direction at t=0 or None for a groove pass)]."""
+def _disc_plan(built: BuiltCam, r_t: float, stepover_mm: float):
+    """[(label, tool-centre curve, offset, free direction at t=0 or None for a groove pass, pass kind)]."""
     cam, kind = built.cam, built.spec.kind
     away = cam.normal(np.array([0.0]))[0]  # away from the material of the profile / inner flank
     if kind == "disc":
-        conc = built.analysis.profile.min_concave_radius
-        if conc is not None and r_t >= conc.value:
-            raise GeometryError(f"machining.tool_diameter: {2 * r_t:g} mm is too large: the profile's smallest concave "
-                                f"radius is {conc.value:.3f} mm at cam angle {conc.angle_deg:.2f}°; expected a tool "
-                                f"radius below it")
-        return [("profile", cam.offset_profile(r_t), r_t, away)]
+        check_profile_tool(r_t, built.analysis.profile.min_concave_radius)
+        return [("profile", cam.offset_profile(r_t), r_t, away, "finish")]
     r_r = cam.roller_radius
-    if r_t > r_r + SAME_TOOL_MM:
-        raise GeometryError(f"machining.tool_diameter: {2 * r_t:g} mm is wider than the groove ({2 * r_r:g} mm, "
-                            f"twice the roller radius)")
-    if abs(r_t - r_r) <= SAME_TOOL_MM:
-        return [("groove centre", cam.pitch, r_r, None)]
-    if 3 * r_t < r_r:
-        raise GeometryError(f"machining.tool_diameter: {2 * r_t:g} mm is below a third of the groove width "
-                            f"{2 * r_r:g} mm: a centre pass and two flank passes would leave material between them")
-    return [("groove centre (rough)", cam.pitch, r_r, None), ("inner flank", cam.offset_flank(0, r_t), r_t, None),
-            ("outer flank", cam.offset_flank(1, r_t), r_t, None)]
-
-
-def _join(title: str, paths: list[Toolpath]) -> Toolpath:
-    moves, comments = [], []
-    for p in paths:
-        moves.extend(p.moves)
-        comments.extend(p.comments)
-    first = paths[0]
-    return Toolpath(title, tuple(moves), first.spindle_rpm, first.tool_number, first.tool_diameter_mm,
-                    first.rotary, tuple(dict.fromkeys(comments)))
-
-
-def _title(name: str, built: BuiltCam, m: MachiningSpec, mode: str) -> str:
-    return (f"{name}: {built.spec.kind} cam, {built.cam.kind} follower, tool D{m.tool_diameter_mm:g} mm, "
-            f"{mode} within {m.tolerance_mm:g} mm, post {m.post.name}")
-
-
-def _narrow_groove_plan(built: BuiltCam, r_t: float, step_mm: float):
-    """Rough offsets of the centre line between the centre pass and each flank pass, no wider apart than ``step_mm``."""
-    cam = built.cam
-    r_r = cam.roller_radius
+    if groove_passes(r_t, r_r) == "centre":
+        return [("groove centre", cam.pitch, r_r, None, "slot")]
+    step = RING_STEP_FRACTION * stepover_mm
     span = r_r - r_t  # from the centre line to a flank pass
-    n = max(0, math.ceil(span / step_mm - 1e-9) - 1)
-    out = []
-    for i, name in ((0, "inner"), (1, "outer")):
-        for j in range(1, n + 1):
-            d = span * j / (n + 1)
-            out.append((f"groove rough {name} {j}", cam.offset_flank(i, r_r - d), r_t, None))
-    return out
+    n = max(0, math.ceil(span / step - 1e-9) - 1)  # rough offsets between them, no more than the step apart
+    rough = [(f"groove rough {side} {j}", cam.offset_flank(i, r_r - span * j / (n + 1)), r_t, None, "rough")
+             for i, side in ((0, "inner"), (1, "outer")) for j in range(1, n + 1)]
+    return [("groove centre (rough)", cam.pitch, r_r, None, "slot"), *rough,
+            ("inner flank", cam.offset_flank(0, r_t), r_t, None, "finish"),
+            ("outer flank", cam.offset_flank(1, r_t), r_t, None, "finish")]
 
 
 def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK) -> MachiningResult:
-    """Tool-centre curves, fitted contours, passes, tool path and program for ``built`` (no I/O).
+    """Tool-centre curves, fitted contours, passes and program for ``built`` (no I/O).
 
-    A disc cam is roughed from the blank of ``stock`` at every depth level
-    (:mod:`camcam.nc.roughing`), then finished and spring-passed on the fitted
-    contour; a face groove is cut by ramped laps.  The printed program is read
-    back and checked against the blank (:mod:`camcam.verify.removal`).
+    Parameters
+    ----------
+    built : BuiltCam
+        The cam from :func:`camcam.geometry.build.build_cam`.
+    m : MachiningSpec
+        The validated ``[machining]`` table.
+    name : str
+        The job name (program title and file names).
+    stock : StockSpec
+        The blank (``[stock]``; default: round, 2 mm over the cam's largest radius).
+
+    Returns
+    -------
+    MachiningResult
 
     Raises
     ------
     GeometryError
         A tool too large for a concave part of the profile, wider than a
-        groove, or too small to clear it; a post that cannot hold the program.
+        groove, or too small to clear it.
     SpecError
-        A blank smaller than the cam, a bore too large, a helical bore the tool does not fit.
+        A blank smaller than the cam, a bore larger than the base circle minus
+        the roller, a helical bore the tool does not fit.
+    FitError, PostError
+        Faults of the fitter or the writer on valid input.
     """
     if built.spec.kind == "cylindrical":
         from camcam.nc.rotary import machine_cylindrical
 
         return machine_cylindrical(built, m, name)
     post, r_t = m.post, m.tool_diameter_mm / 2
-    title = _title(name, built, m, m.mode)
+    title = job_title(name, built.spec.kind, built.cam.kind, m.tool_diameter_mm, m.mode, m.tolerance_mm, post.name)
     blank = blank_for(built, stock, m.tool_diameter_mm, m.bore)
     z_clear = blank.top_z_mm + m.clearance_z_mm
     levels = depth_levels(m.cut_settings())
-    plan = _disc_plan(built, r_t)
-    if built.spec.kind == "disc-groove" and len(plan) > 1:
-        plan = plan[:1] + _narrow_groove_plan(built, r_t, RING_STEP_FRACTION * m.stepover_mm) + plan[1:]
+    plan = _disc_plan(built, r_t, m.stepover_mm)
+    if m.bore:
+        plan.append(("bore", bore_curve(bore_circle_radius(blank, r_t)), r_t, None, "bore"))
     contours, passes = [], []
-    for k, (label, curve, offset, free) in enumerate(plan):
-        fit, printed, dev, segs = fit_printed(curve, m.tolerance_mm, m.mode, post.decimals, post.max_arc_sweep_deg,
-                                              _printer(post), f"{name} {label}")
+    for k, (label, curve, offset, free, kind) in enumerate(plan):
+        fit, printed, dev, segs = fit_printed(curve, m.tolerance_mm, m.mode, post.quantizer, post.max_arc_sweep_deg,
+                                              post.quantizer.printed_elements, f"{name} {label}")
         side = _stock_side(curve, free) if free is not None else "both"
         cs = replace(m.cut_settings(side if free is not None else "right"), clearance_z_mm=z_clear,
                      safe_z_mm=max(m.safe_z_mm, z_clear))
-        if free is not None:
-            spiral = disc_spiral(blank.part, blank.region, r_t, m.finish_allowance_mm, m.stepover_mm,
-                                 clockwise=(side == "right"), max_sweep_deg=post.max_arc_sweep_deg)
-            a = m.finish_allowance_mm
-            for z in levels:
-                if spiral is not None:
-                    passes.append(Pass(None, "rough", z, spiral_moves(spiral, z, cs)))
-                if a == 0:
-                    passes.append(Pass(k, "finish", z, finish_moves(fit.elements, z, cs)))
-            if a > 0:
-                passes.append(Pass(k, "finish", levels[-1], finish_moves(fit.elements, levels[-1], cs)))
-            if m.spring_pass:
-                passes.append(Pass(k, "spring", levels[-1], finish_moves(fit.elements, levels[-1], cs)))
+        if kind == "bore":
+            passes += bore_passes(k, fit.elements, blank, r_t, m, z_clear, levels[-1], built.spec.thickness)
+        elif free is not None:
+            passes += _profile_passes(k, fit.elements, blank, m, cs, side, levels)
         else:
-            kind = "slot" if k == 0 else "groove"
             passes += ramp_loop_passes(k, kind, fit.elements, levels, blank.top_z_mm, m.ramp_angle_deg, cs,
                                        m.spring_pass)
         contours.append(CutContour(label, curve, fit, printed, dev, offset, free is not None, segs, side))
-    if m.bore:
-        passes += bore_passes(blank, r_t, m, z_clear, levels[-1], built.spec.thickness)
-    labels = [c.label for c in contours]
-    moves = (Rapid(None, None, max(m.safe_z_mm, z_clear)),) + \
-        with_markers(passes, lambda p: labels[p.contour] if p.contour is not None else
-                     ("bore" if p.kind == "bore" else "spiral to the finish allowance")) + \
-        (Rapid(None, None, max(m.safe_z_mm, z_clear)),)
-    counts = {}
+    safe = (Rapid(None, None, max(m.safe_z_mm, z_clear)),)
+    counts: dict[str, int] = {}
     for p in passes:
         counts[p.kind] = counts.get(p.kind, 0) + 1
     summary = ", ".join(f"{n} {kind}" for kind, n in counts.items())
-    toolpath = Toolpath(title, moves, m.spindle_rpm, m.tool_number, m.tool_diameter_mm, False,
-                        (f"{len(passes)} passes ({summary}) in {len(levels)} depth levels to {levels[-1]:g} mm",))
-    try:
-        program = write_program(toolpath, post, name)
-    except GeometryError as err:
-        raise GeometryError(f"post {post.name}: {err}") from None
+    toolpath = Toolpath(title, with_markers(passes, [c.label for c in contours]), m.spindle_rpm, m.tool_number,
+                        m.tool_diameter_mm, False,
+                        (f"{len(passes)} passes [{summary}] in {len(levels)} depth levels to {levels[-1]:g} mm",),
+                        safe, safe)
+    program = post.write_program(toolpath, name)
     notes = ()
     if m.finish_allowance_mm > 0 and built.spec.kind != "disc":
         notes = ("finish_allowance does not apply to groove passes (the flanks have their own passes)",)
-    pass_contours = tuple(p.contour if p.contour is not None else 0 for p in passes if p.kind != "bore")
-    pass_finish = tuple(p.kind in ("finish", "spring", "slot", "groove") and
-                        not contours[p.contour].label.startswith("groove rough") for p in passes if p.kind != "bore")
-    removal = check_program(program.text, post, blank, m, built, contours)
+    removal = check_program(program.text, post, blank, m, built)
     return MachiningResult(name, built.spec.kind, built.cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, m.mode,
-                           tuple(contours), toolpath, program, pass_contours, pass_finish, None, notes,
-                           tuple(passes), blank, removal, removal.checks())
+                           tuple(contours), toolpath, program, None, notes,
+                           deviation_checks(contours, m.tolerance_mm) + removal.checks(), blank, removal)
+
+
+def _profile_passes(k: int, elements, blank, m: MachiningSpec, cs, side: str, levels) -> list[Pass]:
+    """A disc profile: a roughing spiral at each level, then finish (each level without an allowance) and spring."""
+    spiral = disc_spiral(blank.part, blank.region, m.tool_diameter_mm / 2, m.finish_allowance_mm, m.stepover_mm,
+                         clockwise=(side == "right"), max_sweep_deg=m.post.max_arc_sweep_deg)
+    a, passes = m.finish_allowance_mm, []
+    for z in levels:
+        if spiral is not None:
+            passes.append(Pass(k, "rough", z, spiral_moves(spiral, z, cs)))
+        if a == 0:
+            passes.append(Pass(k, "finish", z, finish_moves(elements, z, cs)))
+    if a > 0:
+        passes.append(Pass(k, "finish", levels[-1], finish_moves(elements, levels[-1], cs)))
+    if m.spring_pass:
+        passes.append(Pass(k, "spring", levels[-1], finish_moves(elements, levels[-1], cs)))
+    return passes

@@ -6,27 +6,28 @@ from the printed program (and rs274's ``COMMENT`` lines) to know which passes
 may slot.
 
 * ``rough``: a spiral from the blank to the finish allowance at one depth
-  level (:func:`spiral_moves`), entered outside the material;
+  level (:func:`spiral_moves`), entered outside the material (its contour
+  is the profile it roughs to); a narrower tool's rough offsets in a groove;
 * ``finish``, ``spring``: the fitted contour with tangent lead arcs on the
   free side, exactly as before roughing existed;
 * ``slot``: a groove's centre pass with a tool as wide as the groove: full
   engagement allowed, ramped down along the contour;
-* ``groove``: a narrower tool's groove passes (rough offsets and flanks),
-  ramped down along the contour.
+* ``bore``: the helical bore (:mod:`camcam.nc.bore`), a slot too.
+
+Groove passes (slot, rough offsets, flanks) are ramped down along their contour.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-
 import numpy as np
 
 from camcam.nc.roughing import Spiral, cut_cyclic
-from camcam.toolpath.elements import Arc, Line
-from camcam.toolpath.path import ArcMove, Comment, CutSettings, Feed, Rapid, _contour_moves, _pass_moves
+from camcam.toolpath.elements import Line
+from camcam.toolpath.path import (ArcMove, Comment, CutSettings, Feed, Pass, Rapid, contour_moves,
+                                  lead_pass_moves)
 
-__all__ = ["Pass", "SLOT_KINDS", "spiral_moves", "finish_moves", "ramp_loop_passes", "with_markers",
+__all__ = ["SLOT_KINDS", "spiral_moves", "finish_moves", "ramp_loop_passes", "with_markers",
            "MARKER_PREFIX"]
 
 #: Pass kinds whose tool may engage its full diameter.
@@ -36,33 +37,20 @@ SLOT_KINDS = ("slot", "bore")
 MARKER_PREFIX = "pass "
 
 
-@dataclass(frozen=True)
-class Pass:
-    """One pass of the job: ``contour`` (index into the job's contours, or None for a
-    roughing spiral), ``kind``, depth ``z`` (mm, tool tip) and its neutral moves."""
-
-    contour: int | None
-    kind: str
-    z: float
-    moves: tuple
-
-
 def spiral_moves(sp: Spiral, z: float, cs: CutSettings) -> tuple:
     """Rapid over the entry (outside the blank), plunge there, feed onto the spiral, spiral, retract."""
     plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
     s = sp.elements[0].start
     moves = [Rapid(sp.entry[0], sp.entry[1], None), Rapid(None, None, cs.clearance_z_mm), Feed(None, None, z, plunge),
              Feed(float(s[0]), float(s[1]), z, cs.feed_mm_min)]
-    moves += _contour_moves(sp.elements, z, cs.feed_mm_min)
+    moves += contour_moves(sp.elements, z, cs.feed_mm_min)
     moves.append(Rapid(None, None, cs.clearance_z_mm))
     return tuple(moves)
 
 
 def finish_moves(elements, z: float, cs: CutSettings) -> tuple:
     """The fitted contour at ``z`` with tangent lead arcs on the free side (``cs.stock_side``)."""
-    plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
-    return tuple(_pass_moves(tuple(elements), z, cs.feed_mm_min, plunge, cs.lead_radius_mm,
-                             cs.stock_side == "right", cs))
+    return lead_pass_moves(elements, z, cs)
 
 
 def _ramp(elements, z0: float, z1: float, feed: float) -> list:
@@ -98,7 +86,7 @@ def ramp_loop_passes(contour: int, kind: str, elements, levels, z_top: float, ra
         moves = list(head) if i == 0 else []
         moves += _ramp(cut_cyclic(elements, s, s + run), z_prev, z, cs.feed_mm_min)
         s = (s + run) % total
-        moves += _contour_moves(cut_cyclic(elements, s, s + total), z, cs.feed_mm_min)
+        moves += contour_moves(cut_cyclic(elements, s, s + total), z, cs.feed_mm_min)
         passes.append(Pass(contour, kind, z, tuple(moves)))
         z_prev = z
     passes[-1] = Pass(contour, kind, levels[-1], passes[-1].moves + (Rapid(None, None, cs.clearance_z_mm),))
@@ -106,16 +94,15 @@ def ramp_loop_passes(contour: int, kind: str, elements, levels, z_top: float, ra
         q = cut_cyclic(elements, s, s + total)
         start = q[0].start
         moves = [Rapid(float(start[0]), float(start[1]), None), Rapid(None, None, cs.clearance_z_mm),
-                 Feed(None, None, levels[-1], plunge)] + _contour_moves(q, levels[-1], cs.feed_mm_min)
+                 Feed(None, None, levels[-1], plunge)] + contour_moves(q, levels[-1], cs.feed_mm_min)
         moves.append(Rapid(None, None, cs.clearance_z_mm))
         passes.append(Pass(contour, "spring", levels[-1], tuple(moves)))
     return passes
 
 
-def with_markers(passes, label) -> tuple:
-    """All moves of ``passes``, each pass opened by its comment; ``label(pass)`` names what it cuts."""
-    moves, n = [], len(passes)
-    for i, p in enumerate(passes):
-        moves.append(Comment(f"{MARKER_PREFIX}{i + 1}/{n}: {p.kind}, {label(p)}, Z{p.z:g}"))
-        moves.extend(p.moves)
-    return tuple(moves)
+def with_markers(passes, labels) -> tuple:
+    """``passes``, each opened by a comment naming it: ``pass i/n: kind, contour label, Z…``."""
+    n = len(passes)
+    return tuple(Pass(p.contour, p.kind, p.z,
+                      (Comment(f"{MARKER_PREFIX}{i + 1}/{n}: {p.kind}, {labels[p.contour]}, Z{p.z:g}"),) + p.moves)
+                 for i, p in enumerate(passes))

@@ -19,37 +19,10 @@ checks it.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
+from camcam.nc.stock import DEFAULT_OVERSIZE_MM, DEFAULT_STOCK, STOCK_KINDS, StockSpec
 from camcam.spec.reader import Table
 
 __all__ = ["StockSpec", "read_stock", "DEFAULT_STOCK", "DEFAULT_OVERSIZE_MM", "STOCK_KINDS"]
-
-STOCK_KINDS = ("round", "offset")
-
-#: The default blank's radius over the cam's largest radius (mm).
-DEFAULT_OVERSIZE_MM = 2.0
-
-
-@dataclass(frozen=True)
-class StockSpec:
-    """The validated ``[stock]`` table.
-
-    ``diameter_mm`` is set for ``kind = "round"`` (``None``: the default blank,
-    :data:`DEFAULT_OVERSIZE_MM` over the cam's largest radius), ``allowance_mm``
-    for ``kind = "offset"``.  ``stated`` is False when the spec has no ``[stock]``.
-    """
-
-    kind: str = "round"
-    diameter_mm: float | None = None
-    allowance_mm: float | None = None
-    top_allowance_mm: float = 0.0
-    stated: bool = False
-
-
-#: The blank when a spec has no ``[stock]`` table.
-DEFAULT_STOCK = StockSpec()
-
 
 def read_stock(t: Table, cam=None) -> StockSpec:
     """Validate ``[stock]`` (the size against the cam is checked by the NC stage).

@@ -15,7 +15,7 @@ from camcam.post.gcode import write_program
 from camcam.spec import load_spec
 from camcam.toolpath.contours import fit_printed
 from camcam.toolpath.path import contour_toolpath
-from camcam.verify.removal import check_moves, check_program
+from camcam.nc.removal import check_moves, check_program
 from camcam.verify.rs274 import CanonMove
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -103,10 +103,8 @@ def test_todays_program_plunges_into_the_blank():
     m = spec.machining
     post = m.post
     curve = built.cam.offset_profile(m.tool_diameter_mm / 2)
-    from camcam.post.gcode import printed_elements
-
-    fit, *_ = fit_printed(curve, m.tolerance_mm, m.mode, post.decimals, post.max_arc_sweep_deg,
-                          lambda e: printed_elements(e, post), "today")
+    fit, *_ = fit_printed(curve, m.tolerance_mm, m.mode, post.quantizer, post.max_arc_sweep_deg,
+                          post.quantizer.printed_elements, "today")
     from camcam.nc.job import _stock_side
 
     side = _stock_side(curve, built.cam.normal(np.array([0.0]))[0])
@@ -114,7 +112,7 @@ def test_todays_program_plunges_into_the_blank():
     text = write_program(contour_toolpath(fit.elements, m.cut_settings(side), "today"), post, "today").text
     assert "G0 X-2.3299 Y56.8178\nG0 Z2\nG1 Z-6 F200" in text
     blank = blank_for(built, spec.stock, m.tool_diameter_mm)
-    r = check_program(text, post, blank, m, built, ())
+    r = check_program(text, post, blank, m, built)
     assert r.plunges >= 1
     assert r.plunge_where.endswith("X-2.330 Y56.818 Z-6.000")  # r = 56.87 mm, where the old first pass plunged
     assert not {c.name: c for c in r.checks()}["plunges into material"].ok

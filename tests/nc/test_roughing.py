@@ -15,7 +15,7 @@ from camcam.nc.job import machine
 from camcam.nc.roughing import ROUGH_FIT_MM, cut_cyclic, polyline_elements
 from camcam.spec.stock import StockSpec
 from camcam.toolpath.elements import Arc, element_distance
-from camcam.verify.removal import check_moves, design_keep
+from camcam.nc.removal import check_moves, design_keep
 from camcam.verify.rs274 import print_margin_mm, rs274_available, run_rs274
 
 from tests.nc.test_job import built_and_result

@@ -1,6 +1,6 @@
 """Read our own printed programs back: the moves a controller would make, from the printed numbers.
 
-This is the in-process twin of :func:`camcam.verify.rs274.run_rs274` for the
+This is the in-process twin of :func:`camcam.verify.rs274.run_rs274` (same move fields) for the
 report (every post, no external program): G-code (G0/G1/G2/G3 with X Y Z,
 I J incremental or absolute, or R; modal motion and coordinates; ``N``
 numbers; parenthesis or semicolon comments) and Heidenhain conversational
@@ -15,10 +15,22 @@ from __future__ import annotations
 import math
 import re
 
-from camcam.post.post import Post
-from camcam.verify.rs274 import CanonMove
+from dataclasses import dataclass
 
-__all__ = ["read_program"]
+__all__ = ["read_program", "Move"]
+
+
+@dataclass(frozen=True)
+class Move:
+    """One move read back (the fields of :class:`camcam.verify.rs274.CanonMove`): ``kind`` "rapid", "line" or "arc"."""
+
+    kind: str
+    x: float
+    y: float
+    z: float
+    a: float = 0.0
+    centre: tuple[float, float] | None = None
+    ccw: bool = False
 
 _WORD = re.compile(r"([A-Z]+)\s*([+-]?(?:\d+\.?\d*|\.\d+))")
 _PAREN = re.compile(r"\(([^)]*)\)")
@@ -35,7 +47,7 @@ def _r_centre(sx, sy, ex, ey, r, ccw):
     return mx + side * h * nx, my + side * h * ny
 
 
-def _gcode(text: str, post: Post) -> list:
+def _gcode(text: str, post) -> list:
     out: list = []
     x = y = z = 0.0
     mode = None
@@ -65,7 +77,7 @@ def _gcode(text: str, post: Post) -> list:
             continue
         nx, ny, nz = vals.get("X", x), vals.get("Y", y), vals.get("Z", z)
         if mode in (0, 1):
-            out.append(CanonMove("rapid" if mode == 0 else "line", nx, ny, nz, 0.0))
+            out.append(Move("rapid" if mode == 0 else "line", nx, ny, nz, 0.0))
             moved = True
         elif mode in (2, 3):
             ccw = mode == 3
@@ -75,7 +87,7 @@ def _gcode(text: str, post: Post) -> list:
                 cx, cy = vals.get("I", x), vals.get("J", y)
             else:
                 cx, cy = x + vals.get("I", 0.0), y + vals.get("J", 0.0)
-            out.append(CanonMove("arc", nx, ny, nz, 0.0, (cx, cy), ccw))
+            out.append(Move("arc", nx, ny, nz, 0.0, (cx, cy), ccw))
             moved = True
         if not moved:
             raise ValueError(f"line {no}: coordinates without a motion mode: {raw.strip()!r}")
@@ -102,20 +114,20 @@ def _heidenhain(text: str) -> list:
             continue
         if head == "L":
             nx, ny, nz = vals.get("X", x), vals.get("Y", y), vals.get("Z", z)
-            out.append(CanonMove("rapid" if "FMAX" in line else "line", nx, ny, nz, 0.0))
+            out.append(Move("rapid" if "FMAX" in line else "line", nx, ny, nz, 0.0))
         elif head == "C":
             if cc is None:
                 raise ValueError(f"line {no}: C without CC: {raw.strip()!r}")
             nx, ny, nz = vals.get("X", x), vals.get("Y", y), z
-            out.append(CanonMove("arc", nx, ny, nz, 0.0, cc, "DR+" in line))
+            out.append(Move("arc", nx, ny, nz, 0.0, cc, "DR+" in line))
         else:
             continue
         x, y, z = nx, ny, nz
     return out
 
 
-def read_program(text: str, post: Post) -> list:
-    """Moves (:class:`~camcam.verify.rs274.CanonMove`) and comments (str) of a program printed for ``post``.
+def read_program(text: str, post) -> list:
+    """Moves (:class:`Move`) and comments (str) of a program printed for ``post`` (its dialect, comment and arc format).
 
     Examples
     --------

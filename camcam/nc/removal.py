@@ -1,6 +1,6 @@
 """The material-removal check: the interpreted program against the blank, 2.5-D, at every Z level.
 
-The moves come from the printed numbers (:func:`camcam.verify.program.read_program`
+The moves come from the printed numbers (:func:`camcam.nc.readback.read_program`
 in process, or rs274's canonical output in the tests).  The material is kept
 as one shapely region per slab between consecutive cutting levels (the
 constant-Z feed heights, from the blank's top down); a flat end mill whose tip
@@ -36,6 +36,8 @@ import shapely
 from scipy.spatial import cKDTree
 from shapely.geometry import LineString, Point
 
+from camcam.nc.readback import read_program
+from camcam.nc.stock import bore_region
 from camcam.verdict import Check
 
 __all__ = ["RemovalReport", "check_moves", "check_program", "SAMPLE_MM", "PROBE_INSET_MM", "parse_marker"]
@@ -363,11 +365,8 @@ def _finish_figures(moves, levels, top_z, keep, boundary, r_t):
     return max(left, 0.0), left_at, max(over, 0.0), over_at, clear, clear_at
 
 
-def check_program(text: str, post, blank, m, built, contours) -> RemovalReport:
+def check_program(text: str, post, blank, m, built) -> RemovalReport:
     """Read the printed ``text`` back and check it against ``blank`` (the NC stage's in-process check)."""
-    from camcam.nc.stock import bore_region
-    from camcam.verify.program import read_program
-
     events = read_program(text, post)
     keep, boundary = design_keep(blank, built)
     return check_moves(events, blank.region, blank.top_z_mm, keep, boundary, m.tool_diameter_mm / 2, m.stepover_mm,
@@ -377,8 +376,6 @@ def check_program(text: str, post, blank, m, built, contours) -> RemovalReport:
 
 def design_keep(blank, built, spacing_mm: float = DENSE_MM):
     """(material that must remain at the final depth, dense points on the machined part of its outline)."""
-    from camcam.nc.stock import bore_region
-
     cam = built.cam
     curves = [cam.flanks[0], cam.flanks[1]] if blank.groove else [cam.profile]
     keep = blank.region.difference(blank.part) if blank.groove else blank.part
