@@ -28,7 +28,6 @@ from dataclasses import replace
 
 import numpy as np
 
-from camcam.errors import GeometryError
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
 from camcam.nc.bore import bore_circle_radius, bore_curve, bore_passes
