@@ -113,3 +113,12 @@ def test_oscillating_on_four_axes_fails_with_advice():
     # 4 axes leave about 2 mm at R75 (issue 11) and more toward the bottom
     assert r.groove.max_deviation_mm > 2.0
     assert math.isclose(check.value, r.groove.max_deviation_mm)
+
+
+def test_the_smallest_tool_reported_holds_in_3d():
+    """The advice's tool size, rounded up to 0.01 mm, cut and measured: within the tolerance in 3-D."""
+    _, m, small = job("cylindrical-translating", tool_mm=12.0)
+    size = math.ceil(small.smallest_tool_mm * 100) / 100
+    _, _, r = job("cylindrical-translating", tool_mm=size)
+    assert r.groove.max_deviation_mm <= m.tolerance_mm
+    assert all(c.ok for c in r.checks)
