@@ -32,7 +32,7 @@ def nc_step(out, spec, built, report: dict):
     from camcam.export.nc import nc_files, part_of
     from camcam.nc import machine
 
-    result = machine(built, spec.machining, spec.name)
+    result = machine(built, spec.machining, spec.name, spec.stock)
     part = part_of(built, result)
     for name, data in nc_files(built, result, part).items():
         out.add(name, data)
@@ -41,6 +41,8 @@ def nc_step(out, spec, built, report: dict):
     for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks", "cycle_time_s"):
         report[key] = nc[key]
     report["machining"] = nc
+    if "material" in nc:
+        report["material"] = nc["material"]
     for note in result.notes:
         warn(note)
     return result
@@ -132,6 +134,7 @@ def run(args) -> int:
             out.add(f"{spec.name}-report.html", page.html)
             out.add(f"{spec.name}-report.json", to_json(report) + "\n")
         summary["cam"] = report
+
     def show(summary: dict) -> None:
         print_summary(summary["motion"])
         if "cam" in summary:
@@ -139,10 +142,17 @@ def run(args) -> int:
             print(f"max pressure angle {c['max_pressure_angle_deg']:.4f}° at {c['max_pressure_angle_at_deg']:.2f}°; "
                   f"min radius of curvature {c['min_curvature_radius_mm']:.4f} mm at {c['min_curvature_radius_at_deg']:.2f}°")
             if "machining" in c:
+                what = ("3-D groove deviation" if "flank_deviation" in c["machining"] else "max deviation")
+                where = (" (both walls, every radius)" if "flank_deviation" in c["machining"] else "")
                 print(f"NC: {c['line_blocks']} line + {c['arc_blocks']} arc blocks (lower bound {c['lower_bound_blocks']:.1f}), "
-                      f"max deviation {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm on the printed program")
+                      f"{what} {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm{where} on the printed program")
                 print(f"cycle time {machining.program.cycle_time.describe()}, rapids at "
                       f"{machining.post.rapid_mm_min:g} mm/min, acceleration not counted")
+            if "material" in c:
+                mt = c["material"]
+                print(f"material: {mt['blank']['description']}; {len(mt['passes'])} passes, largest engagement "
+                      f"{mt['max_engagement_mm']:.3f} mm of {mt['stepover_mm']:g} mm, {mt['plunges_into_material']} "
+                      f"plunges into material, left {mt['material_left_mm']:.4f} mm, overcut {mt['overcut_mm']:.4f} mm")
 
     with progress.step("writing files"):
         publish(out, summary, args.json, show, (verdict.line(),) if verdict.checks else ())

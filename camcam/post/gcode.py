@@ -3,9 +3,8 @@
 Coordinates are printed from integers on the 10^−d grid, so the same input
 gives the same bytes.  After the post's header come the generator line
 (camcam's version and the spec's file name, no date), the work offset, the
-tool length offset and coolant on (:class:`ProgramSetup`); each pass opens
-with a comment naming it (from its :class:`~camcam.toolpath.path.Pass` record); coolant
-off precedes the footer.  The writer times every move it prints
+tool length offset and coolant on (:class:`~camcam.nc.settings.ProgramSetup`);
+coolant off precedes the footer.  The writer times every move it prints
 (:mod:`camcam.nc.timing`).  Arcs print X/Y and I/J (incremental or absolute) or R,
 or Heidenhain's CC/C pair.  A 4-axis path (``rotary``) is printed in inverse
 time (G93): every feed move carries F = feed / move length (1/min).
@@ -14,48 +13,20 @@ time (G93): every feed move carries F = feed / move length (1/min).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from typing import TYPE_CHECKING
 
-from camcam import __version__
 from camcam.errors import InputError, PostError
 from camcam.nc.result import Program
+from camcam import __version__
 from camcam.nc.settings import ProgramSetup
 from camcam.nc.timing import MoveTimer
-from camcam.toolpath.path import ArcMove, Feed, Pass, Rapid, Toolpath
+from camcam.toolpath.path import ArcMove, Comment, Feed, Rapid, Toolpath
 
 if TYPE_CHECKING:  # annotations only: post.post imports this module to print its programs
     from camcam.post.post import Post
 
-__all__ = ["Program", "write_program", "format_number", "printed_elements", "pass_comment", "numbered_passes"]
-
-
-def pass_comment(p: Pass, index: int, count: int) -> str:
-    """The comment opening pass ``p``, the ``index``-th of ``count`` passes of its kind on its contour.
-
-    Examples
-    --------
-    >>> p = Pass(0, "rough", -6.0, (), "profile", 6.0, 0.3)
-    >>> pass_comment(p, 1, 2), pass_comment(Pass(0, "spring", -12.0, (), "profile", 12.0), 1, 1)
-    ('profile: rough 1/2, depth 6 mm, allowance 0.3 mm', 'profile: spring, depth 12 mm')
-    """
-    name = f"{p.kind} {index}/{count}" if count > 1 or p.kind == "rough" else p.kind
-    left = f", allowance {p.allowance_mm:g} mm" if p.allowance_mm > 0 else ""
-    return f"{p.label}: {name}, depth {p.depth_mm:.6g} mm{left}"
-
-
-def numbered_passes(passes) -> list[tuple[Pass, int, int]]:
-    """Each pass with its number among the passes of its kind on its contour, and their count."""
-    counts: dict = {}
-    for p in passes:
-        counts[(p.contour, p.kind)] = counts.get((p.contour, p.kind), 0) + 1
-    seen: dict = {}
-    out = []
-    for p in passes:
-        seen[(p.contour, p.kind)] = seen.get((p.contour, p.kind), 0) + 1
-        out.append((p, seen[(p.contour, p.kind)], counts[(p.contour, p.kind)]))
-    return out
+__all__ = ["Program", "write_program", "format_number", "printed_elements"]
 
 
 def format_number(v: float, post: Post, signed: bool = False) -> str:
@@ -103,6 +74,9 @@ class _Writer:
         scale = 10.0 ** -self.post.decimals
         return tuple(0.0 if v is None else v * scale for v in self.pos)
 
+    def per_mm(self, count: int) -> float:
+        return count * 10.0 ** -self.post.decimals
+
     def n(self, v, signed=False):
         return _fmt_int(v, self.post, signed)
 
@@ -115,7 +89,6 @@ class _Writer:
 
     # -- G-code ---------------------------------------------------------------------
     def axes(self, x, y, z, force_xy=False):
-        d = self.post.decimals
         words = []
         for i, (name, v) in enumerate(zip("XYZ", (x, y, z))):
             if v is None:
@@ -128,6 +101,9 @@ class _Writer:
 
     def gcode_move(self, m, rotary: bool):
         d = self.post.decimals
+        if isinstance(m, Comment):
+            self.emit(self.comment(m.text))
+            return
         before = self.where()
         if isinstance(m, Rapid):
             w = self.axes(m.x, m.y, m.z)
@@ -148,12 +124,12 @@ class _Writer:
             if rotary:
                 inv = m.feed_mm_min / max(m.length_mm, 10.0**-d)
                 w.append(f"F{self.n(self.count(inv))}")
-                self.timer.inverse_time(before, self.where(), self.count(inv) * 10.0**-d)
+                self.timer.inverse_time(before, self.where(), self.per_mm(self.count(inv)))
             else:
                 if m.feed_mm_min != self.feed:
                     w.append(f"F{self.n(self.count(m.feed_mm_min))}")
                     self.feed = m.feed_mm_min
-                self.timer.line(before, self.where(), self.count(m.feed_mm_min) * 10.0**-d)
+                self.timer.line(before, self.where(), self.per_mm(self.count(m.feed_mm_min)))
             self.emit("G1 " + " ".join(w))
             self.counts["line"] += 1
             return
@@ -173,7 +149,8 @@ class _Writer:
         if m.feed_mm_min != self.feed:
             w.append(f"F{self.n(self.count(m.feed_mm_min))}")
             self.feed = m.feed_mm_min
-        self.timer.arc(before, self.where(), (cx * 10.0**-d, cy * 10.0**-d), m.ccw, self.count(m.feed_mm_min) * 10.0**-d)
+        self.timer.arc(before, self.where(), (self.per_mm(cx), self.per_mm(cy)), m.ccw,
+                       self.per_mm(self.count(m.feed_mm_min)))
         self.emit(("G3 " if m.ccw else "G2 ") + " ".join(w))
         self.counts["arc"] += 1
 
@@ -197,12 +174,17 @@ class _Writer:
 
     # -- Heidenhain --------------------------------------------------------------------
     def hh_move(self, m, first_words: str):
-        """One move; ``first_words`` (spindle and coolant on) go on the first L block."""
-        d = self.post.decimals
+        """One move; ``first_words`` (spindle and coolant on) go on it if it prints an L block (then True)."""
+        if isinstance(m, Comment):
+            self.emit(self.comment(m.text))
+            return False
+        before = self.where()
         if isinstance(m, Feed) and m.a_deg is not None:
             raise InputError(f"post {self.post.name}: 4-axis programs are not supported by this dialect")
-        before = self.where()
         if isinstance(m, ArcMove):
+            if self.pos[2] is not None and self.count(m.z) != self.pos[2]:
+                raise InputError(f"post {self.post.name}: helical arcs (ramped groove entries) are not supported by "
+                                 f"this dialect")
             sx, sy = self.pos[0], self.pos[1]
             ex, ey, cx, cy = (self.count(v) for v in (m.x, m.y, m.cx, m.cy))
             self.check_arc(sx, sy, ex, ey, cx, cy, m.ccw)
@@ -210,7 +192,8 @@ class _Writer:
             self.pos[0], self.pos[1] = ex, ey
             self.emit(f"C X{self.n(ex, True)} Y{self.n(ey, True)} DR{'+' if m.ccw else '-'} R0 F{self.n(self.count(m.feed_mm_min))}")
             self.counts["arc"] += 1
-            self.timer.arc(before, self.where(), (cx * 10.0**-d, cy * 10.0**-d), m.ccw, self.count(m.feed_mm_min) * 10.0**-d)
+            self.timer.arc(before, self.where(), (self.per_mm(cx), self.per_mm(cy)), m.ccw,
+                           self.per_mm(self.count(m.feed_mm_min)))
             return False
         words = []
         for i, (name, v) in enumerate(zip("XYZ", (m.x, m.y, m.z))):
@@ -229,20 +212,8 @@ class _Writer:
         if rapid:
             self.timer.rapid(before, self.where())
         else:
-            self.timer.line(before, self.where(), self.count(m.feed_mm_min) * 10.0**-d)
+            self.timer.line(before, self.where(), self.per_mm(self.count(m.feed_mm_min)))
         return True
-
-
-def _print_moves(toolpath: Toolpath, w, move) -> None:
-    """``move(m)`` for every move in order; each pass opens with its comment."""
-    for m in toolpath.opening:
-        move(m)
-    for p, k, n in numbered_passes(toolpath.passes):
-        w.emit(w.comment(pass_comment(p, k, n)))
-        for m in p.moves:
-            move(m)
-    for m in toolpath.closing:
-        move(m)
 
 
 def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: ProgramSetup = ProgramSetup()) -> Program:
@@ -281,20 +252,18 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: P
     if post.tool_change:
         w.timer.tool_change(post.tool_change_s)
     if post.dialect == "heidenhain":
-        first = [f"M3 {coolant_on}"]  # spindle and coolant on ride on the first L block
-
-        def hh(m):
-            if w.hh_move(m, first[0]):
-                first[0] = ""
-
-        _print_moves(toolpath, w, hh)
+        first = f"M3 {coolant_on}"  # spindle and coolant on ride on the first L block (comments are not moves)
+        for m in toolpath.moves:
+            if w.hh_move(m, first):
+                first = ""
         last = max(i for i, line in enumerate(w.lines) if line.startswith("L "))
         w.lines[last] += f" {coolant_off}"
     else:
         body.append(coolant_on)
         if toolpath.rotary:
             w.emit("G93")
-        _print_moves(toolpath, w, lambda m: w.gcode_move(m, toolpath.rotary))
+        for m in toolpath.moves:
+            w.gcode_move(m, toolpath.rotary)
         if toolpath.rotary:
             w.emit("G94")
         w.emit(coolant_off)

@@ -13,7 +13,6 @@ import math
 import numpy as np
 
 from camcam.nc.result import MachiningResult
-from camcam.post.gcode import numbered_passes, pass_comment
 from camcam.post.post import Post
 from camcam.report.html import DataTable, KeyValues
 
@@ -71,7 +70,8 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
     post, setup, spindle_rpm = r.post, machining.setup, machining.spindle_rpm
     tool = r.toolpath.tool_number
     passes = r.toolpath.passes
-    depth = max((p.depth_mm for p in passes), default=0.0)
+    top = r.reference_radius_mm if r.rotary and r.reference_radius_mm else 0.0
+    depth = max((top - p.z for p in passes), default=0.0) if not r.rotary else machining.depth_mm
     rows = _blank_and_zero(built, r)
     if not r.rotary:
         rows.append(("angular datum", _datum(built)))
@@ -91,9 +91,9 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
         ("cycle time (estimate)", f"{r.program.cycle_time.describe()}; rapids at {post.rapid_mm_min:g} mm/min, "
                                   f"tool change {post.tool_change_s:g} s, acceleration not counted"),
     ]
-    names = [pass_comment(p, k, n).split(", depth")[0] for p, k, n in numbered_passes(passes)]
-    table = DataTable(("pass", "depth mm", "Z", "allowance mm", "feed mm/min", "spindle rev/min"),
-                      tuple((name, f"{p.depth_mm:g}", f"{p.z:g}", f"{p.allowance_mm:g}", f"{machining.feed_mm_min:g}",
-                             f"{spindle_rpm:g}") for name, p in zip(names, passes)),
-                      "The passes in cutting order (each opens with this name as a comment in the program).")
+    n = len(passes)
+    table = DataTable(("pass", "kind", "contour", "Z", "feed mm/min", "spindle rev/min"),
+                      tuple((f"{i + 1}/{n}", p.kind, r.contours[p.contour].label, f"{p.z:g}", f"{machining.feed_mm_min:g}",
+                             f"{spindle_rpm:g}") for i, p in enumerate(passes)),
+                      "The passes in cutting order (each opens with a comment naming it in the program).")
     return (KeyValues(tuple(rows)), table)

@@ -13,6 +13,12 @@ stepdown = 4.0             # mm
 work_offset = "G54"        # G54 … G59, printed in the post's words
 coolant = "flood"          # "flood", "mist" or "off"
 program_number = 1234      # only for posts that print one (Fanuc, Haas)
+flute_length = 32.0        # mm, the tool's cutting length (default: twice its diameter)
+a_axis = "right-hand"      # barrel cams: a positive A turns the part by the right-hand rule about +X
+accept_out_of_tolerance = false  # true: a FAIL verdict only warns (exit 0)
+stepover = 0.4             # roughing: radial step, a fraction of the tool diameter
+ramp_angle = 3.0           # deg, steepest descent into material (grooves: ramped entries)
+bore = false               # true: cut the bore as a helical bore
 ```
 """
 
@@ -54,6 +60,11 @@ def read_machining(t: Table, base: Path, source: str = "") -> MachiningSpec:
     spring = t.boolean("spring_pass", False)
     tool_number = t.integer("tool_number", 1, minimum=0, maximum=999)
     accept = t.boolean("accept_out_of_tolerance", False)
+    flute = t.number("flute_length", 2.0 * tool, minimum=0.0, inclusive=False, unit="mm")
+    a_axis = t.string("a_axis", "right-hand", choices=("right-hand", "left-hand"))
+    stepover = t.number("stepover", 0.4, minimum=0.0, maximum=1.0, inclusive=False)
+    ramp = t.number("ramp_angle", 3.0, minimum=0.0, maximum=45.0, inclusive=False, unit="deg")
+    bore = t.boolean("bore", False)
     work_offset = t.string("work_offset", "G54", choices=WORK_OFFSETS)
     coolant = t.string("coolant", "flood", choices=COOLANTS)
     setup = ProgramSetup(work_offset, coolant, t.integer("program_number", None, minimum=1), source)
@@ -64,4 +75,5 @@ def read_machining(t: Table, base: Path, source: str = "") -> MachiningSpec:
         raise t.error(key, message) from None
     t.done()
     return MachiningSpec(post, tool, tol, mode, feed, spindle, depth, stepdown, plunge, safe, clearance, lead,
-                         allowance, spring, tool_number, accept, setup)
+                         allowance, spring, tool_number, accept, setup=setup, flute_length_mm=flute, a_axis=a_axis,
+                         stepover=stepover, ramp_angle_deg=ramp, bore=bore)

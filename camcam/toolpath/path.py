@@ -17,8 +17,9 @@ import numpy as np
 from camcam.errors import InputError
 from camcam.toolpath.elements import Arc, Line, element_tangent
 
-__all__ = ["Rapid", "Feed", "ArcMove", "Pass", "PASS_KINDS", "Toolpath", "CutSettings", "contour_toolpath",
-           "offset_elements", "rotary_toolpath", "slot_toolpath", "depth_levels", "join_toolpaths"]
+__all__ = ["Rapid", "Feed", "ArcMove", "Comment", "Pass", "PASS_KINDS", "Toolpath", "CutSettings", "contour_toolpath",
+           "offset_elements", "rotary_toolpath", "slot_toolpath", "depth_levels", "join_toolpaths",
+           "lead_pass_moves", "contour_moves"]
 
 
 @dataclass(frozen=True)
@@ -58,7 +59,8 @@ class ArcMove:
 #: What a pass does: ``rough`` runs at a finishing allowance off the contour; ``finish`` cuts the
 #: contour (at one depth level); ``spring`` repeats the final finish pass; ``slot`` runs inside a
 #: groove where the tool's full width may engage (a groove's centre pass).
-PASS_KINDS = ("rough", "finish", "spring", "slot")
+#: ``bore`` is the helical bore (from solid, so it may engage the full width too).
+PASS_KINDS = ("rough", "finish", "spring", "slot", "bore")
 
 
 @dataclass(frozen=True)
@@ -76,22 +78,12 @@ class Pass:
         distance from the cam axis (4-axis cylindrical cams).
     moves : tuple
         The pass's moves, from the approach over its start to the retract.
-    label : str
-        The contour's name ("profile", "inner flank"): the program's pass comment names it.
-    depth_mm : float
-        The pass's depth below the surface it starts from (the top face, or a
-        cylindrical cam's blank radius).
-    allowance_mm : float
-        Stock the pass leaves on the finished surface (rough passes).
     """
 
     contour: int
     kind: str
     z: float
     moves: tuple
-    label: str = "contour"
-    depth_mm: float = 0.0
-    allowance_mm: float = 0.0
 
     def __post_init__(self) -> None:
         if self.kind not in PASS_KINDS:
@@ -101,6 +93,13 @@ class Pass:
     def finishes(self) -> bool:
         """Whether the pass cuts the contour itself (not at a finishing allowance)."""
         return self.kind != "rough"
+
+
+@dataclass(frozen=True)
+class Comment:
+    """A comment line between moves (a pass's name)."""
+
+    text: str
 
 
 @dataclass(frozen=True)
@@ -231,6 +230,18 @@ def _pass_moves(elements, z, feed, plunge, lead, away_left, cs):
     return moves
 
 
+def lead_pass_moves(elements, z: float, cs: CutSettings) -> tuple:
+    """One finish pass over ``elements`` at ``z`` with tangent lead arcs on the free side (``cs.stock_side``)."""
+    plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
+    return tuple(_pass_moves(tuple(elements), z, cs.feed_mm_min, plunge, cs.lead_radius_mm,
+                             cs.stock_side == "right", cs))
+
+
+def contour_moves(elements, z: float, feed_mm_min: float) -> list:
+    """Feed moves along ``elements`` at height ``z`` (lines G1, arcs G2/G3)."""
+    return _contour_moves(elements, z, feed_mm_min)
+
+
 def depth_levels(cs: CutSettings, top_mm: float | None = None) -> list[float]:
     """Equal depth steps no deeper than ``stepdown_mm`` down to ``top − depth_mm``.
 
@@ -257,8 +268,7 @@ def _contour_moves(elements, z, feed):
     return moves
 
 
-def slot_toolpath(elements, cs: CutSettings, title: str = "camcam", contour: int = 0, kind: str = "slot",
-                  label: str = "contour") -> Toolpath:
+def slot_toolpath(elements, cs: CutSettings, title: str = "camcam", contour: int = 0, kind: str = "slot") -> Toolpath:
     """Depth passes along a contour inside a slot or groove: plunge at its start, no leads.
 
     For a groove both sides of the path are walls, so there is no free side
@@ -267,7 +277,7 @@ def slot_toolpath(elements, cs: CutSettings, title: str = "camcam", contour: int
     allowance does not apply (the flanks are cut by their own passes).
     ``kind`` is "slot" for a pass the tool's full width may engage (a
     groove's centre pass) or "finish" for a flank; ``contour`` indexes the
-    job's contour in the passes and ``label`` names it.
+    job's contour in the passes.
 
     Examples
     --------
@@ -288,14 +298,13 @@ def slot_toolpath(elements, cs: CutSettings, title: str = "camcam", contour: int
                  Feed(None, None, z, plunge)]
         moves += _contour_moves(elements, z, cs.feed_mm_min)
         moves.append(Rapid(None, None, cs.clearance_z_mm))
-        passes.append(Pass(contour, k, z, tuple(moves), label, cs.top_z_mm - z))
+        passes.append(Pass(contour, k, z, tuple(moves)))
     return Toolpath(title, tuple(passes), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False,
-                    (f"{label}: plunged in the groove",),
+                    (f"{len(levels)} depth passes to {levels[-1]:g} mm, plunged in the groove",),
                     (Rapid(None, None, cs.safe_z_mm),), (Rapid(None, None, cs.safe_z_mm),))
 
 
-def contour_toolpath(elements, cs: CutSettings, title: str = "camcam", contour: int = 0,
-                     label: str = "contour") -> Toolpath:
+def contour_toolpath(elements, cs: CutSettings, title: str = "camcam", contour: int = 0) -> Toolpath:
     """Depth passes over a fitted contour (tool-centre elements in the direction of cut).
 
     Passes go down in equal steps no deeper than ``stepdown_mm``; with a
@@ -322,16 +331,15 @@ def contour_toolpath(elements, cs: CutSettings, title: str = "camcam", contour: 
     plan += [(tuple(elements), levels[-1], "finish")] if allowance else []
     plan += [(tuple(elements), levels[-1], "spring")] if cs.spring_pass else []
     passes = tuple(Pass(contour, kind, z, tuple(_pass_moves(path, z, cs.feed_mm_min, plunge, cs.lead_radius_mm,
-                                                             away_left, cs)),
-                        label, cs.top_z_mm - z, cs.finish_allowance_mm if kind == "rough" else 0.0)
+                                                             away_left, cs)))
                    for path, z, kind in plan)
-    return Toolpath(title, passes, cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False, (),
+    return Toolpath(title, passes, cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False,
+                    (f"{len(levels)} depth passes to {levels[-1]:g} mm",),
                     (Rapid(None, None, cs.safe_z_mm),), (Rapid(None, None, cs.safe_z_mm),))
 
 
 def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "camcam",
-                    developed_radius_mm: float | None = None, contour: int = 0, kind: str = "slot",
-                    label: str = "contour") -> Toolpath:
+                    developed_radius_mm: float | None = None, contour: int = 0, kind: str = "slot") -> Toolpath:
     """4-axis moves from a developed polyline: x stays X, y/radius becomes A (degrees).
 
     ``points_xy`` is (n, 2) on the developed plane at ``developed_radius_mm``
@@ -351,12 +359,12 @@ def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "
     plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
     passes = []
     for z in levels:
-        moves = [Rapid(float(pts[0, 0]), None, None),
+        moves = [Rapid(float(pts[0, 0]), 0.0, None),  # Y0: the tool axis through the cam axis
                  Feed(None, None, radius_mm + cs.clearance_z_mm, plunge, float(a[0]), cs.safe_z_mm),
                  Feed(None, None, z, plunge, float(a[0]), cs.clearance_z_mm + radius_mm - z)]
         for k in range(1, len(pts)):
             moves.append(Feed(float(pts[k, 0]), None, z, cs.feed_mm_min, float(a[k]), float(seg[k - 1])))
         moves.append(Rapid(None, None, radius_mm + cs.safe_z_mm))
-        passes.append(Pass(contour, kind, z, tuple(moves), label, radius_mm - z))
+        passes.append(Pass(contour, kind, z, tuple(moves)))
     return Toolpath(title, tuple(passes), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, True,
-                    (f"4-axis, developed at R{radius_mm:g}",), (Rapid(None, None, radius_mm + cs.safe_z_mm),))
+                    (f"4-axis, developed at R{dev_r:g} mm",), (Rapid(None, None, radius_mm + cs.safe_z_mm),))

@@ -125,5 +125,6 @@ def test_pass_verdict_in_report(tmp_path):
     assert report["verdict"]["status"] == "PASS"
     check = report["verdict"]["checks"][0]
     assert check["name"] == "NC deviation (profile)" and check["value"] == report["max_deviation_mm"]
-    # the NC deviation, the DXF part outline and the three design checks (issue 12)
-    assert out.splitlines()[-1] == "PASS: 5 checks within their limits"
+    # the deviation, the six material-removal checks (engagement, plunges, rapids, left, overcut, rough stock),
+    # the DXF part outline and the three design checks (pressure angle, cut depth, finish allowance)
+    assert out.splitlines()[-1] == "PASS: 11 checks within their limits"

@@ -1,5 +1,5 @@
-"""Machine-ready programs: tool length offset, work offset, coolant, program number, generator line,
-pass comments; LinuxCNC's interpreter (rs274) reads every program it can and shows the offset applied."""
+"""Machine-ready programs: tool length offset, work offset, coolant, program number, generator line;
+LinuxCNC's interpreter (rs274) reads every program it can and shows the offset applied."""
 
 import re
 
@@ -11,7 +11,7 @@ from camcam.nc.settings import ProgramSetup
 from camcam.post.gcode import write_program
 from camcam.post.post import load_post
 from camcam.toolpath.elements import Arc
-from camcam.toolpath.path import CutSettings, contour_toolpath, slot_toolpath
+from camcam.toolpath.path import CutSettings, contour_toolpath
 from camcam.verify.rs274 import rs274_available
 
 QUARTERS = [(10.0, 0.0), (0.0, 10.0), (-10.0, 0.0), (0.0, -10.0), (10.0, 0.0)]
@@ -36,7 +36,7 @@ EXPECTED = {
 
 
 def program(name, setup=SETUP, cut=CUT):
-    return write_program(contour_toolpath(CIRCLE, cut, "demo", label="profile"), load_post(name), "demo", setup)
+    return write_program(contour_toolpath(CIRCLE, cut, "demo"), load_post(name), "demo", setup)
 
 
 @pytest.mark.parametrize("name", sorted(EXPECTED))
@@ -54,24 +54,6 @@ def test_every_post_states_offsets_coolant_and_generator(name):
     off = next(i for i, s in enumerate(lines) if re.search(r"\bM9\b", s))
     first_feed, last_feed = feeds[0], feeds[-1]
     assert on <= first_feed and off > last_feed
-
-
-@pytest.mark.parametrize("name", sorted(EXPECTED))
-def test_pass_comments_name_each_pass(name):
-    text = program(name).text
-    names = re.findall(r"profile: (rough \d/\d|finish|spring), depth ([\d.]+) mm", text)
-    # 9 mm in 3 mm steps at a 0.3 mm allowance, then the finish and the spring pass at full depth
-    assert names == [("rough 1/3", "3"), ("rough 2/3", "6"), ("rough 3/3", "9"), ("finish", "9"), ("spring", "9")]
-    assert "allowance 0.3 mm" in text and "depth passes" not in text
-
-
-def test_pass_comments_without_allowance_and_in_a_groove():
-    cut = CutSettings(depth_mm=8, stepdown_mm=4, feed_mm_min=400, spindle_rpm=3000)
-    text = program("linuxcnc", cut=cut).text
-    # without an allowance every depth level cuts the contour itself: finish passes, numbered
-    assert re.findall(r"\(profile: ([^,]+),", text) == ["finish 1/2", "finish 2/2"]
-    slot = write_program(slot_toolpath(CIRCLE, cut, "demo", label="groove centre"), load_post("linuxcnc")).text
-    assert re.findall(r"\(groove centre: ([^,)]+),", slot) == ["slot 1/2", "slot 2/2"]
 
 
 def test_program_number_and_refusals():
