@@ -7,7 +7,7 @@ exit status 2; anything else is a bug and keeps its traceback.
 
 from __future__ import annotations
 
-__all__ = ["CamcamError", "SpecError", "InputError", "MotionError", "GeometryError"]
+__all__ = ["CamcamError", "SpecError", "InputError", "MotionError", "GeometryError", "OutputError"]
 
 
 class CamcamError(Exception):
@@ -41,3 +41,8 @@ class MotionError(CamcamError, ValueError):
 
 class GeometryError(CamcamError, ValueError):
     """The cam cannot be built as specified (undercut, cusp, follower cannot reach)."""
+
+
+class OutputError(CamcamError, OSError):
+    """An input or output path cannot be used: the message names the path and the reason
+    (no space left, read-only, not a folder, exists, held by another run)."""

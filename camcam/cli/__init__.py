@@ -9,9 +9,14 @@ from __future__ import annotations
 import argparse
 import sys
 
-from camcam import __version__
-from camcam.cli import fit, laws, motion, optimize, reverse, run
-from camcam.errors import CamcamError
+from camcam.interrupts import import_guard
+
+with import_guard():  # Ctrl-C while numpy, scipy, trimesh load: one line and 130, never a traceback
+    from camcam import __version__
+    from camcam.cli import fit, laws, motion, optimize, reverse, run
+    from camcam.errors import CamcamError
+    from camcam.export.files import DiskLog
+    from camcam.interrupts import Interrupted, Watch, exit_status, signal_name
 
 __all__ = ["main"]
 
@@ -45,15 +50,22 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "func", None):
         parser.print_help()
         return USAGE_ERROR
-    try:
-        return int(args.func(args) or 0)
-    except CamcamError as err:
-        # one line whatever the message quotes (a file's bytes, a value with a newline)
-        print("camcam: error: " + " ".join(str(err).splitlines()), file=sys.stderr)
-        return USAGE_ERROR
-    except KeyboardInterrupt:
-        print("camcam: interrupted; no output was written", file=sys.stderr)
-        return 130
+    disk = DiskLog()
+    with Watch() as watch:
+        args.watch, args.disk_log = watch, disk
+        try:
+            status = int(args.func(args) or 0)
+            watch.checkpoint()  # an interrupt a library swallowed still ends the run as one
+            return status
+        except CamcamError as err:
+            # one line whatever the message quotes (a file's bytes, a value with a newline)
+            print("camcam: error: " + " ".join(str(err).splitlines()), file=sys.stderr)
+            return USAGE_ERROR
+        except KeyboardInterrupt as err:
+            signum = err.signum if isinstance(err, Interrupted) else 2
+            what = "interrupted" if signum == 2 else f"terminated by {signal_name(signum)}"
+            print(f"camcam: {what}; {disk.describe()}", file=sys.stderr)
+            return exit_status(signum)
 
 
 def main_exit() -> None:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from camcam.cli.output import print_json, warn
+from camcam.cli.output import add_output_arguments, output_set, print_json, warn
 from camcam.export.files import OutputSet
 from camcam.export.motion_table import motion_csv
 from camcam.motion.program import MotionProgram
@@ -16,7 +16,7 @@ __all__ = ["register", "motion_summary", "motion_outputs"]
 def register(sub) -> None:
     p = sub.add_parser("motion", help="tabulate and plot a spec's motion program")
     p.add_argument("spec", help="spec file (TOML)")
-    p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
+    add_output_arguments(p)
     p.add_argument("--step", type=float, default=0.5, help="table step in degrees (default 0.5)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.set_defaults(func=run)
@@ -61,7 +61,7 @@ def run(args) -> int:
     program = spec.need("motion", "motion").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
-    out = OutputSet(Path(args.output))
+    out = output_set(args, "motion")
     motion_outputs(out, spec.name, program, args.step)
     written = out.commit()
     summary = motion_summary(program)

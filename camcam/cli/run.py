@@ -14,7 +14,7 @@ from __future__ import annotations
 from importlib import resources
 from pathlib import Path
 
-from camcam.cli.output import print_json, to_json, warn
+from camcam.cli.output import add_output_arguments, output_set, print_json, to_json, warn
 from camcam.cli.progress import step
 
 __all__ = ["register", "nc_step", "DEFAULT_SPEC"]
@@ -44,7 +44,7 @@ def nc_step(out, spec, built, report: dict):
 def register(sub) -> None:
     p = sub.add_parser("run", help="run the whole flow for a spec (default: the bundled sample job)")
     p.add_argument("spec", nargs="?", help="spec file (TOML); omitted: the bundled default job")
-    p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
+    add_output_arguments(p)
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.set_defaults(func=run)
 
@@ -60,13 +60,12 @@ def _load(spec_arg):
 
 def run(args) -> int:
     from camcam.cli.motion import motion_outputs, motion_summary, print_summary
-    from camcam.export.files import OutputSet
 
     spec = _load(args.spec)
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
-    out = OutputSet(Path(args.output))
+    out = output_set(args, "run")
     with step("motion table and plot"):
         svaj = motion_outputs(out, spec.name, program, 0.5)
     summary = {"name": spec.name, "motion": motion_summary(program)}

@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from camcam.errors import InputError
-from camcam.inputs import data_rows, read_text
+from camcam.inputs import data_rows, decimal, looks_numeric, read_text
 
 __all__ = ["LiftTable", "parse_lift_table", "load_lift_table", "CLOSE_ATOL", "MIN_ROWS"]
 
@@ -111,14 +111,7 @@ def _decimals(text: str) -> int:
     return dec - exp
 
 
-def _number(text: str, what: str, where: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise InputError(f"{where}: {what} {text!r} is not a number") from None
-    if not math.isfinite(value):
-        raise InputError(f"{where}: {what} {text} is not a finite number")
-    return value
+_number = decimal
 
 
 def parse_lift_table(text: str, source: str = "table") -> LiftTable:
@@ -141,9 +134,7 @@ def parse_lift_table(text: str, source: str = "table") -> LiftTable:
         first_content = not seen_content
         seen_content = True
         if first_content and fields:
-            try:
-                float(fields[0])
-            except ValueError:
+            if not looks_numeric(fields[0]):
                 if len(fields) < 2:
                     raise InputError(f"{where}: a header needs 2 column names (angle_deg, lift_mm), got {len(fields)}") from None
                 ncol = len(fields)

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from camcam.errors import InputError
-from camcam.inputs import data_rows, read_text
+from camcam.inputs import data_rows, decimal, looks_numeric, read_text
 
 __all__ = ["MeasuredPoints", "parse_points", "load_points", "MIN_POINTS"]
 
@@ -66,9 +66,7 @@ def parse_points(text: str, source: str = "points") -> MeasuredPoints:
     for where, lineno, stripped, fields in data_rows(text, source):
         if not seen:
             seen = True
-            try:
-                float(fields[0])
-            except ValueError:
+            if not looks_numeric(fields[0]):
                 if len(fields) not in (2, 3):
                     raise InputError(f"{where}: a header needs 2 or 3 column names (x, y[, z]), got {len(fields)}") from None
                 ncol = len(fields)
@@ -82,13 +80,7 @@ def parse_points(text: str, source: str = "points") -> MeasuredPoints:
             raise InputError(f"{where}: expected {ncol} values ({names}), got {stripped!r}")
         vals = []
         for name, f in zip("xyz", fields):
-            try:
-                v = float(f)
-            except ValueError:
-                raise InputError(f"{where}: {name} {f!r} is not a number") from None
-            if not math.isfinite(v):
-                raise InputError(f"{where}: {name} {f} is not a finite number")
-            vals.append(v)
+            vals.append(decimal(f, name, where))
         rows.append(vals)
         lines.append(lineno)
     if len(rows) < MIN_POINTS:

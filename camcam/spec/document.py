@@ -12,17 +12,21 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from camcam.errors import SpecError
+from camcam.inputs import os_reason, read_limited
 from camcam.spec.cam import CamSpec, read_cam
 from camcam.spec.follower import FollowerSpec, read_follower
-from camcam.spec.machining import MachiningSpec, read_machining
+from camcam.spec.machining import BREAK_THROUGH_MM, MachiningSpec, read_machining
 from camcam.spec.motion import MotionSpec, read_motion
 from camcam.spec.optimize import OptimizeSpec, read_optimize
 from camcam.spec.reader import Table, fmt
 from camcam.spec.report import DEFAULT_REPORT, ReportSpec, read_report
 
-__all__ = ["Spec", "load_spec", "parse_spec"]
+__all__ = ["Spec", "load_spec", "parse_spec", "MAX_SPEC_BYTES"]
 
-_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$")
+#: Largest spec file read (the samples are 1-2 KiB).
+MAX_SPEC_BYTES = 1 << 20
+
+_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,63}")  # whole name (fullmatch: "x\n" is refused)
 
 
 @dataclass(frozen=True)
@@ -55,7 +59,7 @@ def parse_spec(data: dict, source: Path) -> Spec:
     """Validate a parsed TOML document (``source`` names it and anchors relative paths)."""
     root = Table(data, "")
     name = root.string("name", source.stem)
-    root.check("name", bool(_NAME.match(name)), f'{fmt(name)} must be 1–64 letters, digits, "_", "-" or "." (it names the output files)')
+    root.check("name", isinstance(name, str) and bool(_NAME.fullmatch(name)), f'{fmt(name)} must be 1–64 letters, digits, "_", "-" or "." (it names the output files)')
     base = source.parent
     cam_t = root.table("cam", None)
     cam = read_cam(cam_t) if cam_t is not None else None
@@ -77,21 +81,38 @@ def parse_spec(data: dict, source: Path) -> Spec:
         optimize.done()
     machining = root.table("machining", None)
     machining_spec = read_machining(machining, base) if machining is not None else None
+    if machining_spec is not None and cam is not None:
+        _check_depth(machining_spec, cam)
     report_t = root.table("report", None)
     report_spec = read_report(report_t) if report_t is not None else DEFAULT_REPORT
     root.done()
     return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec)
 
 
+def _check_depth(m: MachiningSpec, cam: CamSpec) -> None:
+    """A disc is cut at most :data:`~camcam.spec.machining.BREAK_THROUGH_MM` below its thickness; a groove
+    no deeper than ``groove_depth``."""
+    if cam.kind == "disc":
+        limit, why = cam.thickness + BREAK_THROUGH_MM, f"cam.thickness = {cam.thickness:g} mm plus {BREAK_THROUGH_MM:g} mm break-through"
+    else:
+        limit, why = cam.groove_depth, f"cam.groove_depth = {cam.groove_depth:g} mm"
+    if m.depth_mm > limit + 1e-9:
+        raise SpecError("machining.depth", f"{m.depth_mm:g} mm is deeper than {why}")
+
+
 def load_spec(path: str | Path) -> Spec:
     """Read and validate the spec file at ``path``."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        raw = read_limited(path, MAX_SPEC_BYTES)
     except FileNotFoundError:
         raise SpecError(str(path), "no such file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise SpecError(str(path), f"cannot read: {err}") from None
+    except OSError as err:
+        raise SpecError(str(path), f"cannot read: {os_reason(err)}") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise SpecError(str(path), f"not UTF-8 text (byte {err.start})") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
