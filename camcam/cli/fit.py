@@ -62,8 +62,9 @@ def fit_summary(ft: FittedTable) -> dict:
 def run(args) -> int:
     from camcam.plots.comb import lift_comb_png  # plotting is loaded only when a plot is drawn
     from camcam.plots.roughness import roughness_png  # plotting is loaded only when a plot is drawn
-    if not (args.step > 0 and args.step <= 360):
-        raise SpecError("--step", f"expected a number of degrees > 0 and <= 360, got {args.step:g}")
+    from camcam.cli.motion import check_step
+
+    check_step(args.step)
     if not args.xi > 0:
         raise SpecError("--xi", f"expected a number > 0 mm, got {args.xi:g}")
     if not args.threshold > 0:

@@ -52,11 +52,22 @@ def print_summary(summary: dict) -> None:
         print(f"{n:13s} min {e['min']:+12.6g} {u:7s} at {e['min_at_deg']:7.2f}°   max {e['max']:+12.6g} {u:7s} at {e['max_at_deg']:7.2f}°")
 
 
-def run(args) -> int:
+#: Finest table step (degrees): 36 000 rows per revolution at most.
+MIN_STEP_DEG = 0.01
+
+
+def check_step(step_deg: float) -> None:
+    """``--step`` of a table command: from :data:`MIN_STEP_DEG` to 360 degrees."""
     from camcam.errors import SpecError
 
-    if not args.step > 0 or args.step > 360:
-        raise SpecError("--step", f"expected a number of degrees > 0 and <= 360, got {args.step:g}")
+    if not MIN_STEP_DEG <= step_deg <= 360:
+        raise SpecError("--step", f"expected degrees from {MIN_STEP_DEG:g} (at most {round(360 / MIN_STEP_DEG)} rows) "
+                                  f"to 360, got {step_deg:g}")
+
+
+def run(args) -> int:
+
+    check_step(args.step)
     spec = load_spec(args.spec)
     program = spec.need("motion", "motion").program(spec.unit)
     for j in program.joins:
