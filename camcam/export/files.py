@@ -148,18 +148,26 @@ def _remove(path: Path) -> None:
 _RENAME_EXCHANGE = 2
 
 
-def _exchange(a: Path, b: Path, old: Path) -> None:
-    """Swap folders ``a`` and ``b`` atomically; without kernel support, in two renames via ``old``."""
+def _swap(a: Path, b: Path) -> bool:
+    """Swap folders ``a`` and ``b`` in one step (Linux ``renameat2(RENAME_EXCHANGE)``); False where
+    the kernel or file system cannot."""
     try:
         renameat2 = ctypes.CDLL(None, use_errno=True).renameat2
     except (OSError, AttributeError):
-        renameat2 = None
-    if renameat2 is not None:
-        if renameat2(-100, os.fsencode(a), -100, os.fsencode(b), _RENAME_EXCHANGE) == 0:  # AT_FDCWD
-            return
-        code = ctypes.get_errno()
-        if code not in (errno.EINVAL, errno.ENOSYS, errno.EOPNOTSUPP, errno.ENOTSUP):
-            raise OSError(code, os.strerror(code), str(b))
+        return False
+    if renameat2(-100, os.fsencode(a), -100, os.fsencode(b), _RENAME_EXCHANGE) == 0:  # -100: AT_FDCWD
+        return True
+    code = ctypes.get_errno()
+    if code in (errno.EINVAL, errno.ENOSYS, errno.EOPNOTSUPP, errno.ENOTSUP):
+        return False
+    raise OSError(code, os.strerror(code), str(b))
+
+
+def _exchange(a: Path, b: Path, old: Path) -> None:
+    """Swap folders ``a`` and ``b``: atomically, or else in two renames through ``old`` (a run
+    killed between them leaves ``old``, which the next run puts back)."""
+    if _swap(a, b):
+        return
     os.rename(b, old)
     os.rename(a, b)
     os.rename(old, a)

@@ -15,7 +15,7 @@ from camcam.errors import SpecError
 from camcam.inputs import os_reason, read_limited
 from camcam.spec.cam import CamSpec, read_cam
 from camcam.spec.follower import FollowerSpec, read_follower
-from camcam.spec.machining import BREAK_THROUGH_MM, MachiningSpec, read_machining
+from camcam.spec.machining import BREAK_THROUGH_MM, MachiningSpec, check_passes, read_machining
 from camcam.spec.motion import MotionSpec, read_motion
 from camcam.spec.optimize import OptimizeSpec, read_optimize
 from camcam.spec.reader import Table, fmt
@@ -83,6 +83,8 @@ def parse_spec(data: dict, source: Path) -> Spec:
     machining_spec = read_machining(machining, base) if machining is not None else None
     if machining_spec is not None and cam is not None:
         _check_depth(machining_spec, cam)
+    if machining_spec is not None:
+        check_passes(machining_spec)
     report_t = root.table("report", None)
     report_spec = read_report(report_t) if report_t is not None else DEFAULT_REPORT
     root.done()

@@ -19,14 +19,14 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from camcam.errors import InputError
+from camcam.errors import InputError, SpecError
 from camcam.post.post import Post, load_post
 from camcam.spec.reader import Table
 from camcam.toolpath.arcfit import rounding_budget
 from camcam.toolpath.path import CutSettings
 
 __all__ = ["MachiningSpec", "read_machining", "FEED_RANGE_MM_MIN", "SPINDLE_RANGE_RPM", "MAX_PASSES",
-           "MIN_SIZE_MM", "BREAK_THROUGH_MM"]
+           "MIN_SIZE_MM", "BREAK_THROUGH_MM", "check_passes"]
 
 #: Feeds a milling machine runs (mm/min): below 1 nothing is cut, above 100 m/min no machine feeds.
 FEED_RANGE_MM_MIN = (1.0, 100_000.0)
@@ -74,6 +74,13 @@ class MachiningSpec:
                            tool_number=self.tool_number, tool_diameter_mm=self.tool_diameter_mm)
 
 
+def check_passes(m: MachiningSpec) -> None:
+    """At most :data:`MAX_PASSES` depth passes (checked after ``depth`` itself)."""
+    if m.depth_mm / m.stepdown_mm > MAX_PASSES:
+        raise SpecError("machining.stepdown", f"{m.stepdown_mm:g} mm makes {math.ceil(m.depth_mm / m.stepdown_mm)} "
+                        f"passes for depth = {m.depth_mm:g} mm; at most {MAX_PASSES} are allowed")
+
+
 def read_machining(t: Table, base: Path) -> MachiningSpec:
     """Validate ``[machining]``; ``base`` anchors a relative post path."""
     name = t.string("post", "linuxcnc")
@@ -91,8 +98,6 @@ def read_machining(t: Table, base: Path) -> MachiningSpec:
     spindle = t.number("spindle", minimum=SPINDLE_RANGE_RPM[0], maximum=SPINDLE_RANGE_RPM[1], unit="rev/min")
     depth = t.number("depth", minimum=MIN_SIZE_MM, unit="mm")
     stepdown = t.number("stepdown", depth, minimum=MIN_SIZE_MM, unit="mm")
-    t.check("stepdown", depth / stepdown <= MAX_PASSES, f"{stepdown:g} mm makes {math.ceil(depth / stepdown)} passes "
-            f"for depth = {depth:g} mm; at most {MAX_PASSES} are allowed")
     plunge = t.number("plunge_feed", max(feed / 2, FEED_RANGE_MM_MIN[0]), minimum=FEED_RANGE_MM_MIN[0],
                       maximum=FEED_RANGE_MM_MIN[1], unit="mm/min")
     clearance = t.number("clearance_z", 2.0, minimum=MIN_SIZE_MM, unit="mm")
