@@ -3,6 +3,7 @@
     python inject.py sigint-on-import MODULE -- ARGS...   Ctrl-C when MODULE starts to load
     python inject.py kill-at STEP K -- ARGS...            SIGKILL at the K-th call of files.STEP
     python inject.py no-exchange kill-at STEP K -- ARGS...  the same, without renameat2's exchange
+    python inject.py kill-at STEP K publish -- TARGET       the same around a bare 2-file publish
 
 ``ARGS`` are camcam's arguments.  Faults are sent by the process to itself, so
 where they land does not depend on timing.
@@ -55,6 +56,14 @@ def main() -> None:
                 files.os = type(sys)("os_proxy")
                 files.os.__dict__.update({k_: getattr(os, k_) for k_ in dir(os) if not k_.startswith("__")})
                 setattr(files.os, step, wrapper)
+        elif mode == "publish":  # no camcam command: publish a 2-file set over ARGS[0] with --force
+            from camcam.export.files import OutputSet
+
+            out = OutputSet(args[0], force=True)
+            out.add("demo-motion.csv", "new")
+            out.add("demo-svaj.png", "new")
+            out.commit()
+            return
         else:
             raise SystemExit(f"inject.py: unknown mode {mode}")
     sys.argv = ["camcam", *args]
