@@ -13,7 +13,7 @@ from typing import Iterator
 from camcam.errors import InputError
 
 __all__ = ["read_text", "data_rows", "read_limited", "MAX_INPUT_BYTES", "InputTooLarge", "os_reason",
-           "decimal", "looks_numeric", "MAX_ROWS"]
+           "parse_number", "looks_numeric", "MAX_ROWS"]
 
 #: Most data rows a table or point file may have.
 MAX_ROWS = 1_000_000
@@ -86,14 +86,14 @@ def data_rows(text: str, source: str) -> Iterator[tuple[str, int, str, list[str]
         yield f"{source} row {lineno}", lineno, stripped, _SPLIT.split(stripped)
 
 
-def decimal(text: str, what: str, where: str) -> float:
+def parse_number(text: str, what: str, where: str) -> float:
     """``text`` as a finite float if it is a plain decimal number, else one :class:`InputError` line.
 
     Examples
     --------
-    >>> decimal("-1.5e3", "lift", "t.csv row 2")
+    >>> parse_number("-1.5e3", "lift", "t.csv row 2")
     -1500.0
-    >>> decimal("1_00", "lift", "t.csv row 2")
+    >>> parse_number("1_00", "lift", "t.csv row 2")
     Traceback (most recent call last):
     ...
     camcam.errors.InputError: t.csv row 2: lift '1_00' is not a plain decimal number (digits, point, exponent)

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from camcam.cli.commands import help_of
 from camcam.cli.output import print_json, to_json
-from camcam.cli.progress import step
+from camcam.cli.progress import Progress, add_progress_flag
 from camcam.errors import SpecError
 from camcam.export.files import atomic_write
 from camcam.optimize.bspline_law import BSplineLaw
@@ -22,10 +23,11 @@ __all__ = ["register", "optimize"]
 
 
 def register(sub) -> None:
-    p = sub.add_parser("optimize", help="optimise a B-spline cam curve ([optimize] table)")
+    p = sub.add_parser("optimize", help=help_of("optimize"))
     p.add_argument("spec", help="spec file (TOML) with an [optimize] table")
     p.add_argument("-o", "--output", help="write the law as JSON to this file (replaced in one step if it exists)")
     p.add_argument("--json", action="store_true", help="print the law as one JSON object")
+    add_progress_flag(p)
     p.set_defaults(func=run)
 
 
@@ -71,9 +73,10 @@ def optimize(opt: OptimizeSpec) -> tuple[BSplineLaw, dict]:
 
 
 def run(args) -> int:
+    progress = Progress.from_args(args)
     spec = load_spec(args.spec)
     opt = spec.need("optimize", "optimize")
-    with step(f"optimize ({opt.method})"):
+    with progress.step(f"optimize ({opt.method})"):
         law, solver = optimize(opt)
     doc = law_document(law, problem=opt.as_dict(), solver=solver)
     if args.output:

@@ -46,6 +46,7 @@ from camcam import __version__
 from camcam.errors import OutputError
 from camcam.inputs import os_reason
 from camcam.interrupts import deferred
+from camcam.plots.concurrent import PendingPNG, resolve
 
 __all__ = ["OutputSet", "DiskLog", "atomic_write", "MANIFEST", "read_manifest"]
 
@@ -243,10 +244,12 @@ class OutputSet:
         self._files: dict[str, bytes] = {}
         self.log.target = str(self.directory)
 
-    def add(self, name: str, data: bytes | str) -> None:
+    def add(self, name: str, data: bytes | str | PendingPNG) -> None:
+        """Add a file; a plot still being drawn (:class:`PendingPNG`) is collected at :meth:`commit`."""
         if not _plain_name(name) or name == MANIFEST:
             raise ValueError(f"output name must be a plain file name other than {MANIFEST}, got {name!r}")
-        self._files[name] = data.encode("utf-8") if isinstance(data, str) else bytes(data)
+        self._files[name] = data.encode("utf-8") if isinstance(data, str) else data if isinstance(data, PendingPNG) \
+            else bytes(data)
 
     @property
     def names(self) -> list[str]:
@@ -299,6 +302,7 @@ class OutputSet:
 
     def commit(self) -> list[Path]:
         """Publish every file and the manifest as the target folder, all or nothing."""
+        self._files = {name: resolve(data) for name, data in self._files.items()}  # every plot drawn before a byte is written
         if self.checkpoint is not None:
             self.checkpoint()
         shown, target = str(self.directory), self._target

@@ -17,14 +17,13 @@ previous angle 12``.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from camcam.errors import InputError
-from camcam.inputs import data_rows, decimal, looks_numeric, read_text
+from camcam.inputs import data_rows, looks_numeric, parse_number, read_text
 
 __all__ = ["LiftTable", "parse_lift_table", "load_lift_table", "CLOSE_ATOL", "MIN_ROWS"]
 
@@ -111,9 +110,6 @@ def _decimals(text: str) -> int:
     return dec - exp
 
 
-_number = decimal
-
-
 def parse_lift_table(text: str, source: str = "table") -> LiftTable:
     """Validate the text of a lift table (see the module docstring).
 
@@ -141,8 +137,8 @@ def parse_lift_table(text: str, source: str = "table") -> LiftTable:
                 continue  # a header line
         if len(fields) != ncol or "" in fields:
             raise InputError(f"{where}: expected {ncol} values (angle_deg, lift_mm{', …' if ncol > 2 else ''}), got {stripped!r}")
-        angle = _number(fields[0], "angle", where)
-        lift = _number(fields[1], "lift", where)
+        angle = parse_number(fields[0], "angle", where)
+        lift = parse_number(fields[1], "lift", where)
         if angles and angle <= angles[-1]:
             raise InputError(f"{where}: angle {angle:g} is not above the previous angle {angles[-1]:g}")
         if angles and angle - angles[0] > 360.0 + SPAN_ATOL_DEG:

@@ -46,6 +46,10 @@ from pathlib import Path
 from camcam.errors import InputError
 from camcam.inputs import os_reason, read_limited
 from camcam.post.template import TemplateError, parse_template
+from camcam.nc.result import Program
+from camcam.post.gcode import write_program
+from camcam.toolpath.path import Toolpath
+from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["Post", "load_post", "known_posts", "parse_post", "MAX_POST_BYTES", "MAX_LINE_NUMBER",
            "MAX_PROGRAM_NUMBER", "METRIC_UNITS"]
@@ -90,6 +94,15 @@ class Post:
     tool_change: bool = True
     inverse_time: bool = True
     program_number: int = 1
+
+    @property
+    def quantizer(self) -> Quantizer:
+        """The printed rounding of this post (decimals and arc format): the one model of what it prints."""
+        return Quantizer(self.decimals, self.arc_format)
+
+    def write_program(self, toolpath: Toolpath, name: str = "camcam") -> Program:
+        """``toolpath`` printed in this dialect (:func:`camcam.post.gcode.write_program`)."""
+        return write_program(toolpath, self, name)
 
 
 def _post_dir():
