@@ -72,4 +72,5 @@ def main() -> None:
     main_exit()
 
 
-main()
+if __name__ == "__main__":
+    main()
