@@ -28,7 +28,7 @@ def test_sizes_over_a_cap_are_refused_with_the_limit(tmp_path, args, limit):
 
 
 def test_rows_over_the_cap_are_refused(monkeypatch):
-    monkeypatch.setattr(inputs, "MAX_ROWS", 5)  # the cap itself (10⁶) is exercised by benchmarks/hostile_sizes.py
+    monkeypatch.setattr(inputs, "MAX_ROWS", 5)  # the cap itself (200 000) is exercised by benchmarks/hostile_sizes.py
     text = "".join(f"{a} {a}\n" for a in range(6))
     with pytest.raises(InputError, match="more than 5 data rows"):
         parse_lift_table(text, "t.csv")
