@@ -7,7 +7,8 @@ radius) cuts it in one centre pass along the pitch curve; a narrower one cuts
 a centre pass, then each flank at ``offset_flank(i, r_t)`` (a tool below a
 third of the groove width would leave a band between these passes and is
 refused), all plunged inside the groove without leads.  Cylindrical cams:
-:mod:`camcam.nc.rotary`.
+:mod:`camcam.nc.rotary` (4 axes) and, for an oscillating roller,
+:mod:`camcam.nc.fiveaxis` (5 axes, ``[machining] axes``).
 
 Every contour is fitted at the spec's tolerance with the post's decimals and
 arc sweep; its deviation is measured on the path the post prints.
@@ -145,6 +146,10 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
         groove, or too small to clear it; a post that cannot hold the program.
     """
     if built.spec.kind == "cylindrical":
+        if m.axes == 5:
+            from camcam.nc.fiveaxis import machine_five_axis
+
+            return machine_five_axis(built, m, name)
         from camcam.nc.rotary import machine_cylindrical
 
         return machine_cylindrical(built, m, name)

@@ -3,7 +3,10 @@
 Coordinates are printed from integers on the 10^−d grid, so the same input
 gives the same bytes.  Arcs print X/Y and I/J (incremental or absolute) or R,
 or Heidenhain's CC/C pair.  A 4-axis path (``rotary``) is printed in inverse
-time (G93): every feed move carries F = feed / move length (1/min).
+time (G93): every feed move carries F = feed / move length (1/min).  A 5-axis
+path (``five_axis``: X Y Z = tool tip, A, B) sits between the post's
+``tcp_on`` and ``tcp_off`` blocks; Heidenhain prints it with M128 and the
+tool tip's feed in mm/min (Klartext has no inverse time).
 """
 
 from __future__ import annotations
@@ -93,7 +96,7 @@ class _Writer:
         self.post = post
         self.lines: list[str] = []
         self.pos = [None, None, None]  # printed grid integers
-        self.a = None
+        self.rot = {"A": None, "B": None}
         self.feed = None
         self.counts = {"line": 0, "arc": 0, "rapid": 0}
 
@@ -120,21 +123,28 @@ class _Writer:
             self.pos[i] = g
         return words
 
+    def rotary_words(self, m) -> list[str]:
+        """A and B words of a move that changes them (degrees, on the post's grid)."""
+        words = []
+        for name, v in (("A", m.a_deg), ("B", m.b_deg)):
+            if v is None:
+                continue
+            g = _grid(v, self.post.decimals)
+            if g != self.rot[name]:
+                words.append(f"{name}{self.n(g, self.post.dialect == 'heidenhain')}")
+            self.rot[name] = g
+        return words
+
     def gcode_move(self, m, rotary: bool):
         d = self.post.decimals
         if isinstance(m, Rapid):
-            w = self.axes(m.x, m.y, m.z)
+            w = self.axes(m.x, m.y, m.z) + self.rotary_words(m)
             if w:
                 self.emit("G0 " + " ".join(w))
                 self.counts["rapid"] += 1
             return
         if isinstance(m, Feed):
-            w = self.axes(m.x, m.y, m.z)
-            if m.a_deg is not None:
-                g = _grid(m.a_deg, d)
-                if g != self.a:
-                    w.append(f"A{self.n(g)}")
-                self.a = g
+            w = self.axes(m.x, m.y, m.z) + self.rotary_words(m)
             if not w:
                 return
             if rotary:
@@ -184,9 +194,9 @@ class _Writer:
                                 f"max_arc_sweep_deg {self.post.max_arc_sweep_deg:g}")
 
     # -- Heidenhain --------------------------------------------------------------------
-    def hh_move(self, m, first: bool):
+    def hh_move(self, m, first: bool, five_axis: bool = False):
         d = self.post.decimals
-        if isinstance(m, Feed) and m.a_deg is not None:
+        if isinstance(m, Feed) and m.a_deg is not None and not five_axis:
             raise InputError(f"post {self.post.name}: 4-axis programs are not supported by this dialect")
         if isinstance(m, ArcMove):
             sx, sy = self.pos[0], self.pos[1]
@@ -205,6 +215,8 @@ class _Writer:
             if g != self.pos[i]:
                 words.append(f"{name}{self.n(g, True)}")
             self.pos[i] = g
+        if five_axis:
+            words += self.rotary_words(m)
         if not words:
             return
         rapid = isinstance(m, Rapid)
@@ -223,8 +235,13 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam") -> Progr
     >>> print(write_program(tp, load_post("linuxcnc")).text.splitlines()[-3])
     G1 X10 F300
     """
-    if toolpath.rotary and not post.inverse_time:
+    if toolpath.five_axis and not post.five_axis:
+        raise InputError(f"post {post.name}: has no 5-axis mode (tool-centre-point control); use axes = 4 "
+                         f"or a post with one")
+    if toolpath.rotary and not toolpath.five_axis and not post.inverse_time:
         raise InputError(f"post {post.name}: has no inverse-time feed (G93) for a 4-axis program")
+    if toolpath.five_axis and post.dialect != "heidenhain" and not post.inverse_time:
+        raise InputError(f"post {post.name}: has no inverse-time feed (G93) for a 5-axis program")
     fields = {"title": toolpath.title.replace("(", "[").replace(")", "]"), "name": name,
               "tool": toolpath.tool_number, "spindle": int(round(toolpath.spindle_rpm)),
               "program_number": post.program_number}
@@ -234,16 +251,23 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam") -> Progr
         body.append(line.format(**fields))
     for c in toolpath.comments:
         body.append(w.comment(c))
+    tcp_on = [line.format(**fields) for line in post.tcp_on] if toolpath.five_axis else []
+    tcp_off = [line.format(**fields) for line in post.tcp_off] if toolpath.five_axis else []
     if post.dialect == "heidenhain":
+        # Klartext has no inverse time: with M128 the programmed F is the tool tip's feed (mm/min)
+        w.lines += tcp_on
         for i, m in enumerate(toolpath.moves):
-            w.hh_move(m, i == 0)
+            w.hh_move(m, i == 0, toolpath.five_axis)
+        w.lines += tcp_off
     else:
+        w.lines += tcp_on
         if toolpath.rotary:
             w.emit("G93")
         for m in toolpath.moves:
             w.gcode_move(m, toolpath.rotary)
         if toolpath.rotary:
             w.emit("G94")
+        w.lines += tcp_off
     body += w.lines
     body += [line.format(**fields) for line in post.footer]
     out = []

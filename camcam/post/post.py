@@ -23,6 +23,11 @@ Keys (all required unless a default is given):
 ``header``, ``footer``        lists of lines; ``{title}``, ``{name}``, ``{tool}``,
                               ``{spindle}``, ``{program_number}`` are filled in
 ``program_number``            default 1 (Fanuc O-number)
+``five_axis``                 the controller has tool-centre-point control for 5-axis
+                              programs (X Y Z = tool tip; default false)
+``tcp_on``, ``tcp_off``       blocks that switch it on before and off after a 5-axis
+                              path (lists, may be empty: LinuxCNC's TCP lives in its
+                              kinematics); ``{tool}`` is filled in
 ============================  =====================================================
 """
 
@@ -65,6 +70,9 @@ class Post:
     tool_change: bool = True
     inverse_time: bool = True
     program_number: int = 1
+    five_axis: bool = False
+    tcp_on: tuple[str, ...] = ()
+    tcp_off: tuple[str, ...] = ()
 
 
 def _post_dir():
@@ -85,7 +93,8 @@ def parse_post(data: dict, name: str) -> Post:
              "arc_format": str, "max_arc_sweep_deg": (int, float), "max_radius_error_mm": (int, float),
              "decimal_point_always": bool, "line_numbers": bool, "line_number_start": int,
              "line_number_step": int, "comment": str, "tool_change": bool, "inverse_time": bool,
-             "header": list, "footer": list, "program_number": int}
+             "header": list, "footer": list, "program_number": int, "five_axis": bool, "tcp_on": list,
+             "tcp_off": list}
     required = {"description", "extension", "units", "decimals", "arc_format", "max_arc_sweep_deg", "header", "footer"}
     for key in data:
         if key not in types:
@@ -113,8 +122,14 @@ def parse_post(data: dict, name: str) -> Post:
         fail("comment", f'expected "parentheses" or "semicolon", got {data["comment"]!r}')
     if not data["extension"].isalnum():
         fail("extension", f"expected letters/digits without a dot, got {data['extension']!r}")
-    for key in ("header", "footer"):
-        for i, line in enumerate(data[key]):
+    if data.get("five_axis", False) and "tcp_on" not in data:
+        fail("tcp_on", "missing: a five_axis post names the blocks that switch tool-centre-point control on "
+                       "(an empty list when the machine's kinematics do it)")
+    for key in ("tcp_on", "tcp_off"):
+        if key in data and not data.get("five_axis", False):
+            fail(key, "only applies with five_axis = true")
+    for key in ("header", "footer", "tcp_on", "tcp_off"):
+        for i, line in enumerate(data.get(key, ())):
             if not isinstance(line, str):
                 fail(f"{key}[{i}]", f"expected a string, got {line!r}")
             try:

@@ -76,7 +76,8 @@ def parse_spec(data: dict, source: Path) -> Spec:
     if optimize is not None:
         optimize.done()
     machining = root.table("machining", None)
-    machining_spec = read_machining(machining, base) if machining is not None else None
+    machining_spec = read_machining(machining, base, cam.kind if cam else None,
+                                                  follower.kind if follower else None) if machining is not None else None
     report_t = root.table("report", None)
     report_spec = read_report(report_t) if report_t is not None else DEFAULT_REPORT
     root.done()

@@ -10,6 +10,9 @@ feed = 400.0               # mm/min
 spindle = 3000             # rev/min
 depth = 12.0               # mm
 stepdown = 4.0             # mm
+axes = 5                   # cylindrical cams: 4 (X A) or 5 (X Y Z A B, tool axis on the roller axis);
+                           # default 5 for an oscillating roller, 4 otherwise
+a_axis = "right-hand"      # "left-hand": the machine's positive A turns the part the other way
 ```
 """
 
@@ -24,7 +27,7 @@ from camcam.spec.reader import Table
 from camcam.toolpath.arcfit import rounding_budget
 from camcam.toolpath.path import CutSettings
 
-__all__ = ["MachiningSpec", "read_machining"]
+__all__ = ["MachiningSpec", "read_machining", "default_axes"]
 
 
 @dataclass(frozen=True)
@@ -46,6 +49,8 @@ class MachiningSpec:
     finish_allowance_mm: float
     spring_pass: bool
     tool_number: int
+    axes: int = 3
+    a_axis: str = "right-hand"
 
     def cut_settings(self, stock_side: str = "right") -> CutSettings:
         """Settings for :func:`camcam.toolpath.path.contour_toolpath`."""
@@ -57,8 +62,17 @@ class MachiningSpec:
                            tool_number=self.tool_number, tool_diameter_mm=self.tool_diameter_mm)
 
 
-def read_machining(t: Table, base: Path) -> MachiningSpec:
-    """Validate ``[machining]``; ``base`` anchors a relative post path."""
+def default_axes(cam_kind: str | None, follower_kind: str | None) -> int:
+    """Axes a job uses when ``[machining] axes`` is not given: 5 for an oscillating roller on a
+    cylindrical cam (its roller axis tilts with the arm), 4 for other cylindrical cams, 3 for discs."""
+    if cam_kind != "cylindrical":
+        return 3
+    return 5 if follower_kind == "oscillating-roller" else 4
+
+
+def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_kind: str | None = None) -> MachiningSpec:
+    """Validate ``[machining]``; ``base`` anchors a relative post path; the cam and follower kinds
+    decide which ``axes`` values apply (:func:`default_axes`)."""
     name = t.string("post", "linuxcnc")
     try:
         post = load_post(name, base)
@@ -81,6 +95,18 @@ def read_machining(t: Table, base: Path) -> MachiningSpec:
     allowance = t.number("finish_allowance", 0.0, minimum=0.0, unit="mm")
     spring = t.boolean("spring_pass", False)
     tool_number = t.integer("tool_number", 1, minimum=0, maximum=999)
+    axes = default_axes(cam_kind, follower_kind)
+    if t.has("axes"):
+        if cam_kind != "cylindrical":
+            raise t.error("axes", "applies to cylindrical cams only (a disc cam is cut with 3 axes)")
+        allowed = (4, 5) if follower_kind == "oscillating-roller" else (4,)
+        axes = t.integer("axes", minimum=4, maximum=5)
+        t.check("axes", axes in allowed, f"expected 4 for a {follower_kind} follower (its roller axis stays radial, "
+                f"so B would stay 0), got {axes}")
+    a_axis = t.string("a_axis", "right-hand", choices=("right-hand", "left-hand"))
+    if axes == 5:
+        t.check("post", post.five_axis, f"post {post.name} has no 5-axis mode (tool-centre-point control); "
+                f"use a post with one (linuxcnc, fanuc, haas, sinumerik, heidenhain) or axes = 4")
     t.done()
     return MachiningSpec(post, tool, tol, mode, feed, spindle, depth, stepdown, plunge, safe, clearance, lead,
-                         allowance, spring, tool_number)
+                         allowance, spring, tool_number, axes, a_axis)
