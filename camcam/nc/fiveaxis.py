@@ -57,6 +57,7 @@ from camcam.toolpath.contours import CutContour, SegmentBlocks
 from camcam.toolpath.deviation import Deviation
 from camcam.toolpath.elements import Line
 from camcam.toolpath.path import Feed, Rapid, Toolpath, depth_levels
+from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["ToolPose", "FivePath", "fit_five_axis", "machine_five_axis", "frame_comments", "tool_axis", "part_pose"]
 
@@ -157,10 +158,6 @@ class ToolPose:
         return float((z.value - self.tool_radius_mm * np.abs(np.sin(f.value))).min())
 
 
-def _round(v, decimals: int):
-    return np.round(np.asarray(v, float), decimals)
-
-
 def block_errors(pose: ToolPose, p0: np.ndarray, p1: np.ndarray, cut_length: float, samples: int) -> np.ndarray:
     """Error model (mm) inside blocks from printed nodes ``p0`` to ``p1`` (n, 4: X, Z, A°, B°): (n, 2), the
     largest over ``samples`` interior points at the tip (ℓ′ = 0) and at the top of the cut (ℓ′ = L)."""
@@ -178,13 +175,13 @@ def block_errors(pose: ToolPose, p0: np.ndarray, p1: np.ndarray, cut_length: flo
     return np.stack([np.abs(d0).max(axis=1), np.abs(d1).max(axis=1)], axis=-1)
 
 
-def _node(pose: ToolPose, a_deg: np.ndarray, decimals: int) -> np.ndarray:
-    a = _round(a_deg, decimals)
-    xzb = _round(pose.at(pose.theta(a)), decimals)
+def _node(pose: ToolPose, a_deg: np.ndarray, quantizer: Quantizer) -> np.ndarray:
+    a = quantizer.snap(a_deg)
+    xzb = quantizer.snap(pose.at(pose.theta(a)))
     return np.column_stack([xzb[:, 0], xzb[:, 1], a, xzb[:, 2]])
 
 
-def fit_five_axis(pose: ToolPose, tolerance_mm: float, decimals: int, cut_length: float) -> np.ndarray:
+def fit_five_axis(pose: ToolPose, tolerance_mm: float, quantizer: Quantizer, cut_length: float) -> np.ndarray:
     """Printed nodes (n, 4: X, Z, A°, B°) over one revolution, every block within ``TARGET``·tolerance.
 
     A march over the cam angle q (A = s·q): from each node, candidate ends at 0.3…2.5 × the last step
@@ -193,15 +190,15 @@ def fit_five_axis(pose: ToolPose, tolerance_mm: float, decimals: int, cut_length
     """
     target = TARGET * tolerance_mm
     grid = np.linspace(0.3, 2.5, 23)
-    nodes = [_node(pose, np.array([0.0]), decimals)[0]]
+    nodes = [_node(pose, np.array([0.0]), quantizer)[0]]
     step = 1.0  # degrees of cam angle
-    tiny = 10.0**-decimals
+    tiny = quantizer.step_mm
     for end in np.degrees(pose.cam.breaks[1:]):
         q = 0.0 if len(nodes) == 1 else abs(nodes[-1][2])
         while end - q > tiny / 2:
             while True:
                 cand = np.unique(np.minimum(q + step * grid, end))
-                ends = _node(pose, pose.sign * cand, decimals)
+                ends = _node(pose, pose.sign * cand, quantizer)
                 starts = np.repeat(nodes[-1][None, :], len(cand), axis=0)
                 ok = block_errors(pose, starts, ends, cut_length, FIT_SAMPLES).max(axis=1) <= target
                 if ok[0]:
@@ -210,7 +207,7 @@ def fit_five_axis(pose: ToolPose, tolerance_mm: float, decimals: int, cut_length
                 step *= 0.3
                 if step < 10 * tiny:
                     raise GeometryError(f"5-axis fit: cannot hold {target:.4g} mm near cam angle {q:.4f}° "
-                                        f"with {decimals} decimals")
+                                        f"with {quantizer.decimals} decimals")
             chosen = ends[k - 1]
             step = abs(chosen[2] - nodes[-1][2])
             nodes.append(chosen)
@@ -279,10 +276,10 @@ def _lower_bound(pose: ToolPose, tolerance_mm: float, cut_length: float, lo: flo
     return float(np.trapezoid(np.sqrt(k / (8 * tolerance_mm)), th))
 
 
-def five_axis_path(pose: ToolPose, tolerance_mm: float, decimals: int) -> FivePath:
+def five_axis_path(pose: ToolPose, tolerance_mm: float, quantizer: Quantizer) -> FivePath:
     """Fit one revolution and measure it on the printed numbers."""
     cut = pose.cut_length()
-    nodes = fit_five_axis(pose, tolerance_mm, decimals, cut)
+    nodes = fit_five_axis(pose, tolerance_mm, quantizer, cut)
     err = block_errors(pose, nodes[:-1], nodes[1:], cut, REPORT_SAMPLES)
     worst = int(np.argmax(err.max(axis=1)))
     return FivePath(nodes, cut, pose.floor_radius(), float(err[:, 0].max()), float(err[:, 1].max()),
@@ -328,7 +325,7 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
     if not post.five_axis:
         raise InputError(f"post {post.name}: has no 5-axis mode (tool-centre-point control); use axes = 4 or a post with one")
     pose = ToolPose.of(cam, r_t, m.a_axis)
-    path = five_axis_path(pose, m.tolerance_mm, post.decimals)
+    path = five_axis_path(pose, m.tolerance_mm, post.quantizer)
     bore = built.spec.bore / 2
     if path.floor_radius_mm <= bore:
         raise GeometryError(f"5-axis: the tool's flat end dips to radius {path.floor_radius_mm:.2f} mm at the largest "

@@ -40,6 +40,7 @@ from importlib import resources
 from pathlib import Path
 
 from camcam.errors import InputError
+from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["Post", "load_post", "known_posts", "parse_post"]
 
@@ -73,6 +74,11 @@ class Post:
     five_axis: bool = False
     tcp_on: tuple[str, ...] = ()
     tcp_off: tuple[str, ...] = ()
+
+    @property
+    def quantizer(self) -> Quantizer:
+        """The printed rounding of this post (decimals and arc format): the one model of what it prints."""
+        return Quantizer(self.decimals, self.arc_format)
 
 
 def _post_dir():
