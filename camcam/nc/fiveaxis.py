@@ -46,7 +46,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from camcam.errors import GeometryError, InputError
+from camcam.errors import FitError, GeometryError, InputError, PostError
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.jet import Jet
 from camcam.nc.job import SAME_TOOL_MM, MachiningResult, _title
@@ -206,7 +206,7 @@ def fit_five_axis(pose: ToolPose, tolerance_mm: float, quantizer: Quantizer, cut
                     break
                 step *= 0.3
                 if step < 10 * tiny:
-                    raise GeometryError(f"5-axis fit: cannot hold {target:.4g} mm near cam angle {q:.4f}° "
+                    raise FitError(f"5-axis fit: cannot hold {target:.4g} mm near cam angle {q:.4f}° "
                                         f"with {quantizer.decimals} decimals")
             chosen = ends[k - 1]
             step = abs(chosen[2] - nodes[-1][2])
@@ -352,8 +352,8 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
     toolpath = Toolpath(title, tuple(moves), m.spindle_rpm, m.tool_number, m.tool_diameter_mm, True, comments, True)
     try:
         program = write_program(toolpath, post, name)
-    except (GeometryError, InputError) as err:
-        raise GeometryError(f"post {post.name}: {err}") from None
+    except PostError as err:
+        raise PostError(f"post {post.name}: {err}") from None
     rho = cam.reference_radius
     curve = cam.developed_centre(rho)
     printed = _developed(pose, nodes, rho)
