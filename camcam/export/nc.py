@@ -19,7 +19,16 @@ def _title_lines(built: BuiltCam, r: MachiningResult) -> list[str]:
     return [f"{r.name}: {built.spec.kind} cam, base radius {cam.base_radius:g} mm, rotation {cam.rotation}",
             f"follower {cam.kind}{roller}",
             f"tool D{r.tool_diameter_mm:g} mm, post {r.post.name} ({r.program_filename}), {r.mode}",
-            f"tolerance {r.tolerance_mm:g} mm two-sided; measured {r.max_deviation_mm:.4f} mm on the printed program"]
+            _measured_line(r)]
+
+
+def _measured_line(r: MachiningResult) -> str:
+    if r.groove is None:
+        return f"tolerance {r.tolerance_mm:g} mm two-sided; measured {r.max_deviation_mm:.4f} mm on the printed program"
+    g = r.groove
+    verdict = "within" if g.max_deviation_mm <= r.tolerance_mm else "OUT OF TOLERANCE"
+    return (f"tolerance {r.tolerance_mm:g} mm; 3-D groove deviation {g.max_deviation_mm:.4f} mm ({verdict}), "
+            f"both walls, r = {g.radii_mm[0]:g}-{g.radii_mm[-1]:g} mm, whole revolution, on the printed program")
 
 
 def _disc_extras(built: BuiltCam, r: MachiningResult) -> dict:
@@ -83,15 +92,22 @@ def machining_report(r: MachiningResult) -> dict:
         contours.append({
             "label": c.label, "offset_mm": c.offset_mm, "max_deviation_mm": c.deviation.max_deviation_mm,
             "line_blocks": c.fit.line_blocks, "arc_blocks": c.fit.arc_blocks, "lower_bound_blocks": c.lower_bound,
-            "error_top_mm": c.error_top_mm, "error_bottom_mm": c.error_bottom_mm,
             "segments": [{"from_deg": s.from_deg, "to_deg": s.to_deg, "blocks": s.blocks,
                           "lower_bound_blocks": s.lower_bound} for s in c.segments],
         })
-    return {
+    out = {
         "post": r.post.name, "program": r.program_filename, "tool_diameter_mm": r.tool_diameter_mm,
         "tolerance_mm": r.tolerance_mm, "mode": r.mode, "max_deviation_mm": r.max_deviation_mm,
         "line_blocks": r.line_blocks, "arc_blocks": r.arc_blocks, "lower_bound_blocks": r.lower_bound_blocks,
         "lower_bound_kind": "arcs: ∫(|κ′|/192δ)^⅓ ds" if r.mode == "arcs" else "lines: ∫√(|κ|/8δ) ds",
         "program_blocks": {"line": r.program.line_blocks, "arc": r.program.arc_blocks, "rapid": r.program.rapid_blocks},
         "reference_radius_mm": r.reference_radius_mm, "contours": contours, "notes": list(r.notes),
+        "checks": [c.as_dict() for c in r.checks],
     }
+    if r.groove is not None:
+        g = r.groove.as_dict()
+        out["flank_deviation"] = g.pop("walls")
+        out["groove_3d"] = g
+        if r.smallest_tool_mm is not None:
+            out["smallest_tool_diameter_mm"] = r.smallest_tool_mm
+    return out

@@ -49,6 +49,7 @@ import numpy as np
 from camcam.errors import FitError, GeometryError, InputError, PostError
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.jet import Jet
+from camcam.nc.groove3d import CylinderTool, measure_groove, poses_from_program
 from camcam.nc.job import SAME_TOOL_MM, MachiningResult, _title
 from camcam.post.gcode import write_program
 from camcam.spec.machining import MachiningSpec
@@ -58,6 +59,7 @@ from camcam.toolpath.deviation import Deviation
 from camcam.toolpath.elements import Line
 from camcam.toolpath.path import Feed, Rapid, Toolpath, depth_levels
 from camcam.toolpath.quantizer import Quantizer
+from camcam.verdict import Check
 
 __all__ = ["ToolPose", "FivePath", "fit_five_axis", "machine_five_axis", "frame_comments", "tool_axis", "part_pose"]
 
@@ -252,6 +254,20 @@ def frame_comments(a_axis: str, sign: int, tcp: str) -> tuple[str, ...]:
             f"X Y Z = tool tip (centre of the flat end), tool-centre-point control on ({tcp})")
 
 
+def klartext_as_gcode(text: str) -> str:
+    """A Heidenhain program's straight-line blocks as G0/G1 lines (same words), for the pose reader.
+
+    ``L X+1 Z+2 A+3 B+4 R0 F100`` → ``G1 X+1 Z+2 A+3 B+4``; ``FMAX`` makes a G0; other blocks are dropped.
+    """
+    out = []
+    for line in text.splitlines():
+        words = line.split()
+        if len(words) > 1 and words[0].isdigit() and words[1] == "L":
+            axes = [w for w in words[2:] if w[0] in "XYZAB"]
+            out.append(("G0 " if "FMAX" in words else "G1 ") + " ".join(axes))
+    return "\n".join(out) + "\n"
+
+
 def _developed(pose: ToolPose, nodes: np.ndarray, rho: float) -> tuple:
     """The printed path's roller-axis point at cross-section ρ, developed at ρ: lines in (u, x)."""
     d = pose.cam.follower.pivot_distance
@@ -354,12 +370,19 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
         program = write_program(toolpath, post, name)
     except PostError as err:
         raise PostError(f"post {post.name}: {err}") from None
-    rho = cam.reference_radius
+    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm),
+                            poses_from_program(klartext_as_gcode(program.text) if post.dialect == "heidenhain"
+                                               else program.text, m.a_axis))
+    value, tol = groove.max_deviation_mm, m.tolerance_mm
+    holds = math.ceil(value * 1e4) / 1e4
+    check = Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(),
+                  f"check flute_length (the cut needs {path.cut_length_mm:.2f} mm from the tip) and depth, "
+                  f"or accept a tolerance of at least {holds:g} mm")
+    rho = cam.base_radius
     curve = cam.developed_centre(rho)
     printed = _developed(pose, nodes, rho)
     worst = max(path.error_tip_mm, path.error_top_mm)
-    margin = 0.0
-    dev = Deviation(worst, worst, worst, margin, (rho * float(pose.theta(path.worst_a_deg)), 0.0))
+    dev = Deviation(worst, worst, worst, 0.0, (rho * float(pose.theta(path.worst_a_deg)), 0.0))
     segs, pieces_blocks, bounds = [], [], []
     for lo, hi in zip(cam.breaks[:-1], cam.breaks[1:]):
         a_lo, a_hi = sorted((pose.sign * math.degrees(lo), pose.sign * math.degrees(hi)))
@@ -372,14 +395,14 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
     fit = FitResult(printed, "lines", m.tolerance_mm, post.decimals, dev, float(sum(bounds)), tuple(pieces_blocks),
                     tuple(bounds))
     contour = CutContour("groove (5-axis, tool on the roller axis)", curve, fit, printed, dev, cam.roller_radius,
-                         False, tuple(segs), "both", path.error_top_mm, path.error_tip_mm)
-    notes = (f"5-axis: X Y Z = tool tip, A = {'+' if pose.sign > 0 else '-'}cam angle, B = follower angle; "
+                         False, tuple(segs), "both")
+    notes = (f"5-axis fit model (the tool side's normal displacement at the walls, printed numbers): "
+             f"{path.error_tip_mm:.5f} mm at the tip, {path.error_top_mm:.5f} mm at the top of the cut; "
              f"{len(nodes) - 1} blocks per pass",
-             f"5-axis fit (normal displacement of the tool's side at the walls, printed numbers): "
-             f"{path.error_tip_mm:.5f} mm at the tip, {path.error_top_mm:.5f} mm at the top of the cut",
-             f"tool flute length needed >= {path.cut_length_mm:.2f} mm; the flat end dips to radius "
-             f"{path.floor_radius_mm:.2f} mm in the groove floor")
-    if m.mode == "arcs":
-        notes += ("mode arcs: a 5-axis program has lines only",)
+             f"5-axis: the cut reaches {path.cut_length_mm:.2f} mm up the tool from its tip; the flat end dips to "
+             f"radius {path.floor_radius_mm:.2f} mm in the groove floor")
+    if m.flute_length_mm < path.cut_length_mm:
+        notes += (f"flute_length {m.flute_length_mm:g} mm is shorter than the {path.cut_length_mm:.2f} mm the walls need",)
     return MachiningResult(name, built.spec.kind, cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, "lines",
-                           (contour,), toolpath, program, (0,) * n, (True,) * n, rho, notes)
+                           (contour,), toolpath, program, (0,) * n, (True,) * n, rho, notes,
+                           groove=groove, checks=(check,))

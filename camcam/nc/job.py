@@ -17,6 +17,7 @@ arc sweep; its deviation is measured on the path the post prints.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -28,6 +29,10 @@ from camcam.post.post import Post
 from camcam.spec.machining import MachiningSpec
 from camcam.toolpath.contours import CutContour, fit_printed
 from camcam.toolpath.path import Toolpath, contour_toolpath, depth_levels, slot_toolpath
+from camcam.verdict import Check
+
+if TYPE_CHECKING:
+    from camcam.nc.groove3d import GrooveMeasurement
 
 __all__ = ["MachiningResult", "machine", "SAME_TOOL_MM"]
 
@@ -58,6 +63,9 @@ class MachiningResult:
     pass_finish: tuple[bool, ...]
     reference_radius_mm: float | None = None
     notes: tuple[str, ...] = ()
+    groove: GrooveMeasurement | None = None
+    checks: tuple[Check, ...] = ()
+    smallest_tool_mm: float | None = None
 
     @property
     def rotary(self) -> bool:
@@ -69,7 +77,12 @@ class MachiningResult:
 
     @property
     def max_deviation_mm(self) -> float:
-        """Largest two-sided deviation of a printed contour from its exact tool-centre curve."""
+        """Largest two-sided deviation of a printed contour from its exact tool-centre curve.
+
+        Barrel cams: the 3-D groove figure (:mod:`camcam.nc.groove3d`), both walls, every radius.
+        """
+        if self.groove is not None:
+            return self.groove.max_deviation_mm
         return max(c.deviation.max_deviation_mm for c in self.contours)
 
     @property

@@ -10,9 +10,12 @@ feed = 400.0               # mm/min
 spindle = 3000             # rev/min
 depth = 12.0               # mm
 stepdown = 4.0             # mm
+flute_length = 32.0        # mm, the tool's cutting length (default: twice its diameter)
+a_axis = "right-hand"      # barrel cams: a positive A turns the part by the right-hand rule about +X
+                           # ("left-hand": the machine's positive A turns the part the other way)
+accept_out_of_tolerance = false  # true: a FAIL verdict only warns (exit 0)
 axes = 5                   # cylindrical cams: 4 (X A) or 5 (X Y Z A B, tool axis on the roller axis);
                            # default 5 for an oscillating roller, 4 otherwise
-a_axis = "right-hand"      # "left-hand": the machine's positive A turns the part the other way
 ```
 """
 
@@ -49,8 +52,10 @@ class MachiningSpec:
     finish_allowance_mm: float
     spring_pass: bool
     tool_number: int
-    axes: int = 3
+    flute_length_mm: float = 0.0
     a_axis: str = "right-hand"
+    accept_out_of_tolerance: bool = False
+    axes: int = 3
 
     def cut_settings(self, stock_side: str = "right") -> CutSettings:
         """Settings for :func:`camcam.toolpath.path.contour_toolpath`."""
@@ -95,6 +100,9 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
     allowance = t.number("finish_allowance", 0.0, minimum=0.0, unit="mm")
     spring = t.boolean("spring_pass", False)
     tool_number = t.integer("tool_number", 1, minimum=0, maximum=999)
+    flute = t.number("flute_length", 2.0 * tool, minimum=0.0, inclusive=False, unit="mm")
+    a_axis = t.string("a_axis", "right-hand", choices=("right-hand", "left-hand"))
+    accept = t.boolean("accept_out_of_tolerance", False)
     axes = default_axes(cam_kind, follower_kind)
     if t.has("axes"):
         if cam_kind != "cylindrical":
@@ -103,10 +111,10 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
         axes = t.integer("axes", minimum=4, maximum=5)
         t.check("axes", axes in allowed, f"expected 4 for a {follower_kind} follower (its roller axis stays radial, "
                 f"so B would stay 0), got {axes}")
-    a_axis = t.string("a_axis", "right-hand", choices=("right-hand", "left-hand"))
     if axes == 5:
         t.check("post", post.five_axis, f"post {post.name} has no 5-axis mode (tool-centre-point control); "
                 f"use a post with one (linuxcnc, fanuc, haas, sinumerik, heidenhain) or axes = 4")
     t.done()
     return MachiningSpec(post, tool, tol, mode, feed, spindle, depth, stepdown, plunge, safe, clearance, lead,
-                         allowance, spring, tool_number, axes, a_axis)
+                         allowance, spring, tool_number, flute_length_mm=flute, a_axis=a_axis,
+                         accept_out_of_tolerance=accept, axes=axes)

@@ -275,11 +275,11 @@ def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "
     plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
     moves: list = [Rapid(None, None, radius_mm + cs.safe_z_mm)]
     for z in levels:
-        moves.append(Rapid(float(pts[0, 0]), None, None))
+        moves.append(Rapid(float(pts[0, 0]), 0.0, None))  # Y0: the tool axis through the cam axis
         moves.append(Feed(None, None, radius_mm + cs.clearance_z_mm, plunge, float(a[0]), cs.safe_z_mm))
         moves.append(Feed(None, None, z, plunge, float(a[0]), cs.clearance_z_mm + radius_mm - z))
         for k in range(1, len(pts)):
             moves.append(Feed(float(pts[k, 0]), None, z, cs.feed_mm_min, float(a[k]), float(seg[k - 1])))
         moves.append(Rapid(None, None, radius_mm + cs.safe_z_mm))
     return Toolpath(title, tuple(moves), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, True,
-                    (f"4-axis, developed at R{radius_mm:g}",))
+                    (f"4-axis, developed at R{dev_r:g} mm",))
