@@ -46,18 +46,18 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from camcam.errors import FitError, GeometryError, InputError, PostError
+from camcam.errors import FitError, GeometryError, InputError
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.jet import Jet
 from camcam.nc.groove3d import CylinderTool, measure_groove, poses_from_program
-from camcam.nc.job import SAME_TOOL_MM, MachiningResult, _title
-from camcam.post.gcode import write_program
-from camcam.spec.machining import MachiningSpec
+from camcam.nc.result import MachiningResult
+from camcam.nc.settings import MachiningSpec
+from camcam.nc.tools import SAME_TOOL_MM, job_title
 from camcam.toolpath.arcfit import FitResult
 from camcam.toolpath.contours import CutContour, SegmentBlocks
 from camcam.toolpath.deviation import Deviation
 from camcam.toolpath.elements import Line
-from camcam.toolpath.path import Feed, Rapid, Toolpath, depth_levels
+from camcam.toolpath.path import Feed, Pass, Rapid, Toolpath, depth_levels
 from camcam.toolpath.quantizer import Quantizer
 from camcam.verdict import Check
 
@@ -351,25 +351,24 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
     n = len(levels)
     outer = cam.base_radius
     step = (outer - pose.tip_radius) / n
-    moves: list = [Rapid(None, None, outer + m.safe_z_mm)]
-    for k in range(n):
-        moves += _pass_moves(nodes, (n - 1 - k) * step, m, outer, r_t)
-    moves.append(Rapid(None, None, None, None, 0.0))
+    passes = tuple(Pass(0, "slot", float(pose.tip_radius - (n - 1 - k) * step),
+                        tuple(_pass_moves(nodes, (n - 1 - k) * step, m, outer, r_t))) for k in range(n))
     tcp = "; ".join(post.tcp_on) or "in the machine's kinematics"
     tcp = tcp.replace("{tool}", str(m.tool_number)).replace("{tool:02d}", f"{m.tool_number:02d}")
     feed_note = ("F = tool-tip feed in mm/min (M128)" if post.dialect == "heidenhain"
                  else "G93 inverse time: F = 1 / block time, the tool tip's path in the part at the feed")
     comments = frame_comments(m.a_axis, pose.sign, tcp) + (
-        f"tool D{m.tool_diameter_mm:g} flat end mill = the roller; flute length needed >= {path.cut_length_mm:.2f} mm",
+        f"tool D{m.tool_diameter_mm:g} flat end mill = the roller; the cut reaches {path.cut_length_mm:.2f} mm "
+        f"up the tool from its tip",
         f"{n} depth passes raised along the tool axis; final tip deep enough to cut both walls to the groove "
-        f"bottom R{cam.bottom_radius:g} (the flat end dips to R{path.floor_radius_mm:.2f} in the floor)",
+        f"bottom R{cam.bottom_radius:g} [the flat end dips to R{path.floor_radius_mm:.2f} in the floor]",
         feed_note)
-    title = _title(name, built, m, "lines") + ", 5 axes"
-    toolpath = Toolpath(title, tuple(moves), m.spindle_rpm, m.tool_number, m.tool_diameter_mm, True, comments, True)
-    try:
-        program = write_program(toolpath, post, name)
-    except PostError as err:
-        raise PostError(f"post {post.name}: {err}") from None
+    title = job_title(name, built.spec.kind, cam.kind, m.tool_diameter_mm, "lines", m.tolerance_mm, post.name) \
+        + ", 5 axes"
+    toolpath = Toolpath(title, passes, m.spindle_rpm, m.tool_number, m.tool_diameter_mm, True, comments,
+                        opening=(Rapid(None, None, outer + m.safe_z_mm),),
+                        closing=(Rapid(None, None, None, None, 0.0),), five_axis=True)
+    program = post.write_program(toolpath, name)
     groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm),
                             poses_from_program(klartext_as_gcode(program.text) if post.dialect == "heidenhain"
                                                else program.text, m.a_axis))
@@ -404,5 +403,4 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
     if m.flute_length_mm < path.cut_length_mm:
         notes += (f"flute_length {m.flute_length_mm:g} mm is shorter than the {path.cut_length_mm:.2f} mm the walls need",)
     return MachiningResult(name, built.spec.kind, cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, "lines",
-                           (contour,), toolpath, program, (0,) * n, (True,) * n, rho, notes,
-                           groove=groove, checks=(check,))
+                           (contour,), toolpath, program, rho, notes, (check,), groove=groove)

@@ -41,14 +41,14 @@ import numpy as np
 
 from camcam.errors import GeometryError, InputError
 from camcam.geometry.build import BuiltCam
-from camcam.nc.flank import DisplacedCurve, flank_error_mm, plan_flank, smallest_tool_radius
+from camcam.nc.flank import DisplacedCurve, plan_flank, smallest_tool_radius
 from camcam.nc.groove3d import A_AXIS_SENSE, CylinderTool, GrooveMeasurement, measure_groove, poses_from_program
-from camcam.nc.job import SAME_TOOL_MM, MachiningResult, _join, _title
-from camcam.post.gcode import write_program
-from camcam.spec.machining import MachiningSpec
+from camcam.nc.result import MachiningResult, deviation_checks
+from camcam.nc.settings import MachiningSpec
+from camcam.nc.tools import SAME_TOOL_MM, groove_passes, job_title
 from camcam.toolpath.contours import CutContour, OffsetCurve, fit_printed
 from camcam.toolpath.elements import Line
-from camcam.toolpath.path import depth_levels, rotary_toolpath
+from camcam.toolpath.path import join_toolpaths, rotary_toolpath
 from camcam.toolpath.quantizer import Quantizer
 from camcam.verdict import Check
 
@@ -81,23 +81,17 @@ def machine_frame_lines(a_axis: str, rho_d: float) -> tuple[str, ...]:
 def _plan(cam, r_t: float, rho_d: float):
     """[(label, developed curve at ρ_d, offset from the wall)] and the flank plan's first-order error."""
     r_r = cam.roller_radius
-    if r_t > r_r + SAME_TOOL_MM:
-        raise GeometryError(f"machining.tool_diameter: {2 * r_t:g} mm is wider than the groove ({2 * r_r:g} mm, "
-                            f"twice the roller radius)")
     centre = cam.developed_centre(rho_d)
-    if abs(r_t - r_r) <= SAME_TOOL_MM:
-        return [("groove centre", centre, r_r)], 0.0
-    if 3 * r_t < r_r:
-        raise GeometryError(f"machining.tool_diameter: {2 * r_t:g} mm is below a third of the groove width "
-                            f"{2 * r_r:g} mm: a centre pass and two flank passes would leave material between them")
-    rough = ("groove centre (rough)", centre, r_r)
+    if groove_passes(r_t, r_r) == "centre":
+        return [("groove centre", centre, r_r, "slot")], 0.0
+    rough = ("groove centre (rough)", centre, r_r, "slot")
     if cam.kind == "translating-roller":
         plan = plan_flank(cam, r_t, rho_d)
         # flank 0 is the −X wall: to the right of the centre line in (u, x) (u grows with the cam angle)
-        return [rough, ("flank 0 (-X wall)", DisplacedCurve(centre, -1.0, plan), r_t),
-                ("flank 1 (+X wall)", DisplacedCurve(centre, 1.0, plan), r_t)], plan.error_mm
-    return [rough, ("flank 0 (-X wall)", OffsetCurve(cam.developed_flank(0, rho_d), r_t), r_t),
-            ("flank 1 (+X wall)", OffsetCurve(cam.developed_flank(1, rho_d), -r_t), r_t)], 0.0
+        return [rough, ("flank 0 (-X wall)", DisplacedCurve(centre, -1.0, plan), r_t, "finish"),
+                ("flank 1 (+X wall)", DisplacedCurve(centre, 1.0, plan), r_t, "finish")], plan.error_mm
+    return [rough, ("flank 0 (-X wall)", OffsetCurve(cam.developed_flank(0, rho_d), r_t), r_t, "finish"),
+            ("flank 1 (+X wall)", OffsetCurve(cam.developed_flank(1, rho_d), -r_t), r_t, "finish")], 0.0
 
 
 def _corner_depth_mm(cam, r_t: float) -> float:
@@ -137,16 +131,15 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> Machini
     rho_d = cam.base_radius
     turn = A_AXIS_SENSE[m.a_axis] * cam.sigma  # printed A = turn · θ
     r_t = m.tool_diameter_mm / 2
-    title = _title(name, built, m, "lines")
+    title = job_title(name, built.spec.kind, cam.kind, m.tool_diameter_mm, "lines", m.tolerance_mm, post.name)
     cs0 = m.cut_settings()
-    n_levels = len(depth_levels(cs0))
     corner = _corner_depth_mm(cam, r_t) if m.depth_mm >= cam.groove_depth - 1e-9 else 0.0
     scale = (m.depth_mm + corner) / m.depth_mm
     cs = dataclasses.replace(cs0, depth_mm=m.depth_mm + corner, stepdown_mm=m.stepdown_mm * scale)
     plan, flank_err = _plan(cam, r_t, rho_d)
     fit_tol = m.tolerance_mm - flank_err if flank_err < 0.5 * m.tolerance_mm else m.tolerance_mm / 2
     contours, paths = [], []
-    for label, curve, offset in plan:
+    for k, (label, curve, offset, kind) in enumerate(plan):
         tol = fit_tol if label.startswith("flank") else m.tolerance_mm
 
         def printed(elements):
@@ -157,25 +150,21 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> Machini
         pts = np.array([fit.elements[0].start] + [e.end for e in fit.elements])
         pts = np.stack([pts[:, 1], turn * pts[:, 0]], axis=-1)  # (x, turn·u): A = turn·θ
         try:
-            paths.append(rotary_toolpath(pts, cam.base_radius, cs, title, developed_radius_mm=rho_d))
+            paths.append(rotary_toolpath(pts, cam.base_radius, cs, title, developed_radius_mm=rho_d,
+                                         contour=k, kind=kind))
         except InputError as err:
             raise GeometryError(f"{name} {label}: {err}") from None
         contours.append(CutContour(label, curve, fit, path, dev, offset, False, segs, "both"))
     comments = tuple(f"{c}" for c in machine_frame_lines(m.a_axis, rho_d))
     if corner > 0:
         comments += (f"last pass {corner:.3f} mm below the groove bottom: the tool end clears the wall corner",)
-    toolpath = _join(title, paths)
-    toolpath = dataclasses.replace(toolpath, comments=comments)
-    try:
-        program = write_program(toolpath, post, name)
-    except (GeometryError, InputError) as err:
-        raise GeometryError(f"post {post.name}: {err}") from None
+    toolpath = dataclasses.replace(join_toolpaths(title, paths), comments=comments)
+    program = post.write_program(toolpath, name)
     groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses_from_program(program.text, m.a_axis))
     smallest = None
     if cam.kind == "translating-roller" and r_t < cam.roller_radius - SAME_TOOL_MM:
         smallest = 2 * smallest_tool_radius(cam, 0.5 * m.tolerance_mm, rho_d)
     check = groove_check(cam, m, groove, smallest)
-    k = len(contours)
     notes = (f"4-axis: X along the cam axis, A = {'+' if turn > 0 else '-'}cam angle (deg), developed at R{rho_d:g} mm",)
     if m.mode == "arcs":
         notes += ("mode arcs: a 4-axis G1 X A program has lines only",)
@@ -185,7 +174,7 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> Machini
     if flank_err > 0:
         notes += (f"4-axis: flank passes balanced over the depth; first-order flank error {flank_err:.4f} mm"
                   + (f", smallest tool holding half the tolerance D{smallest:.2f} mm" if smallest else ""),)
+    checks = deviation_checks(contours, m.tolerance_mm) + (check,)
     return MachiningResult(name, built.spec.kind, cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, "lines",
-                           tuple(contours), toolpath, program,
-                           tuple(i for i in range(k) for _ in range(n_levels)), (True,) * (k * n_levels), rho_d, notes,
-                           groove=groove, checks=(check,), smallest_tool_mm=smallest)
+                           tuple(contours), toolpath, program, rho_d, notes, checks, groove=groove,
+                           smallest_tool_mm=smallest)
