@@ -43,10 +43,11 @@ def brute(built, moves, a_axis):
 def main(posts=("linuxcnc", "fanuc", "haas", "sinumerik", "heidenhain")) -> None:
     spec = load_spec(ROOT / "samples" / "cylindrical-oscillating.toml")
     rows = []
-    for rotation, a_axis, post in [("ccw", "right-hand", p) for p in posts] + [("cw", "right-hand", "linuxcnc"),
-                                                                              ("ccw", "left-hand", "linuxcnc")]:
+    cases = ([("ccw", "right-hand", p, 5) for p in posts]
+             + [("cw", "right-hand", "linuxcnc", 5), ("ccw", "left-hand", "linuxcnc", 5), ("ccw", "right-hand", "linuxcnc", 4)])
+    for rotation, a_axis, post, axes in cases:
         built = build_cam(replace(spec.cam, rotation=rotation), spec.follower, spec.motion.program(spec.unit))
-        m = replace(spec.machining, post=load_post(post), a_axis=a_axis)
+        m = replace(spec.machining, post=load_post(post), a_axis=a_axis, axes=axes)
         r = machine(built, m, spec.name)
         interp = "—"
         if rs274_available() and post in ("linuxcnc", "fanuc", "haas"):
@@ -57,16 +58,17 @@ def main(posts=("linuxcnc", "fanuc", "haas", "sinumerik", "heidenhain")) -> None
             g = measure_groove(built.cam, CylinderTool(m.tool_diameter_mm / 2, m.flute_length_mm),
                                poses_from_canon(canon, a_axis))
             interp = f"{g.max_deviation_mm:.4f}"
-        bf = brute(built, parse_moves(r.program.text), a_axis) if post != "heidenhain" else float("nan")
+        bf = f"{brute(built, parse_moves(r.program.text), a_axis):.4f}" if axes == 5 else "—"
         w = r.groove.walls
-        rows.append(f"| {post} | {rotation} | {a_axis} | {r.contours[0].fit.line_blocks} | "
-                    f"{r.contours[0].deviation.max_deviation_mm:.4f} | {r.groove.max_deviation_mm:.4f} | "
+        model = f"{r.contours[0].deviation.max_deviation_mm:.4f}" if axes == 5 else "—"
+        rows.append(f"| {post} | {axes} | {rotation} | {a_axis} | {r.contours[0].fit.line_blocks} | "
+                    f"{model} | {r.groove.max_deviation_mm:.4f} | "
                     f"{max(w[0].overcut_mm, w[1].overcut_mm):.4f} / {max(w[0].material_left_mm, w[1].material_left_mm):.4f} | "
-                    f"{interp} | {bf:.4f} |")
+                    f"{interp} | {bf} |")
         print(rows[-1], file=sys.stderr)
-    print("| post | rotation | a_axis | blocks/pass | fit model mm | 3-D printed mm | overcut / left mm | "
+    print("| post | axes | rotation | a_axis | blocks/pass | fit model mm | 3-D printed mm | overcut / left mm | "
           "3-D rs274 mm | brute force mm |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     print("\n".join(rows))
 
 

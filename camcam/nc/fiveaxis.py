@@ -48,7 +48,6 @@ import numpy as np
 
 from camcam.errors import FitError, GeometryError, InputError
 from camcam.geometry.build import BuiltCam
-from camcam.geometry.jet import Jet
 from camcam.nc.groove3d import CylinderTool, measure_groove, poses_from_program
 from camcam.nc.result import MachiningResult
 from camcam.nc.settings import MachiningSpec
