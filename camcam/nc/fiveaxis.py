@@ -41,12 +41,13 @@ tip's path length in the part frame.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from camcam.errors import FitError, GeometryError, InputError
+from camcam.errors import FitError, GeometryError, InputError, PostError
 from camcam.geometry.build import BuiltCam
 from camcam.nc.groove3d import CylinderTool, measure_groove, poses_from_program
 from camcam.nc.result import MachiningResult
@@ -367,15 +368,25 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
     toolpath = Toolpath(title, passes, m.spindle_rpm, m.tool_number, m.tool_diameter_mm, True, comments,
                         opening=(Rapid(None, None, outer + m.safe_z_mm),),
                         closing=(Rapid(None, None, None, None, 0.0),), five_axis=True)
-    program = post.write_program(toolpath, name)
-    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm),
-                            poses_from_program(klartext_as_gcode(program.text) if post.dialect == "heidenhain"
-                                               else program.text, m.a_axis))
+    measured = post.write_program(toolpath, name)
+    poses = poses_from_program(klartext_as_gcode(measured.text) if post.dialect == "heidenhain" else measured.text,
+                               m.a_axis)
+    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses)
     value, tol = groove.max_deviation_mm, m.tolerance_mm
     holds = math.ceil(value * 1e4) / 1e4
     check = Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(),
                   f"check flute_length (the cut needs {path.cut_length_mm:.2f} mm from the tip) and depth, "
                   f"or accept a tolerance of at least {holds:g} mm")
+    # the same moves, with the check's result in the header
+    verdict = "within" if check.ok else "OUT OF TOLERANCE"
+    toolpath = dataclasses.replace(toolpath, comments=toolpath.comments + (
+        f"3-D groove check of this program: {value:.4f} mm, {verdict} {tol:g} mm",))
+    program = post.write_program(toolpath, name)
+    again = poses_from_program(klartext_as_gcode(program.text) if post.dialect == "heidenhain" else program.text,
+                               m.a_axis)
+    if not (np.array_equal(again.tip_mm, poses.tip_mm) and np.array_equal(again.a_deg, poses.a_deg)
+            and np.array_equal(again.b_deg, poses.b_deg)):
+        raise PostError("the program's moves changed with its header comment")
     rho = cam.base_radius
     curve = cam.developed_centre(rho)
     printed = _developed(pose, nodes, rho)

@@ -66,7 +66,7 @@ from camcam.geometry.cylindrical import BarrelOscillatingRoller, CylindricalCam
 
 __all__ = ["ToolPoses", "CylinderTool", "WallExtreme", "WallDeviation", "GrooveMeasurement", "measure_groove",
            "poses_from_program", "poses_from_canon", "follower_poses", "A_AXIS_SENSE", "WALL_LABELS",
-           "design_walls", "cut_walls"]
+           "design_walls", "cut_walls", "section_interval"]
 
 #: Sign of the part's turn for a positive A: Rx(sign·A).
 A_AXIS_SENSE = {"right-hand": 1, "left-hand": -1}
@@ -280,7 +280,7 @@ def poses_from_canon(moves, a_axis: str = "right-hand") -> ToolPoses:
 
 
 # -- the section of a posed cylinder on the cylinder r = ρ ---------------------------------
-def _section(X, Y, Z, a, B, r, L, rho, gamma):
+def section_interval(X, Y, Z, a, B, r, L, rho, gamma):
     """x-interval (lo, hi) of a posed cylinder on r = ρ at part angle γ; NaN where it misses."""
     beta = gamma + a
     sb, cb = np.sin(B), np.cos(B)
@@ -304,7 +304,7 @@ def _section(X, Y, Z, a, B, r, L, rho, gamma):
 
 def _side(X, Y, Z, a, B, r, L, rho, gamma, side):
     """The wall-side extent: hi for side 1, −lo for side 0 (both maximised); −inf where it misses."""
-    lo, hi = _section(X, Y, Z, a, B, r, L, rho, gamma)
+    lo, hi = section_interval(X, Y, Z, a, B, r, L, rho, gamma)
     v = hi if side == 1 else -lo
     return np.where(np.isnan(v), -np.inf, v)
 
@@ -464,7 +464,7 @@ def _envelope(motion: _Motion, samples: np.ndarray, poses: tuple, rho: float, ga
             loc = np.repeat(np.arange(s0, s0 + len(c)), c)
             ii = np.repeat(i0[s0:s0 + chunk], c) + (np.arange(c.sum()) - np.repeat(np.cumsum(c) - c, c))
             js = keep[loc]
-            lo, hi = _section(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, g0 + ii * dg)
+            lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, g0 + ii * dg)
             ii = np.mod(ii, k)
             for side, v in ((0, -lo), (1, hi)):
                 _scatter_best(ii, np.where(np.isnan(v), -np.inf, v), js, best_v[side], best_j[side])
@@ -475,7 +475,7 @@ def _envelope(motion: _Motion, samples: np.ndarray, poses: tuple, rho: float, ga
             js = keep[(d_lo >= 0) & (d_hi >= 0)]
             if len(js) == 0:
                 continue
-            lo, hi = _section(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, gamma[i])
+            lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, gamma[i])
             for side, v in ((0, -lo), (1, hi)):
                 v = np.where(np.isnan(v), -np.inf, v)
                 m = int(np.argmax(v))

@@ -14,6 +14,7 @@ from camcam.geometry.build import BuiltCam
 from camcam.geometry.disc import DiscCam
 from camcam.geometry.groove import GrooveCam
 from camcam.motion.program import MotionProgram
+from camcam.plots.concurrent import PendingPNG, render_later
 from camcam.plots.groove_map import groove_map_png
 from camcam.plots.report_plots import deviation_png, fitted_motion_png
 from camcam.report.deviation_along import signed_deviation
@@ -30,7 +31,7 @@ __all__ = ["JobReport", "job_report"]
 class JobReport:
     html: str
     figures: dict  # extra JSON keys
-    files: dict  # name → bytes (plots also shown in the HTML, and the inspection CSV)
+    files: dict  # name → bytes, or PendingPNG for a plot being drawn (also shown in the HTML), and the inspection CSV
 
 
 def _job_rows(name, spec, built: BuiltCam | None, m: MachiningResult | None):
@@ -72,8 +73,8 @@ def _groove_rows(m: MachiningResult) -> tuple:
     return tuple(rows)
 
 
-def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: BuiltCam | None, cam_figures: dict,
-               cam_png: bytes | None, machining: MachiningResult | None, inspection_step_deg: float = 10.0,
+def job_report(name: str, spec, program: MotionProgram, svaj: bytes | PendingPNG, built: BuiltCam | None, cam_figures: dict,
+               cam_png: bytes | PendingPNG | None, machining: MachiningResult | None, inspection_step_deg: float = 10.0,
                verdict: Verdict | None = None) -> JobReport:
     """Build the HTML page, the report's extra JSON figures and its files; the verdict opens the page."""
     files: dict[str, bytes] = {}
@@ -103,7 +104,8 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: Buil
             *(("note", n) for n in m.notes),
         ))]
         if m.groove is not None:
-            png = groove_map_png(m.groove, m.tolerance_mm, f"{name}: cut groove − designed groove, normal to the walls")
+            png = render_later(groove_map_png, m.groove, m.tolerance_mm,
+                               f"{name}: cut groove − designed groove, normal to the walls")
             files[f"{name}-groove-map.png"] = png
             blocks.append(Figure(png, "3-D deviation of the cut groove walls from the designed walls (the roller's "
                                       "envelope), over radius and cam angle, measured on the printed program's axis "
@@ -117,7 +119,8 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: Buil
             # a groove's flanks are drawn unsigned
             normal = disc.normal(th) if isinstance(disc, DiscCam) else None
             dev = signed_deviation(curve, elements, th, normal)
-            files[f"{name}-deviation.png"] = deviation_png(ang, dev, m.tolerance_mm, f"{name}: printed tool path − exact tool-centre curve")
+            files[f"{name}-deviation.png"] = render_later(deviation_png, ang, dev, m.tolerance_mm,
+                                                          f"{name}: printed tool path − exact tool-centre curve")
             blocks.append(Figure(files[f"{name}-deviation.png"], "Deviation of the printed tool path from the exact tool-centre curve along the cam angle (+ leaves stock)."))
             figures["deviation_along_profile_mm"] = {"min": float(dev.min()), "max": float(dev.max())}
         excerpt = m.program.text.splitlines()[:24]
@@ -126,8 +129,8 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: Buil
         if isinstance(disc, DiscCam):
             c0 = m.contours[0]
             fm = fitted_motion(disc, c0.printed, c0.offset_mm, np.arange(0.0, 360.0, 0.5))
-            png = fitted_motion_png(fm.angles_deg, fm.design, fm.fitted, fm.units,
-                                    f"{name}: follower motion the fitted program will produce")
+            png = render_later(fitted_motion_png, fm.angles_deg, fm.design, fm.fitted, fm.units,
+                               f"{name}: follower motion the fitted program will produce")
             files[f"{name}-fitted-motion.png"] = png
             ea, aa = fm.max_error(2)
             ej, aj = fm.max_error(3)

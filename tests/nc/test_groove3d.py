@@ -208,3 +208,31 @@ def test_legacy_translating_figures_of_the_issue():
     assert 0.07 <= worst[2] <= 0.10 and 0.09 <= worst[0] <= 0.11
     assert m.deviation_mm[:, 2].max() > 0.07  # the top is overcut …
     assert m.deviation_mm[:, 0].min() < -0.07  # … and the bottom keeps material
+
+
+@settings(max_examples=120, deadline=None)
+@given(X=st.floats(-20, 20), Y=st.floats(-3, 3), Z=st.floats(20, 60), a=st.floats(-math.pi, math.pi),
+       B=st.floats(-0.6, 0.6), r=st.floats(2, 20), L=st.floats(5, 60), rho=st.floats(30, 80),
+       gamma=st.floats(-math.pi, math.pi))
+def test_section_interval_is_the_membership_of_the_line(X, Y, Z, a, B, r, L, rho, gamma):
+    """The closed-form x-interval of a posed cylinder on r = ρ against 3-D point membership along that line."""
+    from camcam.nc.groove3d import section_interval
+
+    lo, hi = (float(v) for v in section_interval(X, Y, Z, a, B, r, L, rho, gamma))
+
+    def inside(x):
+        p = _cam_point(rho, 0.0, 1, np.array([x]))
+        c, s = math.cos(gamma), math.sin(gamma)  # the point at part angle γ: rotate (0, 0, ρ) by γ
+        p[0, 1], p[0, 2] = -rho * s, rho * c
+        return bool(_inside_any(p, np.array([X]), np.array([Y]), np.array([Z]), np.array([a]), np.array([B]),
+                                r, L)[0])
+
+    eps = 1e-7  # well above the rounding of a closed form evaluated in doubles at these sizes
+    if math.isnan(lo):
+        xs = np.linspace(X - r - L, X + r + L, 801)  # a miss: no point of the line is inside
+        assert not any(inside(x) for x in xs)
+        return
+    assert inside(0.5 * (lo + hi))
+    assert not inside(lo - eps) and not inside(hi + eps)
+    if hi - lo > 2 * eps:
+        assert inside(lo + eps) and inside(hi - eps)
