@@ -16,7 +16,7 @@ from importlib import resources
 from pathlib import Path
 
 from camcam.cli.commands import help_of
-from camcam.cli.output import print_json, to_json, warn
+from camcam.cli.output import publish, to_json, warn
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
 
@@ -113,24 +113,20 @@ def run(args) -> int:
             out.add(f"{spec.name}-report.html", page.html)
             out.add(f"{spec.name}-report.json", to_json(report) + "\n")
         summary["cam"] = report
-    with progress.step("writing files"):
-        written = out.commit()
-    summary["files"] = [str(p) for p in written]
-    if args.json:
-        print_json(summary)
-    else:
+    def show(summary: dict) -> None:
         print_summary(summary["motion"])
         if "cam" in summary:
             c = summary["cam"]
             print(f"max pressure angle {c['max_pressure_angle_deg']:.4f}° at {c['max_pressure_angle_at_deg']:.2f}°; "
                   f"min radius of curvature {c['min_curvature_radius_mm']:.4f} mm at {c['min_curvature_radius_at_deg']:.2f}°")
             if "machining" in c:
+                what = ("3-D groove deviation" if "flank_deviation" in c["machining"] else "max deviation")
+                where = (" (both walls, every radius)" if "flank_deviation" in c["machining"] else "")
                 print(f"NC: {c['line_blocks']} line + {c['arc_blocks']} arc blocks (lower bound {c['lower_bound_blocks']:.1f}), "
-                      f"max deviation {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm on the printed program")
-        for p in written:
-            print(f"wrote {p}")
-        if verdict.checks:
-            print(verdict.line())
+                      f"{what} {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm{where} on the printed program")
+
+    with progress.step("writing files"):
+        publish(out, summary, args.json, show, (verdict.line(),) if verdict.checks else ())
     if not verdict.passed:
         accepted = " (accepted: accept_out_of_tolerance = true)" if verdict.accepted else ""
         print(f"camcam: {verdict.line()}{accepted}", file=sys.stderr)

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from camcam.toolpath.elements import Arc, Line, arc_from_tangent, element_distance, element_tangent
+from camcam.toolpath.elements import Arc, arc_from_tangent, element_distance, element_tangent
 
 __all__ = ["pieces", "Piece", "unit", "end_tangent", "dev", "biarc", "sweep_ok", "greedy", "signed_angle"]
 
