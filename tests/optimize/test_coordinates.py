@@ -43,7 +43,7 @@ def test_symmetric_subspace_holds_the_asymmetric_optimum():
 def test_scaled_coordinates_are_round_in_the_minimised_quantity():
     for p in (TABLE4, Problem(5, 7, True, "J", (("V", 1.76), ("A", 5.53)))):
         f = EvaluationFunction(p)
-        c = search_coordinates(f, p.space.initial_free())
+        c = search_coordinates(f, p.space.initial_free(), scaled=True)
         # a unit step in any search direction changes the sampled objective quantity by 1 r.m.s.
         assert np.allclose(c.basis.T @ _metric(f) @ c.basis, np.eye(c.size), atol=1e-8)
 
