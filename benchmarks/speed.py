@@ -89,7 +89,7 @@ def _jobs(out_dir: Path, only: str | None) -> list[tuple[str, str, list[str]]]:
         if kind == "disc":
             runs.append((f"run {spec.stem} @ {FINE_TOLERANCE_MM} mm", kind, _fine_spec(spec, out_dir)))
     for k, (label, kind, spec) in enumerate(runs):
-        jobs.append((label, kind, cli + ["run", str(spec), "-o", str(out_dir / f"out{k}")]))
+        jobs.append((label, kind, cli + ["run", str(spec), "-o", str(out_dir / f"out{k}"), "--force"]))
     return jobs
 
 

@@ -16,7 +16,7 @@ from importlib import resources
 from pathlib import Path
 
 from camcam.cli.commands import help_of
-from camcam.cli.output import publish, to_json, warn
+from camcam.cli.output import add_output_arguments, output_set, publish, to_json, warn
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
 
@@ -56,7 +56,7 @@ def job_verdict(machining, machining_spec) -> Verdict:
 def register(sub) -> None:
     p = sub.add_parser("run", help=help_of("run"))
     p.add_argument("spec", nargs="?", help="spec file (TOML); omitted: the bundled default job")
-    p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
+    add_output_arguments(p)
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     add_progress_flag(p)
     p.set_defaults(func=run)
@@ -74,14 +74,13 @@ def _load(spec_arg):
 def run(args) -> int:
     progress = Progress.from_args(args)
     from camcam.cli.motion import motion_outputs, motion_summary, print_summary
-    from camcam.export.files import OutputSet
 
     spec = _load(args.spec)
     verdict = Verdict(())
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
-    out = OutputSet(Path(args.output))
+    out = output_set(args, "run")
     with progress.step("motion table and plot"):
         svaj = motion_outputs(out, spec.name, program, 0.5)
     summary = {"name": spec.name, "motion": motion_summary(program)}
