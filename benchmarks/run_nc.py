@@ -57,7 +57,7 @@ def run_times() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         for p in specs:
             t0 = time.perf_counter()
-            out = subprocess.run([sys.executable, "-m", "camcam", "run", str(p), "-o", tmp], env=env,
+            out = subprocess.run([sys.executable, "-m", "camcam", "run", str(p), "-o", tmp, "--force"], env=env,
                                  capture_output=True, text=True, check=True).stdout
             dt = time.perf_counter() - t0
             nc = next((line[4:] for line in out.splitlines() if line.startswith("NC: ")), "")

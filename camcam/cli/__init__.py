@@ -1,7 +1,9 @@
 """The ``camcam`` command.
 
-Each sub-command lives in its own module with ``register(subparsers)``; this
-module assembles them and maps what went wrong to an exit status:
+Each sub-command lives in its own module with ``register(subparsers)``
+(:mod:`camcam.cli.commands` names them); only the module of the command that
+runs is imported, so ``camcam --help`` and ``camcam laws`` do not load the
+plotting, geometry and NC stages.  This module assembles them and maps what went wrong to an exit status:
 
 =====  ==============================================================================
 0      done
@@ -16,6 +18,7 @@ module assembles them and maps what went wrong to an exit status:
 from __future__ import annotations
 
 import argparse
+import importlib
 import os
 import sys
 import tempfile
@@ -23,12 +26,12 @@ import traceback
 from pathlib import Path
 
 from camcam import __version__
-from camcam.cli import fit, laws, motion, optimize, reverse, run
+from camcam.cli.commands import COMMANDS
 from camcam.errors import CamcamError
+from camcam.export.files import DiskLog
+from camcam.interrupts import Interrupted, Watch, exit_status, import_guard, signal_name
 
 __all__ = ["main", "main_exit", "USAGE_ERROR", "INTERNAL_ERROR"]
-
-COMMANDS = (laws, motion, run, fit, optimize, reverse)
 
 #: Exit status for every user error (bad spec, table, points, arguments).
 USAGE_ERROR = 2
@@ -44,12 +47,19 @@ class _Parser(argparse.ArgumentParser):
         raise SystemExit(USAGE_ERROR)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
+    """The parser for ``argv``: the full parser of the command it names (every command's
+    when ``argv`` is None), a bare entry with its help for each other command."""
     parser = _Parser(prog="camcam", description="Cam design to verified NC programs.")
     parser.add_argument("--version", action="version", version=f"camcam {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    for module in COMMANDS:
-        module.register(sub)
+    # the top-level options take no value, so the first word that names a command is the command
+    chosen = set(COMMANDS) if argv is None else next(({a} for a in argv if a in COMMANDS), set())
+    for name, (module, help_text) in COMMANDS.items():
+        if name in chosen:
+            importlib.import_module(module).register(sub)
+        else:
+            sub.add_parser(name, help=help_text)
     return parser
 
 
@@ -84,26 +94,35 @@ def fault_report(err: BaseException, argv: list[str] | None, output: str | None)
 
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; returns the exit status (see the module notes)."""
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    words = sys.argv[1:] if argv is None else list(argv)
+    with import_guard():  # Ctrl-C while the command's modules load: one line and 130, never a traceback
+        parser = build_parser(words)
+    args = parser.parse_args(words)
     if not getattr(args, "func", None):
         parser.print_help()
         return USAGE_ERROR
-    try:
-        return int(args.func(args) or 0)
-    except CamcamError as err:
-        print("camcam: error: " + _one_line(err), file=sys.stderr)
-        return USAGE_ERROR
-    except KeyboardInterrupt:
-        print("camcam: interrupted; no output was written", file=sys.stderr)
-        return 130
-    except Exception as err:  # a fault of ours, never dressed up as the user's mistake
+    disk = DiskLog()
+    with Watch() as watch:
+        args.watch, args.disk_log = watch, disk
         try:
-            where = f"details in {fault_report(err, argv, getattr(args, 'output', None))}"
-        except OSError:
-            where = "no file could be written for the details"
-        print(f"camcam: internal error: {type(err).__name__}: {_one_line(err)}; {where}", file=sys.stderr)
-        return INTERNAL_ERROR
+            status = int(args.func(args) or 0)
+            watch.checkpoint()  # an interrupt a library swallowed still ends the run as one
+            return status
+        except CamcamError as err:
+            print("camcam: error: " + _one_line(err), file=sys.stderr)
+            return USAGE_ERROR
+        except KeyboardInterrupt as err:  # Ctrl-C, SIGTERM, SIGHUP: say what is on disk
+            signum = err.signum if isinstance(err, Interrupted) else 2
+            what = "interrupted" if signum == 2 else f"terminated by {signal_name(signum)}"
+            print(f"camcam: {what}; {disk.describe()}", file=sys.stderr)
+            return exit_status(signum)
+        except Exception as err:  # a fault of ours, never dressed up as the user's mistake
+            try:
+                where = f"details in {fault_report(err, argv, getattr(args, 'output', None))}"
+            except OSError:
+                where = "no file could be written for the details"
+            print(f"camcam: internal error: {type(err).__name__}: {_one_line(err)}; {where}", file=sys.stderr)
+            return INTERNAL_ERROR
 
 
 def main_exit() -> None:

@@ -15,7 +15,8 @@ import sys
 from importlib import resources
 from pathlib import Path
 
-from camcam.cli.output import publish, to_json, warn
+from camcam.cli.commands import help_of
+from camcam.cli.output import add_output_arguments, output_set, publish, to_json, warn
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
 
@@ -53,9 +54,9 @@ def job_verdict(machining, machining_spec) -> Verdict:
 
 
 def register(sub) -> None:
-    p = sub.add_parser("run", help="run the whole flow for a spec (default: the bundled sample job)")
+    p = sub.add_parser("run", help=help_of("run"))
     p.add_argument("spec", nargs="?", help="spec file (TOML); omitted: the bundled default job")
-    p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
+    add_output_arguments(p)
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     add_progress_flag(p)
     p.set_defaults(func=run)
@@ -73,14 +74,13 @@ def _load(spec_arg):
 def run(args) -> int:
     progress = Progress.from_args(args)
     from camcam.cli.motion import motion_outputs, motion_summary, print_summary
-    from camcam.export.files import OutputSet
 
     spec = _load(args.spec)
     verdict = Verdict(())
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
-    out = OutputSet(Path(args.output))
+    out = output_set(args, "run")
     with progress.step("motion table and plot"):
         svaj = motion_outputs(out, spec.name, program, 0.5)
     summary = {"name": spec.name, "motion": motion_summary(program)}
@@ -88,11 +88,14 @@ def run(args) -> int:
         from camcam.export.cam_report import cam_report
         from camcam.export.stl import stl_bytes
         from camcam.geometry.build import build_cam
+        from camcam.plots.concurrent import render_later
         from camcam.plots.profile import cam_png
         from camcam.report.job import job_report
 
         with progress.step("cam geometry, analysis and mesh"):
             built = build_cam(spec.cam, spec.follower, program)
+            # drawn in a child process while the NC step runs (camcam.plots.concurrent)
+            profile_png = render_later(cam_png, built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
             report = cam_report(built)
         machining = None
         if spec.machining is not None:
@@ -102,7 +105,6 @@ def run(args) -> int:
         report["verdict"] = verdict.as_dict()
         with progress.step("drawing, model and report"):
             out.add(f"{spec.name}.stl", stl_bytes(built.mesh))
-            profile_png = cam_png(built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
             out.add(f"{spec.name}-profile.png", profile_png)
             page = job_report(spec.name, spec, program, svaj, built, report, profile_png, machining,
                               spec.report.inspection_step_deg, verdict)
@@ -112,6 +114,7 @@ def run(args) -> int:
             out.add(f"{spec.name}-report.html", page.html)
             out.add(f"{spec.name}-report.json", to_json(report) + "\n")
         summary["cam"] = report
+
     def show(summary: dict) -> None:
         print_summary(summary["motion"])
         if "cam" in summary:
@@ -119,8 +122,10 @@ def run(args) -> int:
             print(f"max pressure angle {c['max_pressure_angle_deg']:.4f}° at {c['max_pressure_angle_at_deg']:.2f}°; "
                   f"min radius of curvature {c['min_curvature_radius_mm']:.4f} mm at {c['min_curvature_radius_at_deg']:.2f}°")
             if "machining" in c:
+                what = ("3-D groove deviation" if "flank_deviation" in c["machining"] else "max deviation")
+                where = (" (both walls, every radius)" if "flank_deviation" in c["machining"] else "")
                 print(f"NC: {c['line_blocks']} line + {c['arc_blocks']} arc blocks (lower bound {c['lower_bound_blocks']:.1f}), "
-                      f"max deviation {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm on the printed program")
+                      f"{what} {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm{where} on the printed program")
             if "material" in c:
                 mt = c["material"]
                 print(f"material: {mt['blank']['description']}; {len(mt['passes'])} passes, largest engagement "

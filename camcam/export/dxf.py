@@ -10,6 +10,7 @@ base circle, bore, roller circles, angle-zero mark, title block).
 from __future__ import annotations
 
 import io
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import ezdxf
@@ -110,6 +111,14 @@ def _add_splines(msp, curve, layer, deviation_mm) -> tuple[float, int]:
     return worst, count
 
 
+def _pin_classes(doc) -> None:
+    """Fix the CLASSES section's order.  ``doc.write`` adds a CLASS for each entity type in use by
+    iterating a set, whose order follows ``PYTHONHASHSEED``; adding them here first, sorted by name,
+    leaves ``write`` nothing to add, so the bytes no longer depend on the seed."""
+    doc.classes.add_required_classes(doc.dxfversion)
+    doc.classes.classes = OrderedDict(sorted(doc.classes.classes.items()))
+
+
 def _build(elements, curve, extras, spline_deviation_mm, title) -> DxfDrawing:
     doc = ezdxf.new("R2010", setup=False)
     for key, value in _FIXED_HEADER.items():
@@ -164,6 +173,7 @@ def _build(elements, curve, extras, spline_deviation_mm, title) -> DxfDrawing:
         doc.layers.add("TITLE")
         msp.add_text(title, height=3.5, dxfattribs={"layer": "TITLE"}).set_placement((0.0, -10.0))
         count += 1
+    _pin_classes(doc)
     buf = io.StringIO()
     doc.write(buf)
     return DxfDrawing(buf.getvalue().encode("utf-8"), worst, count)

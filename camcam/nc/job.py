@@ -142,7 +142,8 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEF
     removal = check_program(program.text, post, blank, m, built)
     return MachiningResult(name, built.spec.kind, built.cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, m.mode,
                            tuple(contours), toolpath, program, None, notes,
-                           deviation_checks(contours, m.tolerance_mm) + removal.checks(), blank, removal)
+                           deviation_checks(contours, m.tolerance_mm) + removal.checks(), blank=blank,
+                           removal=removal)
 
 
 def _profile_passes(k: int, elements, blank, m: MachiningSpec, cs, side: str, levels) -> list[Pass]:

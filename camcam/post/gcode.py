@@ -14,6 +14,8 @@ from typing import TYPE_CHECKING
 
 from camcam.errors import InputError, PostError
 from camcam.nc.result import Program
+from camcam.post.template import parse_template
+from camcam.post.text import encode_comment
 from camcam.toolpath.path import ArcMove, Comment, Feed, Rapid, Toolpath
 
 if TYPE_CHECKING:  # annotations only: post.post imports this module to print its programs
@@ -67,8 +69,16 @@ class _Writer:
     def emit(self, text: str):
         self.lines.append(text)
 
+    def f_word(self, value: float) -> str:
+        """``F…`` for a feed (mm/min, or 1/min in inverse time); never ``F0``."""
+        g = self.count(value)
+        if g <= 0:
+            raise InputError(f"machining.feed: {value:g} would print as F0 with post {self.post.name}'s "
+                             f"{self.post.decimals} decimals")
+        return f"F{self.n(g)}"
+
     def comment(self, text: str) -> str:
-        text = text.replace("(", "[").replace(")", "]")
+        text = encode_comment(text, self.post.comment)
         return f"({text})" if self.post.comment == "parentheses" else f"; {text}"
 
     # -- G-code ---------------------------------------------------------------------
@@ -105,9 +115,9 @@ class _Writer:
                 return
             if rotary:
                 inv = m.feed_mm_min / max(m.length_mm, 10.0**-d)
-                w.append(f"F{self.n(self.count(inv))}")
+                w.append(self.f_word(inv))
             elif m.feed_mm_min != self.feed:
-                w.append(f"F{self.n(self.count(m.feed_mm_min))}")
+                w.append(self.f_word(m.feed_mm_min))
                 self.feed = m.feed_mm_min
             self.emit("G1 " + " ".join(w))
             self.counts["line"] += 1
@@ -126,7 +136,7 @@ class _Writer:
         else:
             w += [f"R{self.n(round(math.hypot(cx - sx, cy - sy)))}"]
         if m.feed_mm_min != self.feed:
-            w.append(f"F{self.n(self.count(m.feed_mm_min))}")
+            w.append(self.f_word(m.feed_mm_min))
             self.feed = m.feed_mm_min
         self.emit(("G3 " if m.ccw else "G2 ") + " ".join(w))
         self.counts["arc"] += 1
@@ -165,7 +175,7 @@ class _Writer:
             self.check_arc(sx, sy, ex, ey, cx, cy, m.ccw)
             self.emit(f"CC X{self.n(cx, True)} Y{self.n(cy, True)}")
             self.pos[0], self.pos[1] = ex, ey
-            self.emit(f"C X{self.n(ex, True)} Y{self.n(ey, True)} DR{'+' if m.ccw else '-'} R0 F{self.n(self.count(m.feed_mm_min))}")
+            self.emit(f"C X{self.n(ex, True)} Y{self.n(ey, True)} DR{'+' if m.ccw else '-'} R0 {self.f_word(m.feed_mm_min)}")
             self.counts["arc"] += 1
             return
         words = []
@@ -179,7 +189,7 @@ class _Writer:
         if not words:
             return
         rapid = isinstance(m, Rapid)
-        f = "FMAX" if rapid else f"F{self.n(self.count(m.feed_mm_min))}"
+        f = "FMAX" if rapid else self.f_word(m.feed_mm_min)
         self.emit(f"L {' '.join(words)} R0 {f}" + (" M3" if first else ""))
         self.counts["rapid" if rapid else "line"] += 1
 
@@ -196,13 +206,19 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam") -> Progr
     """
     if toolpath.rotary and not post.inverse_time:
         raise InputError(f"post {post.name}: has no inverse-time feed (G93) for a 4-axis program")
-    fields = {"title": toolpath.title.replace("(", "[").replace(")", "]"), "name": name,
+    fields = {"title": toolpath.title, "name": name, "units": post.units,
               "tool": toolpath.tool_number, "spindle": int(round(toolpath.spindle_rpm)),
               "program_number": post.program_number}
+    for key in ("tool", "spindle"):
+        if fields[key] < 1:
+            raise InputError(f"{key}: {fields[key]} would print as {key[0].upper()}{fields[key]}; expected at least 1")
+
+    def lines(templates):
+        return [parse_template(t, post.comment).render(fields, post.name) for t in templates]
+
     w = _Writer(post)
     body: list[str] = []
-    for line in post.header:
-        body.append(line.format(**fields))
+    body += lines(post.header)
     for c in toolpath.comments:
         body.append(w.comment(c))
     if post.dialect == "heidenhain":
@@ -218,12 +234,15 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam") -> Progr
         if toolpath.rotary:
             w.emit("G94")
     body += w.lines
-    body += [line.format(**fields) for line in post.footer]
+    body += lines(post.footer)
     out = []
     k = post.line_number_start
     for line in body:
         numbered = post.line_numbers and (post.dialect == "heidenhain" or not (line.startswith("%") or line.startswith("O")))
         if numbered:
+            if k > post.max_line_number:
+                raise InputError(f"post {post.name}: the program needs block numbers past max_line_number = "
+                                 f"{post.max_line_number}; set line_numbers = false or a smaller line_number_step")
             out.append(f"{k} {line}" if post.dialect == "heidenhain" else f"N{k} {line}")
             k += post.line_number_step
         else:

@@ -9,7 +9,8 @@ Keys (all required unless a default is given):
 ``description``               text
 ``dialect``                   ``"gcode"`` (default) or ``"heidenhain"`` (conversational)
 ``extension``                 program file extension, without the dot
-``units``                     units word printed in the header (``G21``, ``G71``, ``MM``)
+``units``                     millimetres: ``G21`` or ``G71`` (G-code), ``MM`` (Heidenhain); the
+                              header must print it (literally or as ``{units}``)
 ``decimals``                  digits after the point, 3–6 (coordinates are rounded to them)
 ``arc_format``                ``"ij_incremental"``, ``"ij_absolute"``, ``"r"`` (G-code) or
                               ``"cc_absolute"`` (Heidenhain CC + C)
@@ -17,33 +18,56 @@ Keys (all required unless a default is given):
 ``max_radius_error_mm``       start/end radius mismatch allowed (default 0.002)
 ``decimal_point_always``      print ``X10.`` instead of ``X10`` (Fanuc)
 ``line_numbers``              number the blocks (``N10``); start/step default 10/10
+``max_line_number``           the controller's largest block number (default 99999); a longer
+                              program is refused
 ``comment``                   ``"parentheses"`` or ``"semicolon"``
 ``tool_change``               print the tool change line(s) of the header
 ``inverse_time``              the controller has G93 (needed for 4-axis programs)
-``header``, ``footer``        lists of lines; ``{title}``, ``{name}``, ``{tool}``,
-                              ``{spindle}``, ``{program_number}`` are filled in
-``program_number``            default 1 (Fanuc O-number)
+``header``, ``footer``        lists of lines; ``{title}``, ``{name}``, ``{units}``, ``{tool}``,
+                              ``{spindle}``, ``{program_number}`` are filled in (checked
+                              whole at load time: :mod:`camcam.post.template`)
+``program_number``            default 1 (Fanuc O-number); 1 up to the width the header
+                              prints it with (``{program_number:04d}``: 9999)
 ============================  =====================================================
+
+Text that reaches the program goes through the post's comment encoder
+(:mod:`camcam.post.text`).  A post file is read as UTF-8 (at most
+:data:`MAX_POST_BYTES`).
 """
 
 from __future__ import annotations
 
-import string
+import re
 import tomllib
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
 from camcam.errors import InputError
+from camcam.inputs import os_reason, read_limited
+from camcam.post.template import TemplateError, parse_template
 from camcam.nc.result import Program
 from camcam.post.gcode import write_program
 from camcam.toolpath.path import Toolpath
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["Post", "load_post", "known_posts", "parse_post"]
+__all__ = ["Post", "load_post", "known_posts", "parse_post", "MAX_POST_BYTES", "MAX_LINE_NUMBER",
+           "MAX_PROGRAM_NUMBER", "METRIC_UNITS"]
 
 _ARC_FORMATS = {"gcode": ("ij_incremental", "ij_absolute", "r"), "heidenhain": ("cc_absolute",)}
-_FIELDS = {"title", "name", "tool", "spindle", "program_number"}
+
+#: Largest post file read.
+MAX_POST_BYTES = 1 << 20
+
+#: Largest block number any supported controller takes (Fanuc 30i: 8 digits).
+MAX_LINE_NUMBER = 99_999_999
+
+#: Largest program number (Fanuc 30i: O followed by 8 digits).
+MAX_PROGRAM_NUMBER = 99_999_999
+
+#: The units words camcam's millimetre programs may declare, per dialect.
+METRIC_UNITS = {"gcode": ("G21", "G71"), "heidenhain": ("MM",)}
+_INCH = re.compile(r"(?<![A-Za-z0-9.])(G0*20|G0*70|INCH)(?![0-9])", re.IGNORECASE)
 
 
 @dataclass(frozen=True)
@@ -65,6 +89,7 @@ class Post:
     line_numbers: bool = False
     line_number_start: int = 10
     line_number_step: int = 10
+    max_line_number: int = 99999
     comment: str = "parentheses"
     tool_change: bool = True
     inverse_time: bool = True
@@ -97,7 +122,7 @@ def parse_post(data: dict, name: str) -> Post:
     types = {"description": str, "dialect": str, "extension": str, "units": str, "decimals": int,
              "arc_format": str, "max_arc_sweep_deg": (int, float), "max_radius_error_mm": (int, float),
              "decimal_point_always": bool, "line_numbers": bool, "line_number_start": int,
-             "line_number_step": int, "comment": str, "tool_change": bool, "inverse_time": bool,
+             "line_number_step": int, "max_line_number": int, "comment": str, "tool_change": bool, "inverse_time": bool,
              "header": list, "footer": list, "program_number": int}
     required = {"description", "extension", "units", "decimals", "arc_format", "max_arc_sweep_deg", "header", "footer"}
     for key in data:
@@ -126,17 +151,44 @@ def parse_post(data: dict, name: str) -> Post:
         fail("comment", f'expected "parentheses" or "semicolon", got {data["comment"]!r}')
     if not data["extension"].isalnum():
         fail("extension", f"expected letters/digits without a dot, got {data['extension']!r}")
+    if not data["extension"].isascii():
+        fail("extension", f"expected ASCII letters/digits, got {data['extension']!r}")
+    comment = data.get("comment", "parentheses")
+    templates = {}
     for key in ("header", "footer"):
         for i, line in enumerate(data[key]):
-            if not isinstance(line, str):
-                fail(f"{key}[{i}]", f"expected a string, got {line!r}")
             try:
-                names = {f for _, f, _, _ in string.Formatter().parse(line) if f is not None}
-            except ValueError as err:
-                fail(f"{key}[{i}]", f"bad template: {err}")
-            bad = names - _FIELDS
-            if bad:
-                fail(f"{key}[{i}]", f"unknown field {{{sorted(bad)[0]}}}; known: {', '.join(sorted(_FIELDS))}")
+                templates[(key, i)] = parse_template(line, comment)
+            except TemplateError as err:
+                fail(f"{key}[{i}]", str(err))
+    units = data["units"]
+    if units not in METRIC_UNITS[dialect]:
+        fail("units", f"camcam writes millimetres; expected {' or '.join(METRIC_UNITS[dialect])} for dialect {dialect}, "
+                      f"got {units!r}")
+    word = re.compile(rf"(?<![A-Za-z0-9.]){units}(?![0-9])")
+    header_has = any("units" in t.fields() or word.search(t.code_text()) for (k, _), t in templates.items() if k == "header")
+    if not header_has:
+        fail("header", f"must print the units word {units} (or {{units}}) so the controller reads millimetres")
+    for (key, i), t in templates.items():
+        m = _INCH.search(t.code_text())
+        if m:
+            fail(f"{key}[{i}]", f"{m.group(0)} selects inches; camcam writes millimetres")
+    top = data.get("max_line_number", 99999)
+    if not 1 <= top <= MAX_LINE_NUMBER:
+        fail("max_line_number", f"expected 1 to {MAX_LINE_NUMBER}, got {top}")
+    start, step = data.get("line_number_start", 10), data.get("line_number_step", 10)
+    if not 0 <= start <= top:
+        fail("line_number_start", f"expected 0 to max_line_number = {top}, got {start}")
+    if not 1 <= step <= top:
+        fail("line_number_step", f"expected 1 to max_line_number = {top}, got {step}")
+    pn_limit = MAX_PROGRAM_NUMBER
+    for t in templates.values():
+        w = t.width("program_number")
+        if w is not None:
+            pn_limit = min(pn_limit, 10**w - 1)
+    pn = data.get("program_number", 1)
+    if not 1 <= pn <= pn_limit:
+        fail("program_number", f"expected 1 to {pn_limit} (the digits the header prints it with), got {pn}")
     fields = {k: (tuple(v) if isinstance(v, list) else (float(v) if k in ("max_arc_sweep_deg", "max_radius_error_mm") else v))
               for k, v in data.items()}
     return Post(name=name, **fields)
@@ -155,20 +207,28 @@ def load_post(name_or_path: str | Path, base: Path | None = None) -> Post:
     camcam.errors.InputError: unknown post 'nope'; known: fanuc, grbl, haas, heidenhain, linuxcnc, sinumerik (or a path to a .toml file)
     """
     text_name = str(name_or_path)
-    if text_name.endswith(".toml") or "/" in text_name or "\\\\" in text_name:
+    if text_name.endswith(".toml") or "/" in text_name or "\\" in text_name:
         path = Path(text_name)
         if base is not None and not path.is_absolute():
             path = base / path
         try:
-            text = path.read_text(encoding="utf-8")
+            raw = read_limited(path, MAX_POST_BYTES)
         except OSError as err:
-            raise InputError(f"post {text_name}: cannot read: {err.strerror or err}") from None
+            raise InputError(f"post {text_name}: cannot read: {os_reason(err)}") from None
         name = path.stem
+        bad = [ch for ch in name if not ch.isprintable()]
+        if bad or len(name) > 64:
+            raise InputError(f"post {text_name!r}: the file name must be at most 64 printable characters "
+                             "(it is printed in the program's title)")
     else:
         if text_name not in known_posts():
             raise InputError(f"unknown post {text_name!r}; known: {', '.join(known_posts())} (or a path to a .toml file)")
-        text = (_post_dir() / f"{text_name}.toml").read_text(encoding="utf-8")
+        raw = (_post_dir() / f"{text_name}.toml").read_bytes()
         name = text_name
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise InputError(f"post {name}: not UTF-8 text (byte {err.start})") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:

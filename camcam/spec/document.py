@@ -1,29 +1,40 @@
 """A whole spec file: reading the TOML and validating each table.
 
 The spec is the only place that reads files named by the user besides the
-exporters; the stages receive the frozen values built here.
+exporters; the stages receive the frozen values built here.  Each table's
+reader is imported when the file has that table: the readers bring in their
+stage's settings (``[machining]`` the NC stage, ``[motion]`` the lift-table
+fitting), which a spec with only ``[optimize]`` does not need.
 """
 
 from __future__ import annotations
 
+import importlib
 import re
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from camcam.errors import SpecError
-from camcam.spec.cam import CamSpec, read_cam
-from camcam.spec.follower import FollowerSpec, read_follower
-from camcam.spec.machining import MachiningSpec, read_machining
-from camcam.spec.motion import MotionSpec, read_motion
-from camcam.spec.optimize import OptimizeSpec, read_optimize
+from camcam.inputs import os_reason, read_limited
 from camcam.spec.reader import Table, fmt
 from camcam.spec.report import DEFAULT_REPORT, ReportSpec, read_report
 from camcam.spec.stock import DEFAULT_STOCK, StockSpec, read_stock
 
-__all__ = ["Spec", "load_spec", "parse_spec"]
+if TYPE_CHECKING:
+    from camcam.spec.cam import CamSpec
+    from camcam.spec.follower import FollowerSpec
+    from camcam.spec.machining import MachiningSpec
+    from camcam.spec.motion import MotionSpec
+    from camcam.spec.optimize import OptimizeSpec
 
-_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$")
+__all__ = ["Spec", "load_spec", "parse_spec", "MAX_SPEC_BYTES"]
+
+_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,63}")  # whole name (fullmatch: "x\n" is refused)
+
+#: Largest spec file read (the samples are 1-2 KiB).
+MAX_SPEC_BYTES = 1 << 20
 
 
 @dataclass(frozen=True)
@@ -53,16 +64,21 @@ class Spec:
         return value
 
 
+def _reader(table: str, function: str):
+    """``camcam.spec.<table>.<function>``, imported now (module docstring)."""
+    return getattr(importlib.import_module(f"camcam.spec.{table}"), function)
+
+
 def parse_spec(data: dict, source: Path) -> Spec:
     """Validate a parsed TOML document (``source`` names it and anchors relative paths)."""
     root = Table(data, "")
     name = root.string("name", source.stem)
-    root.check("name", bool(_NAME.match(name)), f'{fmt(name)} must be 1–64 letters, digits, "_", "-" or "." (it names the output files)')
+    root.check("name", isinstance(name, str) and bool(_NAME.fullmatch(name)), f'{fmt(name)} must be 1–64 letters, digits, "_", "-" or "." (it names the output files)')
     base = source.parent
     cam_t = root.table("cam", None)
-    cam = read_cam(cam_t) if cam_t is not None else None
+    cam = _reader("cam", "read_cam")(cam_t) if cam_t is not None else None
     fol_t = root.table("follower", None)
-    follower = read_follower(fol_t, cam.kind if cam else None) if fol_t is not None else None
+    follower = _reader("follower", "read_follower")(fol_t, cam.kind if cam else None) if fol_t is not None else None
     if cam is not None and follower is None:
         raise SpecError("follower", "missing; a [cam] needs a [follower] table")
     if follower is not None and cam is not None:
@@ -70,21 +86,37 @@ def parse_spec(data: dict, source: Path) -> Spec:
             raise SpecError("follower.kind", f'"{follower.kind}": a {cam.kind} cam needs a roller follower')
     unit = follower.unit if follower is not None else "mm"
     motion = root.table("motion", None)
-    motion_spec = read_motion(motion, base, unit) if motion is not None else None
+    motion_spec = _reader("motion", "read_motion")(motion, base, unit) if motion is not None else None
     if motion is not None:
         motion.done()
     optimize = root.table("optimize", None)
-    optimize_spec = read_optimize(optimize) if optimize is not None else None
+    optimize_spec = _reader("optimize", "read_optimize")(optimize) if optimize is not None else None
     if optimize is not None:
         optimize.done()
     machining = root.table("machining", None)
-    machining_spec = read_machining(machining, base) if machining is not None else None
+    machining_spec = _reader("machining", "read_machining")(machining, base) if machining is not None else None
+    if machining_spec is not None and cam is not None:
+        _check_depth(machining_spec, cam)
+    if machining_spec is not None:
+        _reader("machining", "check_passes")(machining_spec)
     report_t = root.table("report", None)
     report_spec = read_report(report_t) if report_t is not None else DEFAULT_REPORT
     stock_t = root.table("stock", None)
     stock = read_stock(stock_t, cam) if stock_t is not None else DEFAULT_STOCK
     root.done()
     return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec, stock)
+
+
+def _check_depth(m: MachiningSpec, cam: CamSpec) -> None:
+    """A disc is cut at most ``BREAK_THROUGH_MM`` (:mod:`camcam.spec.machining`) below its thickness;
+    a groove no deeper than ``groove_depth``."""
+    if cam.kind == "disc":
+        through = _reader("machining", "BREAK_THROUGH_MM")
+        limit, why = cam.thickness + through, f"cam.thickness = {cam.thickness:g} mm plus {through:g} mm break-through"
+    else:
+        limit, why = cam.groove_depth, f"cam.groove_depth = {cam.groove_depth:g} mm"
+    if m.depth_mm > limit + 1e-9:
+        raise SpecError("machining.depth", f"{m.depth_mm:g} mm is deeper than {why}")
 
 
 def load_spec(path: str | Path) -> Spec:
@@ -114,11 +146,15 @@ def load_spec(path: str | Path) -> Spec:
     """
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        raw = read_limited(path, MAX_SPEC_BYTES)
     except FileNotFoundError:
         raise SpecError(str(path), "no such file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise SpecError(str(path), f"cannot read: {err}") from None
+    except OSError as err:
+        raise SpecError(str(path), f"cannot read: {os_reason(err)}") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise SpecError(str(path), f"not UTF-8 text (byte {err.start})") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:
