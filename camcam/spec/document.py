@@ -20,6 +20,7 @@ from camcam.errors import SpecError
 from camcam.inputs import os_reason, read_limited
 from camcam.spec.reader import Table, fmt
 from camcam.spec.report import DEFAULT_REPORT, ReportSpec, read_report
+from camcam.spec.stock import DEFAULT_STOCK, StockSpec, read_stock
 
 if TYPE_CHECKING:
     from camcam.spec.cam import CamSpec
@@ -48,6 +49,7 @@ class Spec:
     optimize: OptimizeSpec | None = None
     machining: MachiningSpec | None = None
     report: ReportSpec = DEFAULT_REPORT
+    stock: StockSpec = DEFAULT_STOCK
 
     @property
     def unit(self) -> str:
@@ -99,8 +101,10 @@ def parse_spec(data: dict, source: Path) -> Spec:
         _reader("machining", "check_passes")(machining_spec)
     report_t = root.table("report", None)
     report_spec = read_report(report_t) if report_t is not None else DEFAULT_REPORT
+    stock_t = root.table("stock", None)
+    stock = read_stock(stock_t, cam) if stock_t is not None else DEFAULT_STOCK
     root.done()
-    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec)
+    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec, stock)
 
 
 def _check_depth(m: MachiningSpec, cam: CamSpec) -> None:
