@@ -15,7 +15,7 @@ from camcam.errors import InputError
 __all__ = ["read_text", "data_rows", "read_limited", "MAX_INPUT_BYTES", "InputTooLarge", "os_reason",
            "parse_number", "looks_numeric", "MAX_ROWS"]
 
-#: Most data rows a table or point file may have (10⁵ rows fit in about 14 s of CPU, 10⁶ would take minutes).
+#: Most data rows a table or point file may have (10⁵ rows fit in about 16 s of CPU, 10⁶ would take minutes).
 MAX_ROWS = 200_000
 
 #: A plain decimal number: ASCII digits, an optional point and exponent (no ``1_00``, ``inf``, ``0x10``).
