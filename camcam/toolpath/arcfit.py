@@ -32,6 +32,7 @@ from scipy.integrate import simpson
 
 from camcam.errors import InputError
 from camcam.geometry.curve import PlanarCurve, curvature, curvature_rate, speed
+from camcam.toolpath.arcspline import SplineBudget, fit_arc_spline, g1_sections
 from camcam.toolpath.deviation import Deviation, measure_deviation
 from camcam.toolpath.elements import Arc, Line, arc_from_tangent
 from camcam.toolpath.fitcore import (Piece, biarc, dev, end_tangent, greedy, pieces, signed_angle, sweep_ok,
@@ -231,6 +232,44 @@ def _round_elements(elems, decimals):
     return out
 
 
+#: Refit factor when a printed section measures over the tolerance (its march target shrinks by this).
+ARC_RETRY_FACTOR = 0.93
+ARC_ATTEMPTS = 6
+
+
+def _fit_arcs(curve, tolerance_mm, decimals, max_sweep, margin, a, b) -> FitResult:
+    """Arcs: one near-minimal printed G1 arc spline per G1 section (:mod:`camcam.toolpath.arcspline`)."""
+    if not tolerance_mm > 2 * 10.0 ** (-decimals):
+        raise InputError(f"tolerance {tolerance_mm:g} mm is too fine for {decimals} decimals "
+                         f"(rounding alone moves a point {0.71 * 10.0 ** (-decimals):.2g} mm); use at least "
+                         f"{rounding_budget(decimals) / 0.56:.2g} mm or more decimals")
+    sag = min(0.5 * 10.0 ** (-decimals), 0.05 * tolerance_mm)  # arcs flatter than this print as lines
+    edges = pieces(curve, a, b)
+    sections = g1_sections(curve, edges[0][0], edges[-1][1])
+    whole = bool(curve.closed) and len(sections) == 1 and (a is None or a == curve.t_start) and \
+        (b is None or b == curve.t_end)
+    elems, starts, worst = [], [], None
+    for lo, hi in sections:
+        target = tolerance_mm
+        for _attempt in range(ARC_ATTEMPTS):
+            spline = fit_arc_spline(curve, lo, hi, target, decimals=decimals, max_sweep=max_sweep, sag=sag,
+                                    closed=whole, budget=SplineBudget(march_share=1.0 - 1.5 * margin / tolerance_mm))
+            dev = measure_deviation(curve, spline.elements, lo, hi, margin_mm=margin)
+            if dev.max_deviation_mm <= tolerance_mm:
+                break
+            target *= ARC_RETRY_FACTOR
+        else:
+            raise InputError(f"cannot fit the curve on t ∈ [{lo:g}, {hi:g}] within {tolerance_mm:g} mm")
+        elems.extend(spline.elements)
+        starts.extend(spline.starts)
+        if worst is None or dev.max_deviation_mm > worst.max_deviation_mm:
+            worst = dev
+    starts = np.asarray(starts)
+    blocks = [int(np.count_nonzero((starts >= lo) & ((starts < hi) | (hi == edges[-1][1])))) for lo, hi in edges]
+    lbs = [lower_bound_blocks(curve, tolerance_mm, lo, hi) for lo, hi in edges]
+    return FitResult(tuple(elems), "arcs", tolerance_mm, decimals, worst, float(sum(lbs)), tuple(blocks), tuple(lbs))
+
+
 def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs", decimals: int = 4,
                 max_sweep_deg: float = 90.0, a: float | None = None, b: float | None = None) -> FitResult:
     """Fit lines/arcs to ``curve`` with a guaranteed two-sided deviation ≤ ``tolerance_mm``.
@@ -258,23 +297,23 @@ def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs", 
         raise InputError(f"mode: expected 'arcs' or 'lines', got {mode!r}")
     if not 0 < max_sweep_deg <= 180:
         raise InputError(f"max_sweep_deg: expected 0 < value ≤ 180, got {max_sweep_deg!r}")
-    budget = rounding_budget(decimals)
     margin = 0.02 * tolerance_mm
+    max_sweep = math.radians(max_sweep_deg)
+    if mode == "arcs":
+        return _fit_arcs(curve, tolerance_mm, decimals, max_sweep, margin, a, b)
+    budget = rounding_budget(decimals)
     fit_tol = tolerance_mm - budget - 2 * margin
     if not fit_tol >= 0.4 * tolerance_mm:
         need = (budget / 0.56)
         raise InputError(f"tolerance {tolerance_mm:g} mm is too fine for {decimals} decimals "
                          f"(rounding alone takes {budget:.2g} mm); use at least {need:.2g} mm or more decimals")
-    sag = min(0.5 * 10.0 ** (-decimals), 0.05 * fit_tol)  # arcs flatter than this print as lines
-    max_sweep = math.radians(max_sweep_deg)
     all_elems, blocks, lbs = [], [], []
     worst = None
     for lo, hi in pieces(curve, a, b):
         piece = Piece(curve, lo, hi)
         tol_k = fit_tol
         for _attempt in range(6):
-            raw = (_fit_arcs_piece(piece, tol_k, max_sweep, sag) if mode == "arcs"
-                   else _fit_lines_piece(piece, tol_k))
+            raw = _fit_lines_piece(piece, tol_k)
             elems = _round_elements(raw, decimals)
             dev = measure_deviation(curve, elems, lo, hi, margin_mm=margin)
             if dev.max_deviation_mm <= tolerance_mm:
@@ -284,8 +323,7 @@ def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs", 
             raise InputError(f"cannot fit the curve on t ∈ [{lo:g}, {hi:g}] within {tolerance_mm:g} mm")
         all_elems.extend(elems)
         blocks.append(len(elems))
-        lbs.append(lower_bound_blocks(curve, tolerance_mm, lo, hi) if mode == "arcs"
-                   else line_estimate_blocks(curve, tolerance_mm, lo, hi))
+        lbs.append(line_estimate_blocks(curve, tolerance_mm, lo, hi))
         if worst is None or dev.max_deviation_mm > worst.max_deviation_mm:
             worst = dev
     return FitResult(tuple(all_elems), mode, tolerance_mm, decimals, worst, float(sum(lbs)),
