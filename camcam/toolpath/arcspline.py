@@ -84,15 +84,16 @@ class SplineBudget:
 
     march_share: float = 0.97
     samples: int = 28
-    beam: int = 24
+    beam: int = 16
+    pool: int = 40
     children: int = 4
     candidates: int = 10
     shortest: float = 0.7
     table: int = 16385
-    start_turns: tuple[float, ...] = (0.0, -0.25, 0.25, -0.5, 0.5)
-    offsets: tuple[float, ...] = (0.0, -0.5, 0.5)
-    state_bins: tuple[int, int] = (5, 17)
-    wrap_joints: int = 3
+    start_turns: tuple[float, ...] = (0.0, -5.0, 5.0, -10.0, 10.0)
+    offsets: tuple[float, ...] = (0.0, -0.3, 0.3, -0.65, 0.65)
+    state_bins: tuple[int, int] = (5, 33)
+    wrap_joints: int = 6
 
 
 @dataclass(frozen=True)
@@ -126,6 +127,51 @@ def g1_sections(curve, a: float, b: float, angle_tol: float = 1e-6) -> list[tupl
     return list(zip(cuts, cuts[1:]))
 
 
+def _grid_joint(p, nrm, decimals: int) -> np.ndarray:
+    """The printed joint: of the four grid points around ``p``, the one least off it along the curve normal.
+
+    A shift along the curve only moves where one arc hands over to the next;
+    a shift across it is deviation.
+    """
+    g = 10.0**decimals
+    lo = np.floor(p * g) / g
+    best, best_d = lo, np.full(len(p), np.inf)
+    for dx in (0.0, 1.0):
+        for dy in (0.0, 1.0):
+            cand = np.round((lo + np.array([dx, dy]) / g) * g) / g
+            d = np.abs(np.einsum("ij,ij->i", cand - p, nrm)) + 1e-3 * np.hypot(*(cand - p).T)
+            take = d < best_d
+            best = np.where(take[:, None], cand, best)
+            best_d = np.where(take, d, best_d)
+    return best
+
+
+def _grid_centre(p0, c, decimals: int) -> np.ndarray:
+    """The printed centre: of the four grid points around the exact centre ``c``, the one nearest the line p0–c.
+
+    Moving the centre along the radius only bends the arc a little (its start
+    and tangent stay); moving it across turns the printed arc's start tangent
+    by Δc⊥/R, an error that grows along the arc.  So the grid point with the
+    least cross-radius shift is printed (the writer prints a centre already on
+    the grid unchanged).
+    """
+    g = 10.0**decimals
+    lo = np.floor(c * g) / g
+    u = c - p0
+    u = u / np.maximum(np.hypot(u[:, 0], u[:, 1]), 1e-300)[:, None]
+    best = lo
+    best_perp = np.full(len(c), np.inf)
+    for dx in (0.0, 1.0):
+        for dy in (0.0, 1.0):
+            cand = np.round((lo + np.array([dx, dy]) / g) * g) / g
+            d = cand - c
+            perp = np.abs(d[:, 0] * u[:, 1] - d[:, 1] * u[:, 0])
+            take = perp < best_perp
+            best = np.where(take[:, None], cand, best)
+            best_perp = np.where(take, perp, best_perp)
+    return best
+
+
 def _arc_batch(p0, tan0, p1, decimals: int, sag: float):
     """Printed arcs leaving p0 (N, 2) along tan0 (N, 2) to p1 (N, 2): centres, flags, end tangents.
 
@@ -141,7 +187,7 @@ def _arc_batch(p0, tan0, p1, decimals: int, sag: float):
     half = np.where(np.einsum("ij,ij->i", tan0, v) < 0, np.pi - half, half)
     is_line = (chord / 2 * np.tan(half / 2) <= sag) | (h == 0)
     r = chord2 / (2 * np.where(h == 0, 1.0, h))
-    centre = _snap(p0 + r[:, None] * nrm, decimals)
+    centre = _grid_centre(p0, p0 + r[:, None] * nrm, decimals)
     ccw = r > 0
     # end tangent of the printed element
     rad = p1 - centre
@@ -222,18 +268,23 @@ class _March:
         self.budget = budget
         self.u = np.linspace(0.0, 1.0, budget.samples)
         self.t = np.linspace(a, b, budget.table)
-        if start is not None:  # a closed section marched from ``start`` once round
-            self.t = a + np.mod(self.t - a + (start - a), b - a)
-            self.t[-1] = self.t[0]
+        self.last = budget.table - 1
+        self.stop = self.last - 1  # the end itself is reached only by the closing biarc
+        if start is not None:
+            # a closed section marched from ``start`` once round and on past it by a third of a turn, where
+            # the closing biarc may meet the spline's first joints
+            extra = budget.table // 3
+            steps = np.arange(budget.table + extra) * ((b - a) / self.last)
+            self.t = a + np.mod(start - a + steps, b - a)
+            self.stop = self.last + extra - 1
         self.P = curve.evaluate(self.t, 0)
         d1 = _unit_rows(curve.evaluate(self.t, 1))
         self.T = d1
         self.N = np.stack([-d1[:, 1], d1[:, 0]], -1)
-        self.last = budget.table - 1
 
     def arcs(self, i0, p0, tan0, i1, o1):
         """Candidate arcs from joints (i0, p0, tan0) to joints at rows i1 offset o1 along the normal (N,)."""
-        p1 = _snap(self.P[i1] + o1[:, None] * self.N[i1], self.d)
+        p1 = _grid_joint(self.P[i1] + o1[:, None] * self.N[i1], self.N[i1], self.d)
         centre, ccw, is_line, t_end, a0, sweep = _arc_batch(p0, tan0, p1, self.d, self.sag)
         rows = np.rint(i0[:, None] + (i1 - i0)[:, None] * self.u[None, :]).astype(int)
         q = self.P[rows]
@@ -253,7 +304,7 @@ class _March:
         infeasible candidate.
         """
         K = self.budget.candidates
-        stop = self.last - 1  # the end itself is reached only by the closing biarc
+        stop = self.stop
         grid = np.linspace(0.4, 1.8, K)
         rays = [_Ray(s, o * self.tol, max(s.h, 2.0)) for s in states for o in offsets]
         for s in states:
@@ -305,19 +356,12 @@ class _March:
                 r.feasible.sort(key=lambda c: c[0])
             s.reach = max((r.feasible[-1][0] for r in s.rays if r.feasible), default=s.i)
 
-    def biarcs(self, st, p1, t1, ratios, wrap_to: int = 0) -> list:
-        """Closing biarcs from state ``st`` onto the point ``p1`` with tangent ``t1``; the feasible ones.
-
-        The biarc covers the table from ``st`` to the end and, for a closed
-        section, on from the start to row ``wrap_to``.
-        """
+    def biarcs(self, st, p1, t1, ratios, row: int) -> list:
+        """Closing biarcs from state ``st`` onto the point ``p1`` with tangent ``t1`` at table ``row``; the feasible ones."""
         p0, tan0 = st.p, st.tan
         v = p1 - p0
         out = []
-        n_q = 4 * self.budget.samples
-        rows = np.unique(np.rint(np.linspace(st.i, self.last, n_q)).astype(int))
-        if wrap_to > 0:
-            rows = np.concatenate([rows, np.unique(np.rint(np.linspace(0, wrap_to, n_q)).astype(int))])
+        rows = np.unique(np.rint(np.linspace(st.i, row, 4 * self.budget.samples)).astype(int))
         q = self.P[rows]
         c = 1.0 - float(tan0 @ t1)
         vt = float(v @ (tan0 + t1))
@@ -412,9 +456,9 @@ def _start_states(m: _March, closed: bool, budget: SplineBudget) -> list:
     states = [_State(0, p, m.T[0], h0, None, None)]
     if not closed:
         return states
-    # a tangent turned by φ with the joint on the curve errs by ≈ φ·x(1 − x/h)/… ; 4δ/h is the turn an arc absorbs
+    # tangent errors in units of δ/h (h: a first guess of an arc's length); the optimum's joints turn ≈ 10.4 δ/h
     arc_len = float(np.hypot(*np.diff(m.P[: max(3, int(h0)) + 1], axis=0).T).sum())
-    unit = 4.0 * m.tol / max(arc_len, 1e-12)
+    unit = m.tol / max(arc_len, 1e-12)
     for o in budget.offsets:
         for f in budget.start_turns:
             if o == 0.0 and f == 0.0:
@@ -455,6 +499,10 @@ def _quiet_start(curve, a: float, b: float, n: int = 2048) -> float:
     return float(a + (b - a) * mid / n)
 
 
+#: Tangent errors the frontier tells apart, in units of δ/h (the optimum sits at ±10.4).
+TURN_RANGE = 16.0
+
+
 def _frontier(m: _March, children: list, W: int, bins: tuple[int, int]) -> list:
     """The states worth keeping after k arcs: per (offset, tangent error) cell the one that got farthest.
 
@@ -462,7 +510,8 @@ def _frontier(m: _March, children: list, W: int, bins: tuple[int, int]) -> list:
     curve and how far its tangent turns from the curve's; two joints in the
     same cell behave alike, so only the farthest of each survives (the
     reachable region after k arcs, sampled as in Maier's method).  The
-    tangent error is scaled by 4δ/h (the turn one arc of length h absorbs).
+    tangent error is scaled by δ/h: the optimal pattern's joints turn by
+    κ′h²/12 = (124.7/12)·δ/h ≈ 10.4·δ/h, so the cells span ±``TURN_RANGE``.
     """
     rows = np.array([c.i for c in children])
     p = np.array([c.p for c in children])
@@ -470,9 +519,10 @@ def _frontier(m: _March, children: list, W: int, bins: tuple[int, int]) -> list:
     off = np.einsum("ij,ij->i", p - m.P[rows], m.N[rows]) / m.tol
     turn = np.arctan2(m.T[rows, 0] * tan[:, 1] - m.T[rows, 1] * tan[:, 0], np.einsum("ij,ij->i", m.T[rows], tan))
     step = np.array([max(float(np.hypot(*(c.p - c.parent.p))), 1e-12) for c in children])
-    turn = turn * step / (4.0 * m.tol)
+    turn = turn * step / m.tol
+    lim = TURN_RANGE
     bo = np.clip(np.rint((off + 1.0) / 2.0 * (bins[0] - 1)), 0, bins[0] - 1).astype(int)
-    bt = np.clip(np.rint((np.clip(turn, -2.0, 2.0) + 2.0) / 4.0 * (bins[1] - 1)), 0, bins[1] - 1).astype(int)
+    bt = np.clip(np.rint((np.clip(turn, -lim, lim) + lim) / (2 * lim) * (bins[1] - 1)), 0, bins[1] - 1).astype(int)
     best: dict = {}
     for k in np.argsort(-rows, kind="stable"):
         key = (bo[k], bt[k])
@@ -524,23 +574,24 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, decimals: 
     for level_no in range(8 * m.last):
         # 1. closing biarcs; a closed section looks two levels further (a later closure may skip more arcs)
         for st in level:
-            if m.last - st.i > 2.5 * (st.reach - st.i) + 1:
-                continue
-            targets = [(end_p, end_t, 0, 0)]
+            targets = [(end_p, end_t, m.last, 0)]
             if closed:
-                # onto the start, or on past it to the j-th joint (the biarc then replaces the first j arcs)
+                # onto the start (row ``last`` once round), or on past it to the j-th joint: the biarc then
+                # replaces the first j arcs
                 chain = []
                 c = st
                 while c.parent is not None:
                     chain.append(c)
                     c = c.parent
                 chain.reverse()  # chain[j - 1]: the j-th joint
-                targets = [(st.root.p, st.root.tan, 0, 0)]
+                targets = [(st.root.p, st.root.tan, m.last, 0)]
                 for j in range(1, min(budget.wrap_joints, len(chain) - 1) + 1):
                     jt = chain[j - 1]
-                    targets.insert(0, (jt.p, jt.tan, jt.i, j))
-            for p1, t1, wrap, saved in targets:
-                for dev, e1, e2 in m.biarcs(st, p1, t1, BIARC_RATIOS, wrap):
+                    targets.append((jt.p, jt.tan, jt.i + m.last, j))
+            for p1, t1, row, saved in targets:
+                if not st.i < row <= st.i + 2.5 * (st.reach - st.i) + 1:
+                    continue
+                for dev, e1, e2 in m.biarcs(st, p1, t1, BIARC_RATIOS, row):
                     total = level_no + 2 - saved
                     if best is None or (total, dev) < (best[5], best[0]):
                         best, best_level = (dev, st, e1, e2, saved, total), level_no
@@ -560,8 +611,10 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, decimals: 
         if not children:
             break
         # 3. keep the farthest child of each joint state (normal offset, tangent error), then the farthest W
-        level = _frontier(m, children, W, budget.state_bins)
+        level = _frontier(m, children, budget.pool, budget.state_bins)
         m.expand(level, budget.offsets)
+        level.sort(key=lambda c: -c.reach)  # one-step lookahead: the farthest next reach first
+        level = level[:W]
     if best is None:
         raise InputError(f"cannot fit the curve on t ∈ [{a:g}, {b:g}] within {tolerance_mm:g} mm")
     _, st, e1, e2, saved, _ = best
