@@ -14,8 +14,7 @@ from camcam.geometry.followers import OscillatingFlat, OscillatingRoller, Transl
 from camcam.geometry.groove import GrooveCam
 from camcam.geometry.mesh import cylinder_mesh, disc_mesh, groove_mesh, ring_points
 from camcam.motion.program import MotionProgram
-from camcam.spec.cam import CamSpec
-from camcam.spec.follower import FollowerSpec
+from camcam.geometry.params import CamSpec, FollowerSpec
 
 __all__ = ["BuiltCam", "build_cam", "disc_follower"]
 
