@@ -66,6 +66,7 @@ import numpy as np
 
 from camcam.errors import InputError
 from camcam.toolpath.elements import Arc, Line, element_distance
+from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["SplineBudget", "ArcSpline", "fit_arc_spline", "g1_sections", "candidate_deviation"]
 
@@ -74,15 +75,18 @@ __all__ = ["SplineBudget", "ArcSpline", "fit_arc_spline", "g1_sections", "candid
 class SplineBudget:
     """How the march spends the tolerance δ and how hard it searches.
 
-    ``march_share``: the march keeps its sampled deviation within
-    ``march_share · δ``; the rest covers the final measurement's between-sample
-    margin (2 % of δ in :func:`~camcam.toolpath.contours.fit_printed`) and the
-    march's own sampling (``samples`` per candidate, refined by a parabola at
-    the peak).  ``beam``: states kept per level; ``children``: joints kept per
-    state; ``candidates``: candidate joints tried per state and pass.
+    The band itself comes from :meth:`~camcam.toolpath.budget.FitBudget.spline_targets`.
+    ``samples``: curve samples per candidate arc (the peak refined by a
+    parabola); ``table``: rows of the curve table; ``beam``: states kept per
+    level after the lookahead, ``pool``: states the frontier keeps before it;
+    ``children``: joints kept per ray; ``candidates``: candidate joints per ray
+    and pass; ``shortest``: the shortest child as a fraction of the ray's reach;
+    ``offsets``: the rays' joint offsets (× the band); ``state_bins``: frontier
+    cells (offset, tangent error); ``start_turns``: first-joint tangent errors
+    of a closed section (× δ/h); ``wrap_joints``: first joints a closing biarc
+    may replace.
     """
 
-    march_share: float = 0.97
     samples: int = 28
     beam: int = 16
     pool: int = 40
@@ -104,9 +108,21 @@ class ArcSpline:
     starts: tuple[float, ...]
 
 
-def _snap(x, decimals: int) -> np.ndarray:
-    """Round to the printed grid exactly as the writer does (``round(v·10^d) / 10^d``)."""
-    return np.round(np.asarray(x, float) * 10**decimals) / 10**decimals
+def _grid_near(p, weight, q: Quantizer) -> np.ndarray:
+    """Of the four grid points around each row of ``p``, the one with the least ``weight(candidate − p)``."""
+    lo = np.floor(np.asarray(p, float) / q.step_mm).astype(np.int64)
+    best, best_w = None, None
+    for dx in (0, 1):
+        for dy in (0, 1):
+            cand = q.value(lo + np.array([dx, dy]))
+            w = weight(cand - p)
+            if best is None:
+                best, best_w = cand, w
+            else:
+                take = w < best_w
+                best = np.where(take[:, None], cand, best)
+                best_w = np.where(take, w, best_w)
+    return best
 
 
 def _unit_rows(v):
@@ -127,26 +143,16 @@ def g1_sections(curve, a: float, b: float, angle_tol: float = 1e-6) -> list[tupl
     return list(zip(cuts, cuts[1:]))
 
 
-def _grid_joint(p, nrm, decimals: int) -> np.ndarray:
+def _grid_joint(p, nrm, q: Quantizer) -> np.ndarray:
     """The printed joint: of the four grid points around ``p``, the one least off it along the curve normal.
 
     A shift along the curve only moves where one arc hands over to the next;
     a shift across it is deviation.
     """
-    g = 10.0**decimals
-    lo = np.floor(p * g) / g
-    best, best_d = lo, np.full(len(p), np.inf)
-    for dx in (0.0, 1.0):
-        for dy in (0.0, 1.0):
-            cand = np.round((lo + np.array([dx, dy]) / g) * g) / g
-            d = np.abs(np.einsum("ij,ij->i", cand - p, nrm)) + 1e-3 * np.hypot(*(cand - p).T)
-            take = d < best_d
-            best = np.where(take[:, None], cand, best)
-            best_d = np.where(take, d, best_d)
-    return best
+    return _grid_near(p, lambda d: np.abs(np.einsum("ij,ij->i", d, nrm)) + 1e-3 * np.hypot(d[:, 0], d[:, 1]), q)
 
 
-def _grid_centre(p0, c, decimals: int) -> np.ndarray:
+def _grid_centre(p0, c, q: Quantizer) -> np.ndarray:
     """The printed centre: of the four grid points around the exact centre ``c``, the one nearest the line p0–c.
 
     Moving the centre along the radius only bends the arc a little (its start
@@ -155,28 +161,15 @@ def _grid_centre(p0, c, decimals: int) -> np.ndarray:
     least cross-radius shift is printed (the writer prints a centre already on
     the grid unchanged).
     """
-    g = 10.0**decimals
-    lo = np.floor(c * g) / g
-    u = c - p0
-    u = u / np.maximum(np.hypot(u[:, 0], u[:, 1]), 1e-300)[:, None]
-    best = lo
-    best_perp = np.full(len(c), np.inf)
-    for dx in (0.0, 1.0):
-        for dy in (0.0, 1.0):
-            cand = np.round((lo + np.array([dx, dy]) / g) * g) / g
-            d = cand - c
-            perp = np.abs(d[:, 0] * u[:, 1] - d[:, 1] * u[:, 0])
-            take = perp < best_perp
-            best = np.where(take[:, None], cand, best)
-            best_perp = np.where(take, perp, best_perp)
-    return best
+    u = _unit_rows(c - p0)
+    return _grid_near(c, lambda d: np.abs(d[:, 0] * u[:, 1] - d[:, 1] * u[:, 0]), q)
 
 
-def _arc_batch(p0, tan0, p1, decimals: int, sag: float):
+def _arc_batch(p0, tan0, p1, q: Quantizer, sag: float):
     """Printed arcs leaving p0 (N, 2) along tan0 (N, 2) to p1 (N, 2): centres, flags, end tangents.
 
-    ``p0`` and ``p1`` are already on the printed grid; the centre is rounded
-    (an I/J post).  Arcs with sagitta ≤ ``sag`` are lines (nearly straight).
+    ``p0`` and ``p1`` are already on the printed grid; the centre is put on it
+    too (:func:`_grid_centre`, as an I/J post prints it).  Arcs with sagitta ≤ ``sag`` are lines (nearly straight).
     """
     v = p1 - p0
     nrm = np.stack([-tan0[:, 1], tan0[:, 0]], axis=-1)
@@ -187,7 +180,7 @@ def _arc_batch(p0, tan0, p1, decimals: int, sag: float):
     half = np.where(np.einsum("ij,ij->i", tan0, v) < 0, np.pi - half, half)
     is_line = (chord / 2 * np.tan(half / 2) <= sag) | (h == 0)
     r = chord2 / (2 * np.where(h == 0, 1.0, h))
-    centre = _grid_centre(p0, p0 + r[:, None] * nrm, decimals)
+    centre = _grid_centre(p0, p0 + r[:, None] * nrm, q)
     ccw = r > 0
     # end tangent of the printed element
     rad = p1 - centre
@@ -262,9 +255,9 @@ class _March:
     array operations.
     """
 
-    def __init__(self, curve, a, b, tol, max_sweep, sag, decimals, budget: SplineBudget, start=None):
+    def __init__(self, curve, a, b, tol, max_sweep, sag, quantizer: Quantizer, budget: SplineBudget, start=None):
         self.curve, self.a, self.b = curve, a, b
-        self.tol, self.max_sweep, self.sag, self.d = tol, max_sweep, sag, decimals
+        self.tol, self.max_sweep, self.sag, self.q = tol, max_sweep, sag, quantizer
         self.budget = budget
         self.u = np.linspace(0.0, 1.0, budget.samples)
         self.t = np.linspace(a, b, budget.table)
@@ -284,8 +277,8 @@ class _March:
 
     def arcs(self, i0, p0, tan0, i1, o1):
         """Candidate arcs from joints (i0, p0, tan0) to joints at rows i1 offset o1 along the normal (N,)."""
-        p1 = _grid_joint(self.P[i1] + o1[:, None] * self.N[i1], self.N[i1], self.d)
-        centre, ccw, is_line, t_end, a0, sweep = _arc_batch(p0, tan0, p1, self.d, self.sag)
+        p1 = _grid_joint(self.P[i1] + o1[:, None] * self.N[i1], self.N[i1], self.q)
+        centre, ccw, is_line, t_end, a0, sweep = _arc_batch(p0, tan0, p1, self.q, self.sag)
         rows = np.rint(i0[:, None] + (i1 - i0)[:, None] * self.u[None, :]).astype(int)
         q = self.P[rows]
         dev = _peak(candidate_deviation(q, p0, p1, centre, ccw, is_line, a0, sweep))
@@ -386,11 +379,11 @@ class _March:
             gap = np.hypot(*(B - A))
             if gap <= 0:
                 continue
-            joint = _snap(A + alpha * (B - A) / gap, self.d)
+            joint = self.q.snap(A + alpha * (B - A) / gap)
             if np.hypot(*(joint - p0)) < 1e-9 or np.hypot(*(p1 - joint)) < 1e-9:
                 continue
-            c1, w1, l1, te1, _, s1 = (x[0] for x in _arc_batch(p0[None], tan0[None], joint[None], self.d, self.sag))
-            c2, w2, l2, _, _, s2 = (x[0] for x in _arc_batch(joint[None], te1[None], p1[None], self.d, self.sag))
+            c1, w1, l1, te1, _, s1 = (x[0] for x in _arc_batch(p0[None], tan0[None], joint[None], self.q, self.sag))
+            c2, w2, l2, _, _, s2 = (x[0] for x in _arc_batch(joint[None], te1[None], p1[None], self.q, self.sag))
             if (not l1 and s1 > self.max_sweep) or (not l2 and s2 > self.max_sweep):
                 continue
             e1 = _element(p0, joint, c1, w1, l1)
@@ -441,7 +434,8 @@ def _element(p0, p1, centre, ccw, is_line):
     return _plain(Arc(tuple(p0), tuple(p1), tuple(centre), bool(ccw)))
 
 
-BIARC_RATIOS = (1.0, 0.8, 1.25, 0.6, 1.6, 0.45, 2.2, 0.33, 3.0)
+#: Join parameters of the closing biarcs tried: tangent length α from the start over the equal-length biarc's.
+BIARC_RATIOS = (1.0, 0.7, 1.4, 0.5, 2.0)
 
 
 def _start_states(m: _March, closed: bool, budget: SplineBudget) -> list:
@@ -452,7 +446,7 @@ def _start_states(m: _March, closed: bool, budget: SplineBudget) -> list:
     run-in of arcs from the exact tangent.
     """
     h0 = max(2.0, m.last / 12.0)
-    p = _snap(m.P[0], m.d)
+    p = m.q.snap(m.P[0])
     states = [_State(0, p, m.T[0], h0, None, None)]
     if not closed:
         return states
@@ -466,7 +460,7 @@ def _start_states(m: _March, closed: bool, budget: SplineBudget) -> list:
             ang = f * unit
             c, s = math.cos(ang), math.sin(ang)
             tan = np.array([c * m.T[0, 0] - s * m.T[0, 1], s * m.T[0, 0] + c * m.T[0, 1]])
-            states.append(_State(0, _snap(m.P[0] + o * m.tol * m.N[0], m.d), tan, h0, None, None))
+            states.append(_State(0, m.q.snap(m.P[0] + o * m.tol * m.N[0]), tan, h0, None, None))
     return states
 
 
@@ -532,7 +526,7 @@ def _frontier(m: _March, children: list, W: int, bins: tuple[int, int]) -> list:
     return kept[:W]
 
 
-def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, decimals: int, max_sweep: float,
+def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer: Quantizer, max_sweep: float,
                    sag: float, closed: bool = False, budget: SplineBudget = SplineBudget()) -> ArcSpline:
     """A near-minimal printed G1 arc spline over [a, b] within ``tolerance_mm`` (sampled).
 
@@ -541,9 +535,9 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, decimals: 
     curve : PlanarCurve
         The curve (G1 on [a, b]); usually the Chebyshev copy of the exact one.
     tolerance_mm : float
-        The band's half width; the march keeps ``budget.march_share`` of it.
-    decimals : int
-        The post's decimals: joints and centres are rounded to them as the march goes.
+        The band's half width the march keeps its sampled deviation within.
+    quantizer : Quantizer
+        The post's printed rounding: joints and centres go on its grid as the march goes.
     max_sweep : float
         Largest arc sweep (rad), at most π.
     sag : float
@@ -560,16 +554,18 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, decimals: 
     ...     c, s = np.cos(t), np.sin(t)
     ...     return np.stack([[40 * c, 25 * s], [-40 * s, 25 * c], [-40 * c, -25 * s], [40 * s, -25 * c]][k], -1)
     >>> E = FunctionCurve(ellipse, 0.0, 2 * np.pi, closed=True)
-    >>> sp = fit_arc_spline(E, 0.0, 2 * np.pi, 0.01, decimals=4, max_sweep=np.radians(120), sag=5e-5, closed=True)
+    >>> from camcam.toolpath.quantizer import Quantizer
+    >>> sp = fit_arc_spline(E, 0.0, 2 * np.pi, 0.0097, quantizer=Quantizer(4), max_sweep=np.radians(120), sag=5e-5,
+    ...                     closed=True)
     >>> len(sp.elements) <= 1.2 * 14.65 + 4, sp.elements[0].start == sp.elements[-1].end  # N_lb = 14.65
     (True, True)
     """
-    tol = budget.march_share * tolerance_mm
-    m = _March(curve, a, b, tol, max_sweep, sag, decimals, budget, _quiet_start(curve, a, b) if closed else None)
+    tol = tolerance_mm
+    m = _March(curve, a, b, tol, max_sweep, sag, quantizer, budget, _quiet_start(curve, a, b) if closed else None)
     W = budget.beam
     level = _start_states(m, closed, budget)
     m.expand(level, budget.offsets)
-    end_p, end_t = _snap(m.P[-1], m.d), m.T[-1]
+    end_p, end_t = m.q.snap(m.P[-1]), m.T[-1]
     best, best_level = None, None
     for level_no in range(8 * m.last):
         # 1. closing biarcs; a closed section looks two levels further (a later closure may skip more arcs)
@@ -589,7 +585,7 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, decimals: 
                     jt = chain[j - 1]
                     targets.append((jt.p, jt.tan, jt.i + m.last, j))
             for p1, t1, row, saved in targets:
-                if not st.i < row <= st.i + 2.5 * (st.reach - st.i) + 1:
+                if not st.i < row <= min(st.i + 2.0 * (st.reach - st.i) + 1, len(m.P) - 1):
                     continue
                 for dev, e1, e2 in m.biarcs(st, p1, t1, BIARC_RATIOS, row):
                     total = level_no + 2 - saved
