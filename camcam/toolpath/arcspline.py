@@ -89,7 +89,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from camcam.errors import InputError
-from camcam.toolpath.elements import Arc, Line, element_distance
+from camcam.toolpath.elements import Arc, Line, element_distance, element_tangent
 from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["SplineBudget", "ArcSpline", "fit_arc_spline", "g1_sections", "candidate_deviation"]
@@ -306,7 +306,8 @@ class _March:
         rows = np.rint(i0[:, None] + (i1 - i0)[:, None] * self.u[None, :]).astype(int)
         q = self.P[rows]
         dev = _peak(candidate_deviation(q, p0, p1, centre, ccw, is_line, a0, sweep))
-        ok = (dev <= self.tol) & (is_line | (sweep <= self.max_sweep)) & (i1 > i0)
+        long_enough = np.hypot(*(p1 - p0).T) >= MIN_CHORD_STEPS * self.q.step_mm
+        ok = (dev <= self.tol) & (is_line | (sweep <= self.max_sweep)) & (i1 > i0) & long_enough
         return ok, (p1, centre, ccw, is_line, t_end, dev)
 
     def expand(self, states, offsets) -> None:
@@ -404,7 +405,8 @@ class _March:
             if gap <= 0:
                 continue
             joint = self.q.snap(A + alpha * (B - A) / gap)
-            if np.hypot(*(joint - p0)) < 1e-9 or np.hypot(*(p1 - joint)) < 1e-9:
+            chord2 = float(np.hypot(*(p1 - joint)))
+            if min(float(np.hypot(*(joint - p0))), chord2) < MIN_CHORD_STEPS * self.q.step_mm:
                 continue
             c1, w1, l1, te1, _, s1 = (x[0] for x in _arc_batch(p0[None], tan0[None], joint[None], self.q, self.sag))
             c2, w2, l2, _, _, s2 = (x[0] for x in _arc_batch(joint[None], te1[None], p1[None], self.q, self.sag))
@@ -412,6 +414,11 @@ class _March:
                 continue
             e1 = _element(p0, joint, c1, w1, l1)
             e2 = _element(joint, p1, c2, w2, l2)
+            t_end = element_tangent(e2, True)
+            # the rounded joint turns the second arc's end tangent a little; more than rounding can is no G1
+            if abs(math.atan2(t_end[0] * t1[1] - t_end[1] * t1[0], float(t_end @ t1))) > \
+                    2 * 0.71 * self.q.step_mm / chord2 + 1e-9:
+                continue
             dev_c = float(np.minimum(element_distance(e1, q), element_distance(e2, q)).max())
             # the joint is off the curve: the path → curve direction there as well
             dev_j = float(np.hypot(*(q - joint).T).min())
@@ -457,6 +464,9 @@ def _element(p0, p1, centre, ccw, is_line):
         return _plain(Line(tuple(p0), tuple(p1)))
     return _plain(Arc(tuple(p0), tuple(p1), tuple(centre), bool(ccw)))
 
+
+#: Shortest chord of an arc or line, in grid steps (a shorter one would print a direction of its own).
+MIN_CHORD_STEPS = 50
 
 #: Join parameters of the closing biarcs tried: tangent length α from the start over the equal-length biarc's.
 BIARC_RATIOS = (1.0, 0.7, 1.4, 0.5, 2.0)
