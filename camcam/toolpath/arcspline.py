@@ -114,8 +114,8 @@ class SplineBudget:
     samples: int = 28
     beam: int = 16
     pool: int = 40
-    children: int = 4
-    candidates: int = 10
+    children: int = 5
+    candidates: int = 14
     shortest: float = 0.7
     table: int = 16385
     start_turns: tuple[float, ...] = (0.0, -5.0, 5.0, -10.0, 10.0)
