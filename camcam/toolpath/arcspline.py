@@ -150,7 +150,7 @@ def _grid_near(p, weight, q: Quantizer) -> np.ndarray:
 
 
 def _unit_rows(v):
-    return v / np.hypot(v[..., 0], v[..., 1])[..., None]
+    return v / np.maximum(np.hypot(v[..., 0], v[..., 1]), 1e-300)[..., None]
 
 
 def g1_sections(curve, a: float, b: float, angle_tol: float = 1e-6) -> list[tuple[float, float]]:
