@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from camcam.errors import GeometryError
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
 from camcam.nc.result import MachiningResult, deviation_checks

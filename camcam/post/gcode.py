@@ -14,7 +14,6 @@ from typing import TYPE_CHECKING
 
 from camcam.errors import InputError, PostError
 from camcam.nc.result import Program
-from camcam.toolpath.elements import Arc, Line
 from camcam.toolpath.path import ArcMove, Feed, Rapid, Toolpath
 
 if TYPE_CHECKING:  # annotations only: post.post imports this module to print its programs

@@ -54,6 +54,7 @@ def test_bad_input_is_one_line_on_a_busy_machine(tmp_path):
             p.wait()
     assert r.returncode == 2
     assert r.stderr.count("\n") == 1 and r.stderr.startswith("camcam: error: undercut at cam angle "), r.stderr
+    assert "cam.base_radius >= " in r.stderr  # names the key and the way out
     assert not (tmp_path / "out").exists()
 
 
