@@ -6,7 +6,7 @@ The first table fits every contour of every disc sample in arcs mode at δ = 0.1
 arcs, the G1 lines among the blocks (nearly straight arcs print as lines), N_lb = ∫(|κ′|/192δ)^⅓ ds, the
 ratio blocks / N_lb, the issue-13 target 1.2·N_lb + 4 and the seconds of the NC step.
 
-The first table machines ``samples/disc-translating-roller.toml`` (profile offset by the 8 mm tool
+The second table machines ``samples/disc-translating-roller.toml`` (profile offset by the 8 mm tool
 radius, linuxcnc post, 4 decimals) with the tolerance and mode replaced; ``max_dev`` is measured on the
 printed program against the exact tool-centre curve.  Run from the repository:
 
