@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 from camcam.errors import SpecError
 from camcam.spec.reader import Table, fmt
 from camcam.spec.report import DEFAULT_REPORT, ReportSpec, read_report
+from camcam.spec.stock import DEFAULT_STOCK, StockSpec, read_stock
 
 if TYPE_CHECKING:
     from camcam.spec.cam import CamSpec
@@ -44,6 +45,7 @@ class Spec:
     optimize: OptimizeSpec | None = None
     machining: MachiningSpec | None = None
     report: ReportSpec = DEFAULT_REPORT
+    stock: StockSpec = DEFAULT_STOCK
 
     @property
     def unit(self) -> str:
@@ -91,8 +93,10 @@ def parse_spec(data: dict, source: Path) -> Spec:
     machining_spec = _reader("machining", "read_machining")(machining, base) if machining is not None else None
     report_t = root.table("report", None)
     report_spec = read_report(report_t) if report_t is not None else DEFAULT_REPORT
+    stock_t = root.table("stock", None)
+    stock = read_stock(stock_t, cam) if stock_t is not None else DEFAULT_STOCK
     root.done()
-    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec)
+    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec, stock)
 
 
 def load_spec(path: str | Path) -> Spec:
