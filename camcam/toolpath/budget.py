@@ -60,7 +60,8 @@ class FitBudget:
         The arc spline's march (:mod:`camcam.toolpath.arcspline`) measures its
         candidates as printed, so its band is δ less this share only: the final
         measurement's margin (``sampling_share``) and the march's own sampling
-        (at most half of it) (0.03).
+        (at most half of it), and 2 % for the slab check of the material removal, which measures
+        the cut on polygons (0.05).
     spline_retry_factor : float
         An arc-spline section that misses is marched again at this × the previous
         band (0.93: the arc count grows as band^−⅓, so small steps).
@@ -74,7 +75,7 @@ class FitBudget:
     sag_fit_share: float = 0.05
     retry_factor: float = 0.8
     attempts: int = 6
-    spline_sampling_share: float = 0.03
+    spline_sampling_share: float = 0.05
     spline_retry_factor: float = 0.93
 
     def rounding_mm(self, quantizer: Quantizer) -> float:
@@ -118,7 +119,7 @@ class FitBudget:
         --------
         >>> b = FitBudget()
         >>> [round(t, 7) for t in list(b.spline_targets(0.01, Quantizer(4)))[:2]]
-        [0.0097, 0.009021]
+        [0.0095, 0.008835]
         """
         target = tolerance_mm * (1.0 - self.spline_sampling_share)
         if quantizer.arc_format == "r":
