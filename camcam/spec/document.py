@@ -19,6 +19,7 @@ from camcam.spec.motion import MotionSpec, read_motion
 from camcam.spec.optimize import OptimizeSpec, read_optimize
 from camcam.spec.reader import Table, fmt
 from camcam.spec.report import DEFAULT_REPORT, ReportSpec, read_report
+from camcam.spec.size import SizeSpec, read_size
 
 __all__ = ["Spec", "load_spec", "parse_spec"]
 
@@ -37,6 +38,7 @@ class Spec:
     optimize: OptimizeSpec | None = None
     machining: MachiningSpec | None = None
     report: ReportSpec = DEFAULT_REPORT
+    size: SizeSpec | None = None  # `camcam size` sweeps it; `camcam run` runs the design as written
 
     @property
     def unit(self) -> str:
@@ -79,8 +81,10 @@ def parse_spec(data: dict, source: Path) -> Spec:
     machining_spec = read_machining(machining, base) if machining is not None else None
     report_t = root.table("report", None)
     report_spec = read_report(report_t) if report_t is not None else DEFAULT_REPORT
+    size_t = root.table("size", None)
+    size_spec = read_size(size_t, cam, follower, motion_spec, machining_spec) if size_t is not None else None
     root.done()
-    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec)
+    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec, size_spec)
 
 
 def load_spec(path: str | Path) -> Spec:

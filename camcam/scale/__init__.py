@@ -1,0 +1,1 @@
+"""Running many independent tasks in this process or on a Dask cluster."""
