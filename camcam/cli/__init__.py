@@ -10,12 +10,12 @@ import argparse
 import sys
 
 from camcam import __version__
-from camcam.cli import fit, laws, motion, optimize, reverse, run
+from camcam.cli import batch, fit, laws, motion, optimize, reverse, run, size
 from camcam.errors import CamcamError
 
 __all__ = ["main"]
 
-COMMANDS = (laws, motion, run, fit, optimize, reverse)
+COMMANDS = (laws, motion, run, fit, optimize, reverse, size, batch)
 
 #: Exit status for every user error (bad spec, table, points, arguments).
 USAGE_ERROR = 2

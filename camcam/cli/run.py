@@ -17,7 +17,7 @@ from pathlib import Path
 from camcam.cli.output import print_json, to_json, warn
 from camcam.cli.progress import step
 
-__all__ = ["register", "nc_step", "DEFAULT_SPEC"]
+__all__ = ["register", "nc_step", "job", "DEFAULT_SPEC"]
 
 #: The bundled job `camcam run` runs without a spec.
 DEFAULT_SPEC = "default.toml"
@@ -58,15 +58,16 @@ def _load(spec_arg):
         return load_spec(path)
 
 
-def run(args) -> int:
-    from camcam.cli.motion import motion_outputs, motion_summary, print_summary
-    from camcam.export.files import OutputSet
+def job(spec, out) -> dict:
+    """The whole flow for a loaded ``spec``: add every file to ``out`` (not committed) and return the summary.
 
-    spec = _load(args.spec)
+    `camcam run` and each spec of `camcam batch` go through here.
+    """
+    from camcam.cli.motion import motion_outputs, motion_summary
+
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
-    out = OutputSet(Path(args.output))
     with step("motion table and plot"):
         svaj = motion_outputs(out, spec.name, program, 0.5)
     summary = {"name": spec.name, "motion": motion_summary(program)}
@@ -96,6 +97,16 @@ def run(args) -> int:
             out.add(f"{spec.name}-report.html", page.html)
             out.add(f"{spec.name}-report.json", to_json(report) + "\n")
         summary["cam"] = report
+    return summary
+
+
+def run(args) -> int:
+    from camcam.cli.motion import print_summary
+    from camcam.export.files import OutputSet
+
+    spec = _load(args.spec)
+    out = OutputSet(Path(args.output))
+    summary = job(spec, out)
     with step("writing files"):
         written = out.commit()
     summary["files"] = [str(p) for p in written]

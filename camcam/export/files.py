@@ -48,6 +48,10 @@ class OutputSet:
     def names(self) -> list[str]:
         return list(self._files)
 
+    def contents(self) -> dict[str, bytes]:
+        """The files added so far, by name (a copy), e.g. to send them elsewhere to be written."""
+        return dict(self._files)
+
     def commit(self) -> list[Path]:
         """Write every file; on any failure remove what was written and re-raise."""
         self.directory.mkdir(parents=True, exist_ok=True)
