@@ -25,7 +25,7 @@ def main() -> None:
     for tol in (0.1, 0.01, 0.001):
         for mode in ("lines", "arcs"):
             t0 = time.perf_counter()
-            fit = fit_contour(curve, tol, mode=mode, decimals=4, max_sweep_deg=120.0)
+            fit = fit_contour(curve, tol, mode=mode, max_sweep_deg=120.0)
             dt = time.perf_counter() - t0
             n = len(fit.elements)
             per = " ".join(f"{b}/{1.5 * lb + 2:.1f}" for b, lb in zip(fit.piece_blocks, fit.piece_lower_bounds)) \

@@ -1,13 +1,23 @@
 """Error classes.  Each also inherits the built-in error it refines, so callers
 may catch either (``except ValueError`` keeps working).
 
-The command line turns every :class:`CamcamError` into one line on stderr and
-exit status 2; anything else is a bug and keeps its traceback.
+Two families, told apart by the exit status of the command line:
+
+* :class:`CamcamError` and its children are the user's: a bad spec, data file,
+  post file or a cam that cannot be built as specified.  One line on stderr,
+  exit status 2, nothing written.
+* :class:`CamcamFault` and its children (:class:`FitError`) are ours: the
+  input was fine but a stage could not do its job.  Like any other unexpected
+  exception they give one line "internal error: …; details in <file>", the
+  traceback in that file, and exit status 1.
+
+A run whose files were written but whose verdict is FAIL exits with status 3
+(:mod:`camcam.verdict`).
 """
 
 from __future__ import annotations
 
-__all__ = ["CamcamError", "SpecError", "InputError", "MotionError", "GeometryError"]
+__all__ = ["CamcamError", "SpecError", "InputError", "MotionError", "GeometryError", "CamcamFault", "FitError", "PostError"]
 
 
 class CamcamError(Exception):
@@ -41,3 +51,21 @@ class MotionError(CamcamError, ValueError):
 
 class GeometryError(CamcamError, ValueError):
     """The cam cannot be built as specified (undercut, cusp, follower cannot reach)."""
+
+
+class CamcamFault(RuntimeError):
+    """A stage failed on valid input: a defect or a limit of camcam, not the user's mistake."""
+
+
+class FitError(CamcamFault):
+    """The NC fit could not bring a contour within its tolerance on valid input.
+
+    Examples
+    --------
+    >>> isinstance(FitError("profile: 0.012 mm over 0.01 mm"), RuntimeError)
+    True
+    """
+
+
+class PostError(CamcamFault):
+    """A fitted path cannot be printed as fitted (an arc the post cannot hold after rounding)."""

@@ -153,7 +153,7 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
     contours, paths, pass_contours, pass_finish = [], [], [], []
     n_levels = len(depth_levels(m.cut_settings()))
     for k, (label, curve, offset, free) in enumerate(_disc_plan(built, r_t)):
-        fit, printed, dev, segs = fit_printed(curve, m.tolerance_mm, m.mode, post.decimals, post.max_arc_sweep_deg,
+        fit, printed, dev, segs = fit_printed(curve, m.tolerance_mm, m.mode, post.quantizer, post.max_arc_sweep_deg,
                                               _printer(post), f"{name} {label}")
         if free is not None:
             side = _stock_side(curve, free)

@@ -34,6 +34,8 @@ from camcam.errors import GeometryError, InputError
 from camcam.geometry.build import BuiltCam
 from camcam.post.gcode import write_program
 from camcam.spec.machining import MachiningSpec
+from camcam.toolpath.budget import DEFAULT_BUDGET
+from camcam.toolpath.quantizer import Quantizer
 from camcam.toolpath.contours import CutContour, OffsetCurve, fit_printed
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Line
@@ -43,11 +45,11 @@ from camcam.toolpath.path import depth_levels, rotary_toolpath
 __all__ = ["machine_cylindrical", "developed_printed", "printed_axes"]
 
 
-def printed_axes(elements, decimals: int, radius_mm: float) -> np.ndarray:
-    """(X, A°) of the contour's vertices as printed: x and u/ρ in degrees rounded to ``decimals``."""
+def printed_axes(elements, quantizer: Quantizer, radius_mm: float) -> np.ndarray:
+    """(X, A°) of the contour's vertices as printed: x and u/ρ in degrees on the post's grid."""
     pts = np.array([elements[0].start] + [e.end for e in elements])
-    x = np.round(pts[:, 1], decimals)
-    a = np.round(np.degrees(pts[:, 0] / radius_mm), decimals)
+    x = quantizer.snap(pts[:, 1])
+    a = quantizer.snap(np.degrees(pts[:, 0] / radius_mm))
     return np.stack([x, a], axis=-1)
 
 
@@ -90,14 +92,14 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> Machini
         curve = at(rho)
 
         def printed(elements):
-            return developed_printed(printed_axes(elements, post.decimals, rho), rho)
+            return developed_printed(printed_axes(elements, post.quantizer, rho), rho)
 
-        fit, path, dev, segs = fit_printed(curve, m.tolerance_mm, "lines", post.decimals, post.max_arc_sweep_deg,
+        fit, path, dev, segs = fit_printed(curve, m.tolerance_mm, "lines", post.quantizer, post.max_arc_sweep_deg,
                                            printed, f"{name} {label}")
-        axes = printed_axes(fit.elements, post.decimals, rho)
+        axes = printed_axes(fit.elements, post.quantizer, rho)
         errors = []
         for r in (cam.base_radius, cam.bottom_radius):
-            e = measure_deviation(at(r), developed_printed(axes, r), margin_mm=0.02 * m.tolerance_mm)
+            e = measure_deviation(at(r), developed_printed(axes, r), margin_mm=DEFAULT_BUDGET.margin_mm(m.tolerance_mm))
             errors.append(e.max_deviation_mm)
         # developed (u, x) → (x, arc length at ρ_ref); A = u/ρ_ref
         pts = np.array([fit.elements[0].start] + [e.end for e in fit.elements])

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from camcam.errors import GeometryError, InputError
+from camcam.errors import InputError, PostError
 from camcam.post.post import Post
 from camcam.toolpath.elements import Arc, Line
 from camcam.toolpath.path import ArcMove, Feed, Rapid, Toolpath
@@ -30,10 +30,6 @@ class Program:
     rapid_blocks: int
 
 
-def _grid(v: float, d: int) -> int:
-    return int(round(v * 10**d))
-
-
 def format_number(v: float, post: Post, signed: bool = False) -> str:
     """``v`` rounded to the post's decimals, trailing zeros dropped.
 
@@ -45,7 +41,7 @@ def format_number(v: float, post: Post, signed: bool = False) -> str:
     >>> format_number(2.5, load_post("heidenhain"), signed=True)
     '+2.5'
     """
-    return _fmt_int(_grid(v, post.decimals), post, signed)
+    return _fmt_int(post.quantizer.count(v), post, signed)
 
 
 def _fmt_int(n: int, post: Post, signed: bool = False) -> str:
@@ -59,33 +55,8 @@ def _fmt_int(n: int, post: Post, signed: bool = False) -> str:
 
 
 def printed_elements(elements, post: Post) -> tuple:
-    """The contour as the controller will cut it from the printed numbers.
-
-    With I/J the centre is the rounded centre; with R the centre is rebuilt
-    from the rounded ends and the rounded radius (short-arc side).
-    """
-    d = post.decimals
-
-    def snap(p):
-        return tuple(_grid(x, d) / 10**d for x in p)
-
-    out = []
-    for e in elements:
-        s, t = snap(e.start), snap(e.end)
-        if isinstance(e, Line):
-            out.append(Line(s, t))
-        elif post.arc_format == "r":
-            r = _grid(e.radius, d) / 10**d
-            mx, my = (s[0] + t[0]) / 2, (s[1] + t[1]) / 2
-            vx, vy = t[0] - s[0], t[1] - s[1]
-            half = math.hypot(vx, vy) / 2
-            h = math.sqrt(max(r * r - half * half, 0.0))
-            nx, ny = -vy / (2 * half), vx / (2 * half)
-            side = 1.0 if e.ccw else -1.0  # short arc: centre on the turning side
-            out.append(Arc(s, t, (mx + side * h * nx, my + side * h * ny), e.ccw))
-        else:
-            out.append(Arc(s, t, snap(e.centre), e.ccw))
-    return tuple(out)
+    """The contour as the controller will cut it from the printed numbers (:meth:`Quantizer.printed_elements`)."""
+    return post.quantizer.printed_elements(elements)
 
 
 class _Writer:
@@ -96,6 +67,7 @@ class _Writer:
         self.a = None
         self.feed = None
         self.counts = {"line": 0, "arc": 0, "rapid": 0}
+        self.count = post.quantizer.count
 
     def n(self, v, signed=False):
         return _fmt_int(v, self.post, signed)
@@ -109,12 +81,11 @@ class _Writer:
 
     # -- G-code ---------------------------------------------------------------------
     def axes(self, x, y, z, force_xy=False):
-        d = self.post.decimals
         words = []
         for i, (name, v) in enumerate(zip("XYZ", (x, y, z))):
             if v is None:
                 continue
-            g = _grid(v, d)
+            g = self.count(v)
             if g != self.pos[i] or (force_xy and i < 2):
                 words.append(f"{name}{self.n(g)}")
             self.pos[i] = g
@@ -131,7 +102,7 @@ class _Writer:
         if isinstance(m, Feed):
             w = self.axes(m.x, m.y, m.z)
             if m.a_deg is not None:
-                g = _grid(m.a_deg, d)
+                g = self.count(m.a_deg)
                 if g != self.a:
                     w.append(f"A{self.n(g)}")
                 self.a = g
@@ -139,16 +110,16 @@ class _Writer:
                 return
             if rotary:
                 inv = m.feed_mm_min / max(m.length_mm, 10.0**-d)
-                w.append(f"F{self.n(_grid(inv, d))}")
+                w.append(f"F{self.n(self.count(inv))}")
             elif m.feed_mm_min != self.feed:
-                w.append(f"F{self.n(_grid(m.feed_mm_min, d))}")
+                w.append(f"F{self.n(self.count(m.feed_mm_min))}")
                 self.feed = m.feed_mm_min
             self.emit("G1 " + " ".join(w))
             self.counts["line"] += 1
             return
         sx, sy = self.pos[0], self.pos[1]
-        ex, ey = _grid(m.x, d), _grid(m.y, d)
-        cx, cy = _grid(m.cx, d), _grid(m.cy, d)
+        ex, ey = self.count(m.x), self.count(m.y)
+        cx, cy = self.count(m.cx), self.count(m.cy)
         self.check_arc(sx, sy, ex, ey, cx, cy, m.ccw)
         zw = self.axes(None, None, m.z)
         self.pos[0], self.pos[1] = ex, ey
@@ -160,55 +131,54 @@ class _Writer:
         else:
             w += [f"R{self.n(round(math.hypot(cx - sx, cy - sy)))}"]
         if m.feed_mm_min != self.feed:
-            w.append(f"F{self.n(_grid(m.feed_mm_min, d))}")
+            w.append(f"F{self.n(self.count(m.feed_mm_min))}")
             self.feed = m.feed_mm_min
         self.emit(("G3 " if m.ccw else "G2 ") + " ".join(w))
         self.counts["arc"] += 1
 
     def check_arc(self, sx, sy, ex, ey, cx, cy, ccw):
         if sx is None or sy is None:
-            raise InputError("toolpath: an arc move before any XY position")
+            raise PostError("toolpath: an arc move before any XY position")
         scale = 10.0 ** -self.post.decimals
         r0 = math.hypot(sx - cx, sy - cy) * scale
         r1 = math.hypot(ex - cx, ey - cy) * scale
         if abs(r0 - r1) > self.post.max_radius_error_mm:
-            raise GeometryError(f"arc to X{ex * scale:g} Y{ey * scale:g}: start/end radius differ by {abs(r0 - r1):.4g} mm "
+            raise PostError(f"arc to X{ex * scale:g} Y{ey * scale:g}: start/end radius differ by {abs(r0 - r1):.4g} mm "
                                 f"after rounding (post {self.post.name} allows {self.post.max_radius_error_mm:g})")
         if (sx, sy) == (ex, ey):
-            raise GeometryError(f"arc at X{sx * scale:g} Y{sy * scale:g} would be a full circle")
+            raise PostError(f"arc at X{sx * scale:g} Y{sy * scale:g} would be a full circle")
         a0 = math.atan2(sy - cy, sx - cx)
         a1 = math.atan2(ey - cy, ex - cx)
         sweep = math.degrees(((a1 - a0) if ccw else (a0 - a1)) % (2 * math.pi))
         if sweep > self.post.max_arc_sweep_deg + 1e-6:
-            raise GeometryError(f"arc to X{ex * scale:g} Y{ey * scale:g} sweeps {sweep:.3f}° > post {self.post.name}'s "
+            raise PostError(f"arc to X{ex * scale:g} Y{ey * scale:g} sweeps {sweep:.3f}° > post {self.post.name}'s "
                                 f"max_arc_sweep_deg {self.post.max_arc_sweep_deg:g}")
 
     # -- Heidenhain --------------------------------------------------------------------
     def hh_move(self, m, first: bool):
-        d = self.post.decimals
         if isinstance(m, Feed) and m.a_deg is not None:
             raise InputError(f"post {self.post.name}: 4-axis programs are not supported by this dialect")
         if isinstance(m, ArcMove):
             sx, sy = self.pos[0], self.pos[1]
-            ex, ey, cx, cy = (_grid(v, d) for v in (m.x, m.y, m.cx, m.cy))
+            ex, ey, cx, cy = (self.count(v) for v in (m.x, m.y, m.cx, m.cy))
             self.check_arc(sx, sy, ex, ey, cx, cy, m.ccw)
             self.emit(f"CC X{self.n(cx, True)} Y{self.n(cy, True)}")
             self.pos[0], self.pos[1] = ex, ey
-            self.emit(f"C X{self.n(ex, True)} Y{self.n(ey, True)} DR{'+' if m.ccw else '-'} R0 F{self.n(_grid(m.feed_mm_min, d))}")
+            self.emit(f"C X{self.n(ex, True)} Y{self.n(ey, True)} DR{'+' if m.ccw else '-'} R0 F{self.n(self.count(m.feed_mm_min))}")
             self.counts["arc"] += 1
             return
         words = []
         for i, (name, v) in enumerate(zip("XYZ", (m.x, m.y, m.z))):
             if v is None:
                 continue
-            g = _grid(v, d)
+            g = self.count(v)
             if g != self.pos[i]:
                 words.append(f"{name}{self.n(g, True)}")
             self.pos[i] = g
         if not words:
             return
         rapid = isinstance(m, Rapid)
-        f = "FMAX" if rapid else f"F{self.n(_grid(m.feed_mm_min, d))}"
+        f = "FMAX" if rapid else f"F{self.n(self.count(m.feed_mm_min))}"
         self.emit(f"L {' '.join(words)} R0 {f}" + (" M3" if first else ""))
         self.counts["rapid" if rapid else "line"] += 1
 

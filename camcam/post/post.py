@@ -35,6 +35,7 @@ from importlib import resources
 from pathlib import Path
 
 from camcam.errors import InputError
+from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["Post", "load_post", "known_posts", "parse_post"]
 
@@ -65,6 +66,11 @@ class Post:
     tool_change: bool = True
     inverse_time: bool = True
     program_number: int = 1
+
+    @property
+    def quantizer(self) -> Quantizer:
+        """The printed rounding of this post (decimals and arc format): the one model of what it prints."""
+        return Quantizer(self.decimals, self.arc_format)
 
 
 def _post_dir():

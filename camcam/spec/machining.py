@@ -21,7 +21,7 @@ from pathlib import Path
 from camcam.errors import InputError
 from camcam.post.post import Post, load_post
 from camcam.spec.reader import Table
-from camcam.toolpath.arcfit import rounding_budget
+from camcam.toolpath.budget import DEFAULT_BUDGET
 from camcam.toolpath.path import CutSettings
 
 __all__ = ["MachiningSpec", "read_machining"]
@@ -66,7 +66,7 @@ def read_machining(t: Table, base: Path) -> MachiningSpec:
         raise t.error("post", str(err)) from None
     tool = t.number("tool_diameter", minimum=0.0, inclusive=False, unit="mm")
     tol = t.number("tolerance", 0.01, minimum=0.0, inclusive=False, unit="mm")
-    need = rounding_budget(post.decimals) / 0.56
+    need = DEFAULT_BUDGET.floor_mm(post.quantizer)
     t.check("tolerance", tol >= need, f"{tol:g} mm is too fine for post {post.name}'s {post.decimals} decimals; "
             f"expected >= {need:.2g} mm")
     mode = t.string("mode", "arcs", choices=("arcs", "lines"))

@@ -15,39 +15,33 @@ Lines.  The seed paper's chordal method (Hu & Guo, eq. 8): a chord of length
 L on curvature radius ρ errs by δ ≈ L²/(8ρ), so the step starts from
 L = √(8ρδ) and is lengthened or shortened until the chord is within tolerance.
 
-Guarantee.  Every node, arc end and centre is rounded to the post's decimals
-(the program as printed); the rounding budget 3·(√2/2)·10^−d is reserved, the
-fit aims at ``tolerance − budget − margin``, and the rounded result of each
-piece is measured two-sided by :func:`measure_deviation` (which adds its own
-between-sample bound).  A piece that still fails is refitted tighter.
+Guarantee.  Every node, arc end and centre is put on the post's printed grid
+(:class:`~camcam.toolpath.quantizer.Quantizer`), each piece is rebuilt as the
+controller cuts it and measured two-sided against the exact curve by
+:func:`measure_deviation` (which adds its own between-sample bound).  The
+shares of the tolerance and the one retry loop are
+:class:`~camcam.toolpath.budget.FitBudget`'s.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Callable
 
 import numpy as np
 from scipy.integrate import simpson
 
-from camcam.errors import InputError
+from camcam.errors import FitError, InputError
 from camcam.geometry.curve import PlanarCurve, curvature, curvature_rate, speed
+from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.toolpath.deviation import Deviation, measure_deviation
 from camcam.toolpath.elements import Arc, Line, arc_from_tangent
 from camcam.toolpath.fitcore import (Piece, biarc, dev, end_tangent, greedy, pieces, signed_angle, sweep_ok,
                                       unit)
+from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["FitResult", "fit_contour", "lower_bound_blocks", "line_estimate_blocks", "rounding_budget"]
-
-
-def rounding_budget(decimals: int) -> float:
-    """Deviation reserved for rounding to ``decimals``: 10^−d (ends and centre each move ≤ 0.71·10^−d).
-
-    The worst case could reach 3 × 0.71·10^−d; the rounded program is measured
-    afterwards, and a piece that fails is refitted tighter, so the guarantee
-    does not rest on this budget.
-    """
-    return 10.0 ** (-decimals)
+__all__ = ["FitResult", "fit_contour", "lower_bound_blocks", "line_estimate_blocks"]
 
 
 @dataclass(frozen=True)
@@ -152,7 +146,7 @@ def _fit_arcs_piece(piece, tol, max_sweep, sag):
         if not cands:
             h *= 0.3
             if h < (b - a) * 1e-9:
-                raise InputError(f"cannot fit an arc near t = {t:g} within {tol:g} mm")
+                raise FitError(f"cannot fit an arc near t = {t:g} within {tol:g} mm")
             continue
         t1_max = max(cands)
         step = h * 2.25 / (LOOKAHEAD_GRID - 1)  # grid spacing
@@ -213,80 +207,96 @@ def _fit_lines_piece(piece, tol):
     return [Line(tuple(p), tuple(q)) for p, q in zip(pts[:-1], pts[1:])]
 
 
-def _round_elements(elems, decimals):
-    """Snap every end and centre to the 10^−d grid (the program as printed)."""
-    def snap(p):
-        return tuple(round(float(x), decimals) + 0.0 for x in p)
+def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",
+                quantizer: Quantizer = Quantizer(4), max_sweep_deg: float = 90.0,
+                a: float | None = None, b: float | None = None, exact: PlanarCurve | None = None,
+                printed: Callable[[tuple], tuple] | None = None, budget: FitBudget = DEFAULT_BUDGET) -> FitResult:
+    """Fit lines/arcs to ``curve`` with a guaranteed two-sided deviation ≤ ``tolerance_mm`` as printed.
 
-    out = []
-    for e in elems:
-        s, t = snap(e.start), snap(e.end)
-        if s == t:
-            continue
-        if isinstance(e, Arc):
-            out.append(Arc(s, t, snap(e.centre), e.ccw))
-        else:
-            out.append(Line(s, t))
-    # consecutive elements share their rounded joints by construction (same float, same rounding)
-    return out
-
-
-def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs", decimals: int = 4,
-                max_sweep_deg: float = 90.0, a: float | None = None, b: float | None = None) -> FitResult:
-    """Fit lines/arcs to ``curve`` with a guaranteed two-sided deviation ≤ ``tolerance_mm``.
+    Each analytic piece is fitted, put on the printed grid, rebuilt as the
+    controller will cut it (``printed``) and measured two-sided against the
+    exact curve; a piece that misses is fitted again at a tighter target
+    (:meth:`FitBudget.targets`, the one retry loop).
 
     Parameters
     ----------
     curve : PlanarCurve
-        The exact curve (e.g. the tool-centre path).
+        The curve the march runs on: the exact curve, or a surrogate of it
+        (with an ``error_mm`` attribute) when ``exact`` is given.
     tolerance_mm : float
         Two-sided deviation allowed on the program as printed.
     mode : {"arcs", "lines"}
-    decimals : int
-        The post's decimals: nodes and centres are rounded to them.
+    quantizer : Quantizer
+        The post's printed rounding: nodes and centres are snapped to its grid.
     max_sweep_deg : float
         Largest arc sweep (≤ 180; also keeps arcs away from full circles).
     a, b : float, optional
         Parameter range (default the whole curve).
+    exact : PlanarCurve, optional
+        The curve the printed path is measured against (default ``curve``).
+    printed : callable, optional
+        Snapped elements → the path the controller cuts (default
+        ``quantizer.printed_elements``; the rotary job passes its (X, A) model).
+    budget : FitBudget
+        How the tolerance is shared out.
+
+    Returns
+    -------
+    FitResult
+        Elements on the printed grid, in the curve's direction.
 
     Raises
     ------
     InputError
-        When the tolerance is too small for the decimals or the mode unknown.
+        When the tolerance is below the decimals' floor or the mode unknown.
+    FitError
+        When a piece still misses after the budget's last attempt.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from camcam.geometry.jet import Jet
+    >>> from camcam.geometry.jetcurve import JetCurve
+    >>> ellipse = JetCurve(lambda t, K, piece=None: (Jet.variable(t, K).cos() * 30.0, Jet.variable(t, K).sin() * 20.0),
+    ...                    np.array([0.0, np.pi, 2 * np.pi]))
+    >>> fit = fit_contour(ellipse, 0.01)
+    >>> fit.arc_blocks > 0 and fit.max_deviation_mm <= 0.01
+    True
     """
     if mode not in ("arcs", "lines"):
         raise InputError(f"mode: expected 'arcs' or 'lines', got {mode!r}")
     if not 0 < max_sweep_deg <= 180:
         raise InputError(f"max_sweep_deg: expected 0 < value ≤ 180, got {max_sweep_deg!r}")
-    budget = rounding_budget(decimals)
-    margin = 0.02 * tolerance_mm
-    fit_tol = tolerance_mm - budget - 2 * margin
-    if not fit_tol >= 0.4 * tolerance_mm:
-        need = (budget / 0.56)
-        raise InputError(f"tolerance {tolerance_mm:g} mm is too fine for {decimals} decimals "
-                         f"(rounding alone takes {budget:.2g} mm); use at least {need:.2g} mm or more decimals")
-    sag = min(0.5 * 10.0 ** (-decimals), 0.05 * fit_tol)  # arcs flatter than this print as lines
+    exact = curve if exact is None else exact
+    printed = quantizer.printed_elements if printed is None else printed
+    band = tolerance_mm - (getattr(curve, "error_mm", 0.0) if exact is not curve else 0.0)
+    if not budget.holds(band, quantizer):
+        raise InputError(f"tolerance {tolerance_mm:g} mm is too fine for {quantizer.decimals} decimals "
+                         f"(rounding alone takes {budget.rounding_mm(quantizer):.2g} mm); use at least "
+                         f"{budget.floor_mm(quantizer):.2g} mm or more decimals")
+    targets = tuple(budget.targets(band, quantizer))
+    sag = budget.sag_mm(targets[0], quantizer)  # arcs flatter than this print as lines
     max_sweep = math.radians(max_sweep_deg)
+    margin = budget.margin_mm(tolerance_mm)
     all_elems, blocks, lbs = [], [], []
     worst = None
     for lo, hi in pieces(curve, a, b):
         piece = Piece(curve, lo, hi)
-        tol_k = fit_tol
-        for _attempt in range(6):
-            raw = (_fit_arcs_piece(piece, tol_k, max_sweep, sag) if mode == "arcs"
-                   else _fit_lines_piece(piece, tol_k))
-            elems = _round_elements(raw, decimals)
-            dev = measure_deviation(curve, elems, lo, hi, margin_mm=margin)
+        for target in targets:
+            raw = (_fit_arcs_piece(piece, target, max_sweep, sag) if mode == "arcs"
+                   else _fit_lines_piece(piece, target))
+            elems = quantizer.snap_elements(raw)
+            dev = measure_deviation(exact, printed(elems), lo, hi, margin_mm=margin)
             if dev.max_deviation_mm <= tolerance_mm:
                 break
-            tol_k *= 0.8
         else:
-            raise InputError(f"cannot fit the curve on t ∈ [{lo:g}, {hi:g}] within {tolerance_mm:g} mm")
+            raise FitError(f"cannot fit the curve on t ∈ [{lo:g}, {hi:g}] within {tolerance_mm:g} mm: the printed "
+                           f"path stays {dev.max_deviation_mm:.4g} mm off after {budget.attempts} attempts")
         all_elems.extend(elems)
         blocks.append(len(elems))
-        lbs.append(lower_bound_blocks(curve, tolerance_mm, lo, hi) if mode == "arcs"
-                   else line_estimate_blocks(curve, tolerance_mm, lo, hi))
+        lbs.append(lower_bound_blocks(exact, tolerance_mm, lo, hi) if mode == "arcs"
+                   else line_estimate_blocks(exact, tolerance_mm, lo, hi))
         if worst is None or dev.max_deviation_mm > worst.max_deviation_mm:
             worst = dev
-    return FitResult(tuple(all_elems), mode, tolerance_mm, decimals, worst, float(sum(lbs)),
+    return FitResult(tuple(all_elems), mode, tolerance_mm, quantizer.decimals, worst, float(sum(lbs)),
                      tuple(blocks), tuple(lbs))

@@ -14,11 +14,13 @@ from typing import Callable
 
 import numpy as np
 
-from camcam.errors import GeometryError, InputError
+from camcam.errors import FitError, GeometryError, InputError
 from camcam.geometry.jet import hypot
 from camcam.toolpath.arcfit import FitResult, fit_contour, line_estimate_blocks, lower_bound_blocks
+from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.toolpath.deviation import Deviation, measure_deviation
 from camcam.toolpath.fitcore import pieces
+from camcam.toolpath.quantizer import Quantizer
 from camcam.toolpath.surrogate import chebyshev_curve
 
 __all__ = ["SegmentBlocks", "CutContour", "fit_printed", "OffsetCurve"]
@@ -70,32 +72,38 @@ class CutContour:
         return float(sum(s.lower_bound for s in self.segments))
 
 
-def fit_printed(curve, tolerance_mm: float, mode: str, decimals: int, max_sweep_deg: float,
-                printed: Callable[[tuple], tuple], label: str, attempts: int = 4):
+def fit_printed(curve, tolerance_mm: float, mode: str, quantizer: Quantizer, max_sweep_deg: float,
+                printed: Callable[[tuple], tuple], label: str, budget: FitBudget = DEFAULT_BUDGET):
     """Fit ``curve``; return (fit, printed elements, deviation on the printed path, segments).
 
     ``printed(elements)`` rebuilds the path the program prints from the fitted
     elements.  The march runs on a Chebyshev copy of the curve (within 1e-7
-    mm, :mod:`camcam.toolpath.surrogate`); the printed path is measured
-    against the exact ``curve``, both ways.
+    mm, :mod:`camcam.toolpath.surrogate`); each printed piece is measured
+    against the exact ``curve``, both ways (:func:`fit_contour`), and the
+    whole printed path once more for the figure reported.
+
+    Raises
+    ------
+    FitError
+        A piece that misses after the budget's last attempt, named by ``label``.
     """
     fast = chebyshev_curve(curve)
-    target = tolerance_mm
-    for _ in range(attempts):
-        try:
-            fit = fit_contour(fast, target - fast.error_mm, mode=mode, decimals=decimals, max_sweep_deg=max_sweep_deg)
-        except InputError as err:
-            raise GeometryError(f"{label}: {err}") from None
-        path = printed(fit.elements)
-        dev = measure_deviation(curve, path, margin_mm=0.02 * tolerance_mm)
-        if dev.max_deviation_mm <= tolerance_mm:
-            bound = lower_bound_blocks if mode == "arcs" else line_estimate_blocks
-            segs = tuple(SegmentBlocks(math.degrees(lo), math.degrees(hi), n, bound(curve, tolerance_mm, lo, hi))
-                         for (lo, hi), n in zip(pieces(curve), fit.piece_blocks))
-            return fit, path, dev, segs
-        target *= 0.85
-    raise GeometryError(f"{label}: the printed path stays {dev.max_deviation_mm:.4g} mm from the exact curve, "
-                        f"above the tolerance {tolerance_mm:g} mm")
+    try:
+        fit = fit_contour(fast, tolerance_mm, mode=mode, quantizer=quantizer, max_sweep_deg=max_sweep_deg,
+                          exact=curve, printed=printed, budget=budget)
+    except FitError as err:
+        raise FitError(f"{label}: {err}") from None
+    except InputError as err:
+        raise GeometryError(f"{label}: {err}") from None
+    path = printed(fit.elements)
+    dev = measure_deviation(curve, path, margin_mm=budget.margin_mm(tolerance_mm))
+    if dev.max_deviation_mm > tolerance_mm:  # every piece passed, so the whole can only pass too
+        raise FitError(f"{label}: the printed path stays {dev.max_deviation_mm:.4g} mm from the exact curve, "
+                       f"above the tolerance {tolerance_mm:g} mm")
+    bound = lower_bound_blocks if mode == "arcs" else line_estimate_blocks
+    segs = tuple(SegmentBlocks(math.degrees(lo), math.degrees(hi), n, bound(curve, tolerance_mm, lo, hi))
+                 for (lo, hi), n in zip(pieces(curve), fit.piece_blocks))
+    return fit, path, dev, segs
 
 
 @dataclass(frozen=True)

@@ -81,7 +81,7 @@ def test_fitted_program_lift_error_within_tolerance(request):
     law = make_law("cycloidal")
     prog = MotionProgram((Segment(law, 0, 180, 10.0), Segment(law, 180, 360, -10.0, 10.0)), rpm=100)
     cam = DiscCam(TranslatingRoller(8.0), prog, 30.0)
-    fit = fit_contour(cam.offset_profile(RT), 0.01, decimals=4)
+    fit = fit_contour(cam.offset_profile(RT), 0.01)
     fm = fitted_motion(cam, fit.elements, RT, np.arange(0.0, 360.0, 1.0))
     pa = np.radians(np.abs(cam.pressure_angle(np.radians(fm.angles_deg)).value))
     bound = fit.max_deviation_mm / np.cos(pa)

@@ -7,6 +7,7 @@ from hypothesis import given, settings, strategies as st
 
 from camcam.errors import InputError
 from camcam.geometry.curve import curvature_rate, speed
+from camcam.toolpath.quantizer import Quantizer
 from camcam.toolpath.arcfit import fit_contour, line_estimate_blocks, lower_bound_blocks
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Arc, Line
@@ -23,7 +24,7 @@ CASES = {
 @functools.lru_cache(maxsize=None)
 def fitted(key):
     curve = CASES[key]()
-    return curve, fit_contour(curve, key[1], decimals=4, max_sweep_deg=120)
+    return curve, fit_contour(curve, key[1], max_sweep_deg=120)
 
 
 @pytest.fixture
@@ -99,7 +100,7 @@ def test_arcs_beat_lines_at_a_micron():
 
 def test_tolerance_too_fine_for_decimals():
     with pytest.raises(InputError, match="too fine for 3 decimals"):
-        fit_contour(ellipse(), 0.001, decimals=3)
+        fit_contour(ellipse(), 0.001, quantizer=Quantizer(3))
 
 
 @settings(max_examples=4, deadline=None)

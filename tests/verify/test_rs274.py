@@ -8,6 +8,7 @@ import pytest
 
 from camcam.post.gcode import write_program
 from camcam.post.post import load_post
+from camcam.toolpath.quantizer import Quantizer
 from camcam.toolpath.arcfit import fit_contour
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Arc, Line
@@ -24,7 +25,7 @@ CUT = CutSettings(depth_mm=8, stepdown_mm=4, feed_mm_min=400, spindle_rpm=3000, 
 @functools.lru_cache(maxsize=None)
 def cam_fit(decimals, max_sweep, mode="arcs"):
     curve = polar_cam()
-    return curve, fit_contour(curve, TOL, mode=mode, decimals=decimals, max_sweep_deg=max_sweep)
+    return curve, fit_contour(curve, TOL, mode=mode, quantizer=Quantizer(decimals), max_sweep_deg=max_sweep)
 
 
 def interpreted_contour(path):

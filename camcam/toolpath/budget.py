@@ -1,0 +1,108 @@
+"""The tolerance budget of the NC fit: every share of a contour's tolerance δ, named in one place.
+
+A printed contour must stay within δ of the exact curve, both ways.  δ is
+spent on four things:
+
+=====================  ===========================================================
+rounding               the post's grid step 10^−d: ends and centres each move by at
+                       most (√2/2)·10^−d when printed (:mod:`camcam.toolpath.quantizer`)
+sampling margin        ``sampling_share``·δ, twice: :func:`measure_deviation` adds it
+                       for the deviation between its sample points (once per side)
+surrogate              the Chebyshev copy the fitter marches on differs from the exact
+                       curve by its own measured error (≤ 1e-7 mm in practice)
+fit                    what is left: the band the arc spline or chords may use
+=====================  ===========================================================
+
+The fit must keep at least ``min_fit_share``·δ, which sets the smallest
+tolerance a post's decimals can hold (:meth:`FitBudget.floor_mm`: 10^−d/0.56
+with the defaults).  The guarantee does not rest on the budget: every piece
+is printed and measured against the exact curve, and a piece that misses is
+fitted again at ``retry_factor`` × the previous target, at most ``attempts``
+times (one retry loop).
+
+Examples
+--------
+>>> from camcam.toolpath.quantizer import Quantizer
+>>> b = FitBudget()
+>>> round(b.floor_mm(Quantizer(4)), 6)   # the README's tolerance floor for 4 decimals
+0.000179
+>>> round(b.fit_target_mm(0.01, Quantizer(4)), 6)
+0.0095
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from camcam.toolpath.quantizer import Quantizer
+
+__all__ = ["FitBudget", "DEFAULT_BUDGET"]
+
+
+@dataclass(frozen=True)
+class FitBudget:
+    """The shares of a contour's tolerance δ (fractions of δ unless a unit is named).
+
+    Parameters
+    ----------
+    sampling_share : float
+        Margin :func:`~camcam.toolpath.deviation.measure_deviation` adds for the
+        deviation between its samples, per side (0.02·δ).
+    min_fit_share : float
+        Least share of δ the fit itself must keep; below it the tolerance is under
+        the post's floor (0.4).
+    sag_step_share, sag_fit_share : float
+        An arc flatter than min(sag_step_share·10^−d, sag_fit_share·fit band) prints as a
+        line (0.5 grid steps, 0.05 of the band).
+    retry_factor : float
+        A piece that misses is fitted again at this × the previous target (0.8).
+    attempts : int
+        Fits of one piece at most before :class:`~camcam.errors.FitError` (6).
+    """
+
+    sampling_share: float = 0.02
+    min_fit_share: float = 0.4
+    sag_step_share: float = 0.5
+    sag_fit_share: float = 0.05
+    retry_factor: float = 0.8
+    attempts: int = 6
+
+    def rounding_mm(self, quantizer: Quantizer) -> float:
+        """Deviation reserved for printing: one grid step 10^−d.
+
+        The worst case could reach 3 × 0.71·10^−d (both ends and the centre);
+        the printed piece is measured afterwards, so the guarantee does not
+        rest on this share.
+        """
+        return quantizer.step_mm
+
+    def margin_mm(self, tolerance_mm: float) -> float:
+        """The sampling margin of a deviation measurement at this tolerance."""
+        return self.sampling_share * tolerance_mm
+
+    def fit_target_mm(self, tolerance_mm: float, quantizer: Quantizer) -> float:
+        """The band the first fit may use: δ − rounding − 2 · sampling margin."""
+        return tolerance_mm - self.rounding_mm(quantizer) - 2 * self.margin_mm(tolerance_mm)
+
+    def floor_mm(self, quantizer: Quantizer) -> float:
+        """The smallest tolerance the post's decimals allow: rounding / (1 − 2·sampling − min_fit)."""
+        return self.rounding_mm(quantizer) / (1.0 - 2 * self.sampling_share - self.min_fit_share)
+
+    def holds(self, tolerance_mm: float, quantizer: Quantizer) -> bool:
+        """Whether the fit keeps at least ``min_fit_share`` of ``tolerance_mm``."""
+        return self.fit_target_mm(tolerance_mm, quantizer) >= self.min_fit_share * tolerance_mm
+
+    def sag_mm(self, fit_mm: float, quantizer: Quantizer) -> float:
+        """Arcs flatter than this (mm of sagitta) print as lines."""
+        return min(self.sag_step_share * quantizer.step_mm, self.sag_fit_share * fit_mm)
+
+    def targets(self, tolerance_mm: float, quantizer: Quantizer):
+        """The fit targets of the retry loop: the first band, then × ``retry_factor`` each attempt."""
+        target = self.fit_target_mm(tolerance_mm, quantizer)
+        for _ in range(self.attempts):
+            yield target
+            target *= self.retry_factor
+
+
+#: The budget every fit uses unless given another.
+DEFAULT_BUDGET = FitBudget()
