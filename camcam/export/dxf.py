@@ -164,6 +164,24 @@ def _build(elements, curve, extras, spline_deviation_mm, title) -> DxfDrawing:
         doc.layers.add("TITLE")
         msp.add_text(title, height=3.5, dxfattribs={"layer": "TITLE"}).set_placement((0.0, -10.0))
         count += 1
+    _fix_class_order(doc)
     buf = io.StringIO()
     doc.write(buf)
     return DxfDrawing(buf.getvalue().encode("utf-8"), worst, count)
+
+
+def _fix_class_order(doc) -> None:
+    """Register the CLASS records in a fixed order before ezdxf does.
+
+    ezdxf adds the classes of the entity types in use by iterating a set of type
+    names, whose order follows the process's string-hash seed: two processes
+    (`camcam batch` workers, two shell runs) wrote the same drawing with its
+    CLASSES section in different orders.  Required classes first, as ezdxf
+    orders them, then the others sorted by name.
+    """
+    from ezdxf.sections.classes import REQ_R2004, REQUIRED_CLASSES
+
+    for name in REQUIRED_CLASSES.get(doc.dxfversion, REQ_R2004):
+        doc.classes.add_class(name)
+    for name in sorted(doc.entitydb.dxf_types_in_use()):
+        doc.classes.add_class(name)
