@@ -128,7 +128,7 @@ def sizing_files(result: SizingResult, spec_data: dict, name: str, table_format:
         "feasible": int(result.ranked.size),
         "objective": result.objective,
         "constraints": dict(_constraints(result)),
-        "axes": {a: list(v) for a, v in result.grid.axes},
+        "axes": {a: {"from": min(v), "to": max(v), "values": len(v)} for a, v in result.grid.axes},
         "law_choices": {f"segment {k}": sorted({c[i] for c in result.grid.combos}) for i, k in enumerate(result.grid.segments)},
         "grid": {"samples_per_rev": result.samples_per_rev, "step_deg": step_deg,
                  "pressure_angle_bound_deg": pa_b, "curvature_radius_bound_mm": rho_b},

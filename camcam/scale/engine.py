@@ -99,7 +99,8 @@ class DaskExecutor(Executor):
 
         if not items:
             return []
-        scattered = {k: self.client.scatter(v, broadcast=True) for k, v in shared.items()}
+        # hash=False: a fresh key each call, so releasing an earlier call's copy cannot drop this one
+        scattered = {k: self.client.scatter(v, broadcast=True, hash=False) for k, v in shared.items()}
         futures = self.client.map(fn, list(items), pure=False, **scattered)
         bar = _Bar(what, len(futures))
         for _ in as_completed(futures):

@@ -50,6 +50,10 @@ MAX_EXACT_CHECKS = 60
 #: Objectives and pressure angles within this are a tie (float noise of the closed forms).
 TIE = 1e-9
 
+#: A figure within this of its limit meets it (mm or degrees): the float noise of the
+#: analyses (~1e-14), so that a limit met with equality (ρ = R_b on a dwell) is met.
+LIMIT_ATOL = 1e-9
+
 
 @dataclass(frozen=True)
 class SweepContext:
@@ -90,10 +94,10 @@ class Limits:
         with np.errstate(invalid="ignore"):
             ok = np.asarray(valid, bool) & ~np.asarray(undercut, bool) & (np.asarray(rho) > 0)
             if self.max_pressure_angle_deg is not None:
-                ok &= np.asarray(pa) <= self.max_pressure_angle_deg
-            ok &= np.asarray(rho) >= self.curvature_limit(roller_radius)
+                ok &= np.asarray(pa) <= self.max_pressure_angle_deg + LIMIT_ATOL
+            ok &= np.asarray(rho) >= self.curvature_limit(roller_radius) - LIMIT_ATOL
             if self.tool_radius_mm is not None:
-                ok &= np.asarray(concave) >= self.tool_radius_mm
+                ok &= np.asarray(concave) >= self.tool_radius_mm - LIMIT_ATOL
         return ok
 
     def failures(self, ex: ExactFigures, roller_radius: float) -> list[str]:
@@ -103,12 +107,12 @@ class Limits:
         if ex.undercut:
             return ["undercut (or a cusp)"]
         out = []
-        if self.max_pressure_angle_deg is not None and not ex.max_pressure_angle_deg <= self.max_pressure_angle_deg:
+        if self.max_pressure_angle_deg is not None and not ex.max_pressure_angle_deg <= self.max_pressure_angle_deg + LIMIT_ATOL:
             out.append(f"pressure angle {ex.max_pressure_angle_deg:.4f}° > {self.max_pressure_angle_deg:g}°")
         lim = float(self.curvature_limit(roller_radius))
-        if not (ex.min_curvature_radius_mm >= lim and ex.min_curvature_radius_mm > 0):
+        if not (ex.min_curvature_radius_mm >= lim - LIMIT_ATOL and ex.min_curvature_radius_mm > 0):
             out.append(f"radius of curvature {ex.min_curvature_radius_mm:.4f} mm < {lim:g} mm")
-        if self.tool_radius_mm is not None and not ex.min_concave_radius_mm >= self.tool_radius_mm:
+        if self.tool_radius_mm is not None and not ex.min_concave_radius_mm >= self.tool_radius_mm - LIMIT_ATOL:
             out.append(f"smallest concave radius {ex.min_concave_radius_mm:.4f} mm < tool radius {self.tool_radius_mm:g} mm")
         return out
 
