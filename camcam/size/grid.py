@@ -18,8 +18,8 @@ from camcam.spec.size import SizeSpec
 
 __all__ = ["CHUNK", "Chunk", "DesignGrid"]
 
-#: Designs per task: big enough to amortise a task's overhead, small enough that a
-#: block of (designs × ~3600 samples) float arrays stays a few tens of MB.
+#: Designs per task: enough to amortise a task's overhead (~1 ms on Dask), few enough that a
+#: sweep of 10,000 designs still gives each of a few workers several tasks.
 CHUNK = 512
 
 

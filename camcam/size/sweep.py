@@ -65,10 +65,19 @@ class SweepContext:
     samples: tuple[ProgramSamples, ...]
 
 
+#: Designs evaluated together inside a chunk: (32 × ~3600 samples) arrays stay in cache, about
+#: twice as fast per design as (512 × 3600) ones; every figure is per row, so the blocking
+#: changes no bit of the result.
+BLOCK = 32
+
+
 def evaluate_chunk(chunk: Chunk, ctx: SweepContext) -> dict[str, np.ndarray]:
     """Figures of one chunk of designs (a pure function: the same chunk gives the same bytes anywhere)."""
-    params = ctx.grid.params(chunk.combo, chunk.start, chunk.stop)
-    return block_figures(ctx.kind, ctx.samples[chunk.combo], ctx.sigma, params)
+    parts = []
+    for a in range(chunk.start, chunk.stop, BLOCK):
+        params = ctx.grid.params(chunk.combo, a, min(a + BLOCK, chunk.stop))
+        parts.append(block_figures(ctx.kind, ctx.samples[chunk.combo], ctx.sigma, params))
+    return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
 
 
 @dataclass(frozen=True)

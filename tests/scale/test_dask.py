@@ -3,8 +3,6 @@ one worker, and on a two-worker LocalCluster reached by its address (as a user's
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 from pathlib import Path
 
@@ -12,17 +10,9 @@ import pytest
 
 distributed = pytest.importorskip("distributed")
 
-from camcam.cli import main  # noqa: E402
-
-ROOT = Path(__file__).resolve().parents[2]
-BASE = (ROOT / "samples" / "size" / "translating-roller.toml").read_text().split("[size]")[0]
+from tests.size.helpers import BASE, ROOT, cli  # noqa: E402
 
 
-def cli(*args) -> tuple[int, str, str]:
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        code = main(list(args))
-    return code, out.getvalue(), err.getvalue()
 
 
 def tree(root: Path) -> dict[str, bytes]:

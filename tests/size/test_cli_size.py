@@ -5,22 +5,14 @@ from __future__ import annotations
 
 import contextlib
 import io
-from pathlib import Path
 
 import pytest
 
 from camcam.cli import main
 from camcam.scale import engine
-
-ROOT = Path(__file__).resolve().parents[2]
-BASE = (ROOT / "samples" / "size" / "translating-roller.toml").read_text().split("[size]")[0]
+from tests.size.helpers import BASE, ROOT, cli
 
 
-def cli(*args) -> tuple[int, str, str]:
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        code = main(list(args))
-    return code, out.getvalue(), err.getvalue()
 
 
 BAD = [

@@ -3,19 +3,15 @@ and the sample's best design run by `camcam run` and re-checked by the full geom
 
 from __future__ import annotations
 
-import contextlib
-import io
 import itertools
 import json
 import math
 import tomllib
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-from camcam.cli import main
 from camcam.errors import GeometryError
 from camcam.geometry.analysis import analyse, check_undercut
 from camcam.geometry.build import build_cam
@@ -23,9 +19,8 @@ from camcam.geometry.disc import DiscCam
 from camcam.geometry.followers import TranslatingRoller
 from camcam.motion.catalog import make_law
 from camcam.spec import load_spec
+from tests.size.helpers import SAMPLE, cli
 
-ROOT = Path(__file__).resolve().parents[2]
-SAMPLE = ROOT / "samples" / "size" / "translating-roller.toml"
 
 SMALL = """
 name = "small"
@@ -55,12 +50,6 @@ min_curvature_radius_mm = 12.0
 samples = 1440
 """
 
-
-def cli(*args) -> tuple[int, str, str]:
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        code = main(list(args))
-    return code, out.getvalue(), err.getvalue()
 
 
 def profile_outer_radius(cam: DiscCam) -> float:
