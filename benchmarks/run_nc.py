@@ -21,7 +21,7 @@ from pathlib import Path
 from camcam.geometry.build import build_cam
 from camcam.spec import load_spec
 from camcam.toolpath.arcfit import line_estimate_blocks, lower_bound_blocks
-from camcam.nc.job import machine
+from camcam.nc import machine
 
 ROOT = Path(__file__).resolve().parents[1]
 

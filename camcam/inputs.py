@@ -5,13 +5,14 @@ Every reader names the file in its one-line :class:`~camcam.errors.InputError`.
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 from typing import Iterator
 
 from camcam.errors import InputError
 
-__all__ = ["read_text", "data_rows"]
+__all__ = ["read_text", "data_rows", "parse_number"]
 
 #: Fields are separated by a comma (with any spaces around it) or by white space.
 _SPLIT = re.compile(r"\s*,\s*|\s+")
@@ -42,3 +43,23 @@ def data_rows(text: str, source: str) -> Iterator[tuple[str, int, str, list[str]
         if not stripped or stripped.startswith("#"):
             continue
         yield f"{source} row {lineno}", lineno, stripped, _SPLIT.split(stripped)
+
+
+def parse_number(text: str, what: str, where: str) -> float:
+    """The finite number a data field holds; :class:`InputError` naming ``where`` and ``what`` otherwise.
+
+    Examples
+    --------
+    >>> parse_number("2.5", "lift", "t.csv row 3")
+    2.5
+    >>> parse_number("nan", "lift", "t.csv row 3")
+    Traceback (most recent call last):
+    camcam.errors.InputError: t.csv row 3: lift nan is not a finite number
+    """
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(f"{where}: {what} {text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise InputError(f"{where}: {what} {text} is not a finite number")
+    return value

@@ -121,7 +121,8 @@ class Verdict:
     def line(self) -> str:
         """One line: the status and, on FAIL, the worst failing check with its way out."""
         if self.passed:
-            return f"PASS: {len(self.checks)} checks within their limits"
+            n = len(self.checks)
+            return f"PASS: {n} check{'' if n == 1 else 's'} within {'its limit' if n == 1 else 'their limits'}"
         first = self.failures[0]
         more = f" (and {len(self.failures) - 1} more)" if len(self.failures) > 1 else ""
         return f"FAIL: {first.describe()}{more}"

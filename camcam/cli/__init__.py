@@ -1,24 +1,39 @@
 """The ``camcam`` command.
 
 Each sub-command lives in its own module with ``register(subparsers)``; this
-module assembles them and turns user errors into one line and exit status 2.
+module assembles them and maps what went wrong to an exit status:
+
+=====  ==============================================================================
+0      done
+2      bad input: one line naming the key, row or argument; nothing written
+3      files written, but the verdict is FAIL (out of tolerance); the report opens with it
+1      internal fault: one line ``internal error: …; details in <file>``, the traceback in
+       that file (beside the output folder, or in the temp folder)
+130    interrupted (Ctrl-C)
+=====  ==============================================================================
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+import tempfile
+import traceback
+from pathlib import Path
 
 from camcam import __version__
 from camcam.cli import batch, fit, laws, motion, optimize, reverse, run, size
 from camcam.errors import CamcamError
 
-__all__ = ["main"]
+__all__ = ["main", "main_exit", "USAGE_ERROR", "INTERNAL_ERROR"]
 
 COMMANDS = (laws, motion, run, fit, optimize, reverse, size, batch)
 
 #: Exit status for every user error (bad spec, table, points, arguments).
 USAGE_ERROR = 2
+#: Exit status for a fault of camcam's own (a bug, or a stage that failed on valid input).
+INTERNAL_ERROR = 1
 
 
 class _Parser(argparse.ArgumentParser):
@@ -38,8 +53,37 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _one_line(text: str) -> str:
+    """Whatever a message quotes (a file's bytes, a value with a newline), one line."""
+    return " ".join(str(text).splitlines())
+
+
+def fault_report(err: BaseException, argv: list[str] | None, output: str | None) -> Path:
+    """Write the traceback of an internal fault to a file; return its path.
+
+    The file goes beside the output folder (its parent) when that is
+    writable, else into the temp folder — never into the output folder, whose
+    contents are the run's all-or-nothing set.
+    """
+    text = (f"camcam {__version__} internal error\nargv: {argv!r}\n\n"
+            + "".join(traceback.format_exception(type(err), err, err.__traceback__)))
+    places = []
+    if output:
+        places.append(Path(output).resolve().parent)
+    places.append(Path(tempfile.gettempdir()))
+    for place in places:
+        try:
+            fd, name = tempfile.mkstemp(prefix="camcam-fault-", suffix=".txt", dir=place)
+        except OSError:
+            continue
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        return Path(name)
+    raise OSError("no writable folder for the fault report")
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run the command line; returns the exit status."""
+    """Run the command line; returns the exit status (see the module notes)."""
     parser = build_parser()
     args = parser.parse_args(argv)
     if not getattr(args, "func", None):
@@ -48,12 +92,18 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return int(args.func(args) or 0)
     except CamcamError as err:
-        # one line whatever the message quotes (a file's bytes, a value with a newline)
-        print("camcam: error: " + " ".join(str(err).splitlines()), file=sys.stderr)
+        print("camcam: error: " + _one_line(err), file=sys.stderr)
         return USAGE_ERROR
     except KeyboardInterrupt:
         print("camcam: interrupted; no output was written", file=sys.stderr)
         return 130
+    except Exception as err:  # a fault of ours, never dressed up as the user's mistake
+        try:
+            where = f"details in {fault_report(err, argv, getattr(args, 'output', None))}"
+        except OSError:
+            where = "no file could be written for the details"
+        print(f"camcam: internal error: {type(err).__name__}: {_one_line(err)}; {where}", file=sys.stderr)
+        return INTERNAL_ERROR
 
 
 def main_exit() -> None:

@@ -5,7 +5,7 @@ as one task, in this process or on Dask workers.  A spec that fails (bad input o
 internal fault) is a row of the summary with its one-line reason; the others still run.
 Writes ``DIR/<spec file stem>/…`` (what ``camcam run`` writes), ``DIR/summary.csv``,
 ``DIR/summary.json`` and ``DIR/index.html``.  Exit 0 when every spec passes, 3 when any
-did not (its row says why; the other folders are written).
+did not and was not accepted (its row says why; the other folders are written).
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ __all__ = ["register", "batch_task", "summary_row", "COLUMNS"]
 #: Exit status when any spec did not pass (everything else written).
 NOT_ALL_PASSED = 3
 
-COLUMNS = ("spec", "folder", "name", "verdict", "max_deviation_mm", "tolerance_mm", "line_blocks", "arc_blocks",
+COLUMNS = ("spec", "folder", "name", "verdict", "accepted", "max_deviation_mm", "tolerance_mm", "line_blocks", "arc_blocks",
            "cycle_time_s", "max_pressure_angle_deg", "min_curvature_radius_mm", "warnings", "reason")
 
 
@@ -36,30 +36,17 @@ def register(sub) -> None:
     p.set_defaults(func=run)
 
 
-def _verdict(summary: dict) -> tuple[str, str]:
-    """(PASS/FAIL, reason) from the run's verdict, or from the deviation against the tolerance."""
-    cam = summary.get("cam") or {}
-    v = cam.get("verdict", summary.get("verdict"))
-    if isinstance(v, dict) and "status" in v:
-        return str(v["status"]), str(v.get("line", "")) if v.get("status") != "PASS" else ""
-    if "max_deviation_mm" in cam:
-        dev, tol = cam["max_deviation_mm"], cam["tolerance_mm"]
-        if dev <= tol:
-            return "PASS", ""
-        return "FAIL", f"NC deviation {dev:.4f} mm over the tolerance {tol:g} mm"
-    return "PASS", ""
-
-
-def summary_row(spec_arg: str, folder: str, summary: dict | None, warnings: list[str], error: str = "") -> dict:
-    """One row of the summary table (empty cells: not applicable)."""
+def summary_row(spec_arg: str, folder: str, summary: dict | None, verdict, warnings: list[str], error: str = "") -> dict:
+    """One row of the summary table (empty cells: not applicable); ``verdict`` is the run's
+    :class:`~camcam.verdict.Verdict` (``None`` when the spec did not run: ERROR)."""
     row = dict.fromkeys(COLUMNS, "")
     row.update(spec=spec_arg, folder=folder, warnings=len(warnings))
     if summary is None:
         row.update(verdict="ERROR", reason=error)
         return row
     cam = summary.get("cam") or {}
-    verdict, reason = _verdict(summary)
-    row.update(name=summary.get("name", ""), verdict=verdict, reason=reason)
+    reason = "" if verdict.passed else verdict.line() + (" (accepted: accept_out_of_tolerance = true)" if verdict.accepted else "")
+    row.update(name=summary.get("name", ""), verdict=verdict.status, accepted=verdict.accepted, reason=reason)
     for key in ("max_deviation_mm", "tolerance_mm", "line_blocks", "arc_blocks", "cycle_time_s", "max_pressure_angle_deg",
                 "min_curvature_radius_mm"):
         if cam.get(key) is not None:
@@ -69,6 +56,7 @@ def summary_row(spec_arg: str, folder: str, summary: dict | None, warnings: list
 
 def batch_task(item: tuple[str, str]) -> tuple[dict, dict[str, bytes]]:
     """Run one spec like `camcam run` and return (summary row, files by name); never raises for a bad spec."""
+    from camcam.cli.progress import Progress
     from camcam.cli.run import job
     from camcam.errors import CamcamError
     from camcam.export.files import OutputSet
@@ -77,16 +65,16 @@ def batch_task(item: tuple[str, str]) -> tuple[dict, dict[str, bytes]]:
     spec_arg, folder = item
     err = io.StringIO()
     out = OutputSet(folder)
-    summary, error = None, ""
+    summary, verdict, error = None, None, ""
     with contextlib.redirect_stderr(err):
         try:
-            summary = job(load_spec(spec_arg), out)
+            summary, verdict = job(load_spec(spec_arg), out, Progress(False))
         except CamcamError as e:
             error = " ".join(str(e).splitlines())
         except Exception as e:  # noqa: BLE001 - one spec's fault must not stop the batch; the row names it
             error = f"internal fault: {type(e).__name__}: {' '.join(str(e).splitlines())}"
     warnings = [line.removeprefix("camcam: warning: ") for line in err.getvalue().splitlines() if line.startswith("camcam: warning: ")]
-    row = summary_row(spec_arg, folder, summary, warnings, error)
+    row = summary_row(spec_arg, folder, summary, verdict, warnings, error)
     row["warning_text"] = warnings
     return row, (out.contents() if summary is not None else {})
 
@@ -104,7 +92,7 @@ def _folders(specs: list[str]) -> list[str]:
 
 def _csv(rows: list[dict]) -> str:
     def cell(v) -> str:
-        text = repr(v) if isinstance(v, float) else str(v)
+        text = ("true" if v else "false") if isinstance(v, bool) else repr(v) if isinstance(v, float) else str(v)
         return '"' + text.replace('"', '""') + '"' if any(c in text for c in ',"\n') else text
 
     return "\n".join([",".join(COLUMNS)] + [",".join(cell(r[c]) for c in COLUMNS) for r in rows]) + "\n"
@@ -121,7 +109,7 @@ def _index(rows: list[dict], files: list[dict[str, bytes]]) -> str:
     table = DataTable(
         ("spec", "folder", "verdict", "max deviation (mm)", "tolerance (mm)", "blocks (line + arc)", "cycle time (s)",
          "max pressure angle (°)", "reason"),
-        tuple((r["spec"], r["folder"], r["verdict"], num(r["max_deviation_mm"], 4), num(r["tolerance_mm"], 4),
+        tuple((r["spec"], r["folder"], r["verdict"] + (" (accepted)" if r["accepted"] is True else ""), num(r["max_deviation_mm"], 4), num(r["tolerance_mm"], 4),
                f"{r['line_blocks']} + {r['arc_blocks']}" if r["line_blocks"] != "" else "", num(r["cycle_time_s"], 1),
                num(r["max_pressure_angle_deg"], 3), r["reason"]) for r in rows))
     passed = sum(r["verdict"] == "PASS" for r in rows)
@@ -162,7 +150,7 @@ def run(args) -> int:
     top.add("summary.json", to_json({"specs": rows}) + "\n")
     top.add("index.html", _index(table_rows, contents))
     top.commit()
-    bad = [r for r in rows if r["verdict"] != "PASS"]
+    bad = [r for r in rows if r["verdict"] != "PASS" and r["accepted"] is not True]
     if args.json:
         print_json({"specs": rows, "output": str(root), **({"note": note} if note else {})})
     else:

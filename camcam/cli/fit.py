@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from camcam.cli.output import print_json, to_json
+from camcam.cli.output import publish, to_json
 from camcam.errors import SpecError
 from camcam.export.faired_table import faired_csv
 from camcam.export.files import OutputSet
@@ -85,15 +85,12 @@ def run(args) -> int:
     out.add("curvature-comb.png", lift_comb_png(before, after, x0, x1, title=f"{raw.source}: lift-curve curvature comb ({ft.fit} fit)"))
     out.add("roughness.png", roughness_png(ft.roughness_before, ft.roughness_after, summary["bad_points_deg"]))
     out.add("summary.json", to_json(summary) + "\n")
-    written = out.commit()
-    summary["files"] = [str(p) for p in written]
-    if args.json:
-        print_json(summary)
-    else:
-        bad = ", ".join(f"{p['angle_deg']:g}° ({p['deviation_mm'] * 1000:+.1f} µm)" for p in summary["bad_points"]) or "none"
-        print(f"bad points: {bad}")
-        print(f"fairing: {summary['method']}, {summary['iterations']} iteration(s), largest correction {summary['max_correction_mm'] * 1000:.2f} µm")
-        print(f"roughness (max |second difference|): {summary['roughness_before']:.4g} → {summary['roughness_after']:.4g} mm/deg²")
-        for p in written:
-            print(f"wrote {p}")
+    publish(out, summary, args.json, _show)
     return 0
+
+
+def _show(summary: dict) -> None:
+    bad = ", ".join(f"{p['angle_deg']:g}° ({p['deviation_mm'] * 1000:+.1f} µm)" for p in summary["bad_points"]) or "none"
+    print(f"bad points: {bad}")
+    print(f"fairing: {summary['method']}, {summary['iterations']} iteration(s), largest correction {summary['max_correction_mm'] * 1000:.2f} µm")
+    print(f"roughness (max |second difference|): {summary['roughness_before']:.4g} → {summary['roughness_after']:.4g} mm/deg²")

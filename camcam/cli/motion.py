@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from camcam.cli.output import print_json, warn
+from camcam.cli.output import publish, warn
 from camcam.export.files import OutputSet
 from camcam.export.motion_table import motion_csv
 from camcam.motion.program import MotionProgram
@@ -63,13 +63,5 @@ def run(args) -> int:
         warn(j.describe())
     out = OutputSet(Path(args.output))
     motion_outputs(out, spec.name, program, args.step)
-    written = out.commit()
-    summary = motion_summary(program)
-    summary["files"] = [str(p) for p in written]
-    if args.json:
-        print_json(summary)
-    else:
-        print_summary(summary)
-        for p in written:
-            print(f"wrote {p}")
+    publish(out, motion_summary(program), args.json, print_summary)
     return 0

@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from camcam.cli.output import print_json, to_json
-from camcam.cli.progress import step
+from camcam.cli.progress import Progress, add_progress_flag
 from camcam.errors import SpecError
 from camcam.export.files import atomic_write
 from camcam.optimize.bspline_law import BSplineLaw
@@ -26,6 +26,7 @@ def register(sub) -> None:
     p.add_argument("spec", help="spec file (TOML) with an [optimize] table")
     p.add_argument("-o", "--output", help="write the law as JSON to this file")
     p.add_argument("--json", action="store_true", help="print the law as one JSON object")
+    add_progress_flag(p)
     p.set_defaults(func=run)
 
 
@@ -71,9 +72,10 @@ def optimize(opt: OptimizeSpec) -> tuple[BSplineLaw, dict]:
 
 
 def run(args) -> int:
+    progress = Progress.from_args(args)
     spec = load_spec(args.spec)
     opt = spec.need("optimize", "optimize")
-    with step(f"optimize ({opt.method})"):
+    with progress.step(f"optimize ({opt.method})"):
         law, solver = optimize(opt)
     doc = law_document(law, problem=opt.as_dict(), solver=solver)
     if args.output:

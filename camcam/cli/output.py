@@ -1,13 +1,14 @@
-"""Helpers the commands share: JSON printing and warnings."""
+"""Helpers the commands share: publishing the output set with its summary, JSON printing and warnings."""
 
 from __future__ import annotations
 
 import json
 import math
 import sys
-from typing import Any
+from pathlib import Path
+from typing import Any, Callable, Sequence
 
-__all__ = ["to_json", "print_json", "warn"]
+__all__ = ["to_json", "print_json", "warn", "publish"]
 
 
 def _clean(value: Any) -> Any:
@@ -34,3 +35,23 @@ def print_json(obj: Any) -> None:
 
 def warn(message: str) -> None:
     print(f"camcam: warning: {message}", file=sys.stderr)
+
+
+def publish(out, summary: dict, as_json: bool, show: Callable[[dict], None],
+            after: Sequence[str] = ()) -> list[Path]:
+    """Write ``out`` (all or nothing), then print ``summary`` as one JSON object, or as text.
+
+    The text is ``show(summary)``, a "wrote <file>" line per file, then the
+    lines of ``after``.  ``summary["files"]`` lists the files written.
+    """
+    written = out.commit()
+    summary["files"] = [str(p) for p in written]
+    if as_json:
+        print_json(summary)
+    else:
+        show(summary)
+        for p in written:
+            print(f"wrote {p}")
+        for line in after:
+            print(line)
+    return written

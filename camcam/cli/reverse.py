@@ -14,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from camcam.cli.output import print_json, to_json
+from camcam.cli.output import publish, to_json
 from camcam.errors import SpecError
 from camcam.export.files import OutputSet
 from camcam.export.recovered_motion import motion_csv
@@ -102,16 +102,12 @@ def run(args) -> int:
     title = f"{points.source}: {cam.kind} cam, {follower.kind} follower ({len(points)} points)"
     out.add("reverse.png", reverse_png(angles, cols, unit, res.point_angles_deg, res.point_lift, design, title))
     out.add("summary.json", to_json(summary) + "\n")
-    written = out.commit()
-    summary["files"] = [str(p) for p in written]
-    if args.json:
-        print_json(summary)
-    else:
+    def show(summary: dict) -> None:
         print(f"{len(points)} points → {args.n_points} cam angles ({res.motion.fit} fit{', smoothed' if res.motion.smoothed else ''}); "
               f"lift {summary['min_lift']:.4f} … {summary['max_lift']:.4f} {unit} (from the {summary['lift_reference']})")
         if "max_lift_error" in summary:
             print(f"largest errors against the design: lift {summary['max_lift_error']:.3g} {unit}, velocity "
                   f"{summary['max_velocity_error']:.3g} {unit}/deg, acceleration {summary['max_acceleration_error']:.3g} {unit}/deg²")
-        for p in written:
-            print(f"wrote {p}")
+
+    publish(out, summary, args.json, show)
     return 0

@@ -11,28 +11,30 @@ nothing.
 
 from __future__ import annotations
 
+import sys
 from importlib import resources
 from pathlib import Path
 
-from camcam.cli.output import print_json, to_json, warn
-from camcam.cli.progress import step
+from camcam.cli.output import publish, to_json, warn
+from camcam.cli.progress import Progress, add_progress_flag
+from camcam.verdict import Verdict
 
-__all__ = ["register", "nc_step", "job", "DEFAULT_SPEC"]
+__all__ = ["register", "nc_step", "job_verdict", "job", "DEFAULT_SPEC"]
 
 #: The bundled job `camcam run` runs without a spec.
 DEFAULT_SPEC = "default.toml"
 
 
 def nc_step(out, spec, built, report: dict):
-    """The NC step: machine ``built`` per ``spec.machining``, add the program and DXF to ``out``
-    and the figures to ``report``; returns the :class:`~camcam.nc.job.MachiningResult`."""
-    from camcam.export.nc import machining_report, nc_files
-    from camcam.nc.job import machine
+    """The NC step's I/O half: run the job (:func:`camcam.nc.machine`), add the program and DXF to
+    ``out`` and the figures to ``report``; returns the :class:`~camcam.nc.MachiningResult`."""
+    from camcam.export.nc import nc_files
+    from camcam.nc import machine
 
     result = machine(built, spec.machining, spec.name)
     for name, data in nc_files(built, result).items():
         out.add(name, data)
-    nc = machining_report(result)
+    nc = result.figures()
     for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks"):
         report[key] = nc[key]
     report["machining"] = nc
@@ -41,11 +43,19 @@ def nc_step(out, spec, built, report: dict):
     return result
 
 
+def job_verdict(machining, machining_spec) -> Verdict:
+    """Every check of the job in one verdict; accepted when the spec accepts out-of-tolerance results."""
+    checks = machining.checks if machining is not None else ()
+    accepted = machining_spec.accept_out_of_tolerance if machining_spec is not None else False
+    return Verdict(tuple(checks), accepted)
+
+
 def register(sub) -> None:
     p = sub.add_parser("run", help="run the whole flow for a spec (default: the bundled sample job)")
     p.add_argument("spec", nargs="?", help="spec file (TOML); omitted: the bundled default job")
     p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
+    add_progress_flag(p)
     p.set_defaults(func=run)
 
 
@@ -58,17 +68,18 @@ def _load(spec_arg):
         return load_spec(path)
 
 
-def job(spec, out) -> dict:
-    """The whole flow for a loaded ``spec``: add every file to ``out`` (not committed) and return the summary.
+def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
+    """The whole flow for a loaded ``spec``: add every file to ``out`` (not committed); (summary, verdict).
 
     `camcam run` and each spec of `camcam batch` go through here.
     """
     from camcam.cli.motion import motion_outputs, motion_summary
 
+    verdict = Verdict(())
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
-    with step("motion table and plot"):
+    with progress.step("motion table and plot"):
         svaj = motion_outputs(out, spec.name, program, 0.5)
     summary = {"name": spec.name, "motion": motion_summary(program)}
     if spec.cam is not None:
@@ -78,41 +89,40 @@ def job(spec, out) -> dict:
         from camcam.plots.profile import cam_png
         from camcam.report.job import job_report
 
-        with step("cam geometry, analysis and mesh"):
+        with progress.step("cam geometry, analysis and mesh"):
             built = build_cam(spec.cam, spec.follower, program)
             report = cam_report(built)
         machining = None
         if spec.machining is not None:
-            with step("NC second fitting and program"):
+            with progress.step("NC second fitting and program"):
                 machining = nc_step(out, spec, built, report)
-        with step("drawing, model and report"):
+        verdict = job_verdict(machining, spec.machining)
+        report["verdict"] = verdict.as_dict()
+        with progress.step("drawing, model and report"):
             out.add(f"{spec.name}.stl", stl_bytes(built.mesh))
             profile_png = cam_png(built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
             out.add(f"{spec.name}-profile.png", profile_png)
             page = job_report(spec.name, spec, program, svaj, built, report, profile_png, machining,
-                              spec.report.inspection_step_deg)
+                              spec.report.inspection_step_deg, verdict)
             for name, data in page.files.items():
                 out.add(name, data)
             report.update(page.figures)
             out.add(f"{spec.name}-report.html", page.html)
             out.add(f"{spec.name}-report.json", to_json(report) + "\n")
         summary["cam"] = report
-    return summary
+    return summary, verdict
 
 
 def run(args) -> int:
+    progress = Progress.from_args(args)
     from camcam.cli.motion import print_summary
     from camcam.export.files import OutputSet
 
     spec = _load(args.spec)
     out = OutputSet(Path(args.output))
-    summary = job(spec, out)
-    with step("writing files"):
-        written = out.commit()
-    summary["files"] = [str(p) for p in written]
-    if args.json:
-        print_json(summary)
-    else:
+    summary, verdict = job(spec, out, progress)
+
+    def show(summary: dict) -> None:
         print_summary(summary["motion"])
         if "cam" in summary:
             c = summary["cam"]
@@ -121,6 +131,10 @@ def run(args) -> int:
             if "machining" in c:
                 print(f"NC: {c['line_blocks']} line + {c['arc_blocks']} arc blocks (lower bound {c['lower_bound_blocks']:.1f}), "
                       f"max deviation {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm on the printed program")
-        for p in written:
-            print(f"wrote {p}")
-    return 0
+
+    with progress.step("writing files"):
+        publish(out, summary, args.json, show, (verdict.line(),) if verdict.checks else ())
+    if not verdict.passed:
+        accepted = " (accepted: accept_out_of_tolerance = true)" if verdict.accepted else ""
+        print(f"camcam: {verdict.line()}{accepted}", file=sys.stderr)
+    return verdict.exit_status

@@ -8,9 +8,9 @@ import numpy as np
 
 from camcam.export.dxf import Circle, ExactCurve, Polyline, Text, contour_dxf
 from camcam.geometry.build import BuiltCam
-from camcam.nc.job import MachiningResult
+from camcam.nc.result import MachiningResult
 
-__all__ = ["nc_files", "machining_report", "nc_dxf"]
+__all__ = ["nc_files", "nc_dxf"]
 
 
 def _title_lines(built: BuiltCam, r: MachiningResult) -> list[str]:
@@ -74,24 +74,3 @@ def nc_dxf(built: BuiltCam, r: MachiningResult):
 def nc_files(built: BuiltCam, r: MachiningResult) -> dict[str, bytes]:
     """``{<name>.<ext>: program, <name>.dxf: drawing}``."""
     return {r.program_filename: r.program.text.encode("utf-8"), f"{r.name}.dxf": nc_dxf(built, r).data}
-
-
-def machining_report(r: MachiningResult) -> dict:
-    """The NC figures of ``<name>-report.json`` (block counts of one pass per contour)."""
-    contours = []
-    for c in r.contours:
-        contours.append({
-            "label": c.label, "offset_mm": c.offset_mm, "max_deviation_mm": c.deviation.max_deviation_mm,
-            "line_blocks": c.fit.line_blocks, "arc_blocks": c.fit.arc_blocks, "lower_bound_blocks": c.lower_bound,
-            "error_top_mm": c.error_top_mm, "error_bottom_mm": c.error_bottom_mm,
-            "segments": [{"from_deg": s.from_deg, "to_deg": s.to_deg, "blocks": s.blocks,
-                          "lower_bound_blocks": s.lower_bound} for s in c.segments],
-        })
-    return {
-        "post": r.post.name, "program": r.program_filename, "tool_diameter_mm": r.tool_diameter_mm,
-        "tolerance_mm": r.tolerance_mm, "mode": r.mode, "max_deviation_mm": r.max_deviation_mm,
-        "line_blocks": r.line_blocks, "arc_blocks": r.arc_blocks, "lower_bound_blocks": r.lower_bound_blocks,
-        "lower_bound_kind": "arcs: ∫(|κ′|/192δ)^⅓ ds" if r.mode == "arcs" else "lines: ∫√(|κ|/8δ) ds",
-        "program_blocks": {"line": r.program.line_blocks, "arc": r.program.arc_blocks, "rapid": r.program.rapid_blocks},
-        "reference_radius_mm": r.reference_radius_mm, "contours": contours, "notes": list(r.notes),
-    }

@@ -14,8 +14,7 @@ from camcam.geometry.followers import OscillatingFlat, OscillatingRoller, Transl
 from camcam.geometry.groove import GrooveCam
 from camcam.geometry.mesh import cylinder_mesh, disc_mesh, groove_mesh, ring_points
 from camcam.motion.program import MotionProgram
-from camcam.spec.cam import CamSpec
-from camcam.spec.follower import FollowerSpec
+from camcam.geometry.params import CamSpec, FollowerSpec
 
 __all__ = ["BuiltCam", "build_cam", "disc_follower"]
 
@@ -42,7 +41,34 @@ def disc_follower(f: FollowerSpec):
 
 
 def build_cam(c: CamSpec, f: FollowerSpec, program: MotionProgram) -> BuiltCam:
-    """Build, check (undercut raises :class:`GeometryError`), analyse and mesh the cam."""
+    """Build, check, analyse and mesh the cam.
+
+    Parameters
+    ----------
+    c, f : CamSpec, FollowerSpec
+        The cam and the follower (lengths in mm).
+    program : MotionProgram
+        The follower's motion over one revolution.
+
+    Returns
+    -------
+    BuiltCam
+        The cam (exact curves), its analysis and its watertight mesh.
+
+    Raises
+    ------
+    GeometryError
+        An undercut or cusp (with the angle and the smallest base radius that avoids it), a
+        follower that cannot reach, a groove that does not fit.
+
+    Examples
+    --------
+    >>> from camcam.spec import load_spec
+    >>> spec = load_spec("samples/disc-translating-roller.toml")
+    >>> built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
+    >>> round(built.analysis.max_pressure_angle_deg.value, 3), built.mesh.is_watertight
+    (22.256, True)
+    """
     if c.kind == "cylindrical":
         fol = (
             BarrelTranslatingRoller(f.roller_radius)

@@ -54,7 +54,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from camcam.errors import GeometryError
-from camcam.geometry.disc import SIGMA
+from camcam.geometry.disc import SIGMA, CamBasics
 from camcam.geometry.jet import Jet
 from camcam.geometry.jetcurve import JetCurve, LiftJet, SpaceCurve, program_breaks
 from camcam.motion.program import MotionProgram
@@ -83,7 +83,7 @@ class BarrelOscillatingRoller:
 
 
 @dataclass(frozen=True)
-class CylindricalCam:
+class CylindricalCam(CamBasics):
     """A barrel cam: cylinder of radius ``base_radius`` and ``length``, groove ``groove_depth`` deep."""
 
     follower: BarrelTranslatingRoller | BarrelOscillatingRoller
@@ -123,19 +123,7 @@ class CylindricalCam:
                 f"cam.length {self.length:g} mm is too short: the groove spans x = {span[0]:.3f} … {span[1]:.3f} mm"
             )
 
-    # -- basics -------------------------------------------------------------
-    @property
-    def sigma(self) -> int:
-        return SIGMA[self.rotation]
-
-    @property
-    def kind(self) -> str:
-        return self.follower.kind
-
-    @property
-    def roller_radius(self) -> float:
-        return self.follower.roller_radius
-
+    # -- basics (sigma, kind, roller_radius: CamBasics) ----------------------
     @property
     def breaks(self) -> np.ndarray:
         return program_breaks(self.program)

@@ -33,11 +33,30 @@ from camcam.geometry.jet import Jet, hypot
 from camcam.geometry.jetcurve import JetCurve, LiftJet, program_breaks
 from camcam.motion.program import MotionProgram
 
-__all__ = ["DiscCam", "Follower", "SIGMA"]
+__all__ = ["DiscCam", "CamBasics", "Follower", "SIGMA"]
 
 Follower = TranslatingRoller | OscillatingRoller | TranslatingFlat | OscillatingFlat
 
 SIGMA = {"ccw": 1, "cw": -1}
+
+
+class CamBasics:
+    """What every cam says of its follower and rotation (needs ``follower`` and ``rotation``)."""
+
+    @property
+    def sigma(self) -> int:
+        """+1 for a counter-clockwise cam, −1 for a clockwise one."""
+        return SIGMA[self.rotation]
+
+    @property
+    def kind(self) -> str:
+        """The follower kind."""
+        return self.follower.kind
+
+    @property
+    def roller_radius(self) -> float:
+        """The roller radius (0 for a flat face), mm."""
+        return float(self.follower.roller_radius)
 
 
 def rotate(x: Jet, y: Jet, angle: Jet) -> tuple[Jet, Jet]:
@@ -47,7 +66,7 @@ def rotate(x: Jet, y: Jet, angle: Jet) -> tuple[Jet, Jet]:
 
 
 @dataclass(frozen=True)
-class DiscCam:
+class DiscCam(CamBasics):
     """A disc cam driving ``follower`` through ``program``.
 
     Attributes
@@ -82,19 +101,7 @@ class DiscCam:
         object.__setattr__(self, "lift", LiftJet(self.program, scale))
         self._check_flat_contact()
 
-    # -- basics -------------------------------------------------------------
-    @property
-    def sigma(self) -> int:
-        return SIGMA[self.rotation]
-
-    @property
-    def kind(self) -> str:
-        return self.follower.kind
-
-    @property
-    def roller_radius(self) -> float:
-        return float(self.follower.roller_radius)
-
+    # -- basics (sigma, kind, roller_radius: CamBasics) ----------------------
     @property
     def is_roller(self) -> bool:
         return self.follower.kind.endswith("roller")

@@ -22,7 +22,7 @@ from camcam.errors import InputError
 from camcam.lifttable.bspline import ChordBSpline
 from camcam.lifttable.interpolate import interpolate
 from camcam.lifttable.table import LiftTable
-from camcam.motion.law import JUMP_ATOL, Extreme, MotionLaw, PiecewiseLaw, _check_T
+from camcam.motion.law import JUMP_ATOL, Extreme, MotionLaw, PiecewiseLaw, check_T
 from camcam.motion.piece import TrigPoly
 from camcam.motion.program import MotionProgram, Segment
 
@@ -44,7 +44,7 @@ class ChordBSplineLaw(MotionLaw):
     def evaluate(self, T, order: int = 0) -> np.ndarray:
         if not 0 <= order <= 4:
             raise ValueError(f"order must be 0..4, got {order!r}")
-        T = _check_T(T)
+        T = check_T(T)
         x = np.clip(self.a + T * self.span, self.spline.x_knots[0], self.spline.x_knots[-1])
         val = self.spline(x, order) * self.span**order
         if order == 0:

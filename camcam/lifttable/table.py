@@ -17,14 +17,13 @@ previous angle 12``.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from camcam.errors import InputError
-from camcam.inputs import data_rows, read_text
+from camcam.inputs import data_rows, parse_number, read_text
 
 __all__ = ["LiftTable", "parse_lift_table", "load_lift_table", "CLOSE_ATOL", "MIN_ROWS"]
 
@@ -111,16 +110,6 @@ def _decimals(text: str) -> int:
     return dec - exp
 
 
-def _number(text: str, what: str, where: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise InputError(f"{where}: {what} {text!r} is not a number") from None
-    if not math.isfinite(value):
-        raise InputError(f"{where}: {what} {text} is not a finite number")
-    return value
-
-
 def parse_lift_table(text: str, source: str = "table") -> LiftTable:
     """Validate the text of a lift table (see the module docstring).
 
@@ -150,8 +139,8 @@ def parse_lift_table(text: str, source: str = "table") -> LiftTable:
                 continue  # a header line
         if len(fields) != ncol or "" in fields:
             raise InputError(f"{where}: expected {ncol} values (angle_deg, lift_mm{', …' if ncol > 2 else ''}), got {stripped!r}")
-        angle = _number(fields[0], "angle", where)
-        lift = _number(fields[1], "lift", where)
+        angle = parse_number(fields[0], "angle", where)
+        lift = parse_number(fields[1], "lift", where)
         if angles and angle <= angles[-1]:
             raise InputError(f"{where}: angle {angle:g} is not above the previous angle {angles[-1]:g}")
         if angles and angle - angles[0] > 360.0 + SPAN_ATOL_DEG:

@@ -134,7 +134,8 @@ def _coefficient_table(pieces) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.n
     return coef, a, b, w
 
 
-def _check_T(T) -> np.ndarray:
+def check_T(T) -> np.ndarray:
+    """``T`` as an array, refused (ValueError naming the value) outside [0, 1] or NaN."""
     T = np.asarray(T, dtype=float)
     if T.size and (np.nanmin(T) < -1e-12 or np.nanmax(T) > 1 + 1e-12 or np.isnan(T).any()):
         bad = T[(T < -1e-12) | (T > 1 + 1e-12) | np.isnan(T)].flat[0]
@@ -186,7 +187,7 @@ class PiecewiseLaw(MotionLaw):
     def evaluate(self, T, order: int = 0) -> np.ndarray:
         if not 0 <= order <= 4:
             raise ValueError(f"order must be 0..4, got {order!r}")
-        T = _check_T(T)
+        T = check_T(T)
         idx = self._index(T)
         u = T - np.asarray(self.breaks)[idx]
         coef, a, b, w = self._tables[order]

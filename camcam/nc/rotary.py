@@ -32,15 +32,15 @@ import numpy as np
 
 from camcam.errors import GeometryError, InputError
 from camcam.geometry.build import BuiltCam
-from camcam.post.gcode import write_program
-from camcam.spec.machining import MachiningSpec
+from camcam.nc.result import MachiningResult, deviation_checks
+from camcam.nc.tools import groove_passes, job_title
+from camcam.nc.settings import MachiningSpec
 from camcam.toolpath.budget import DEFAULT_BUDGET
-from camcam.toolpath.quantizer import Quantizer
 from camcam.toolpath.contours import CutContour, OffsetCurve, fit_printed
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Line
-from camcam.nc.job import SAME_TOOL_MM, MachiningResult, _join, _title
-from camcam.toolpath.path import depth_levels, rotary_toolpath
+from camcam.toolpath.path import join_toolpaths, rotary_toolpath
+from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["machine_cylindrical", "developed_printed", "printed_axes"]
 
@@ -59,22 +59,15 @@ def developed_printed(axes: np.ndarray, radius_mm: float) -> tuple:
     return tuple(Line(tuple(map(float, p)), tuple(map(float, q))) for p, q in zip(uv[:-1], uv[1:]) if tuple(p) != tuple(q))
 
 
-def _plan(cam, r_t: float, rho: float):
-    """[(label, exact curve at radius ρ as a function of ρ, offset)]."""
-    r_r = cam.roller_radius
-    if r_t > r_r + SAME_TOOL_MM:
-        raise GeometryError(f"machining.tool_diameter: {2 * r_t:g} mm is wider than the groove ({2 * r_r:g} mm, "
-                            f"twice the roller radius)")
-    centre = ("groove centre", cam.developed_centre, r_r)
-    if abs(r_t - r_r) <= SAME_TOOL_MM:
+def _plan(cam, r_t: float):
+    """[(label, exact curve at radius ρ as a function of ρ, offset, pass kind)]."""
+    centre = ("groove centre", cam.developed_centre, cam.roller_radius, "slot")
+    if groove_passes(r_t, cam.roller_radius) == "centre":
         return [centre]
-    if 3 * r_t < r_r:
-        raise GeometryError(f"machining.tool_diameter: {2 * r_t:g} mm is below a third of the groove width "
-                            f"{2 * r_r:g} mm: a centre pass and two flank passes would leave material between them")
     # flank 0 is the −X wall: the groove lies to its left in (u, x) (u grows with the cam angle)
-    return [("groove centre (rough)", cam.developed_centre, r_r),
-            ("flank 0 (-X wall)", lambda r: OffsetCurve(cam.developed_flank(0, r), r_t), r_t),
-            ("flank 1 (+X wall)", lambda r: OffsetCurve(cam.developed_flank(1, r), -r_t), r_t)]
+    return [("groove centre (rough)", cam.developed_centre, cam.roller_radius, "slot"),
+            ("flank 0 (-X wall)", lambda r: OffsetCurve(cam.developed_flank(0, r), r_t), r_t, "finish"),
+            ("flank 1 (+X wall)", lambda r: OffsetCurve(cam.developed_flank(1, r), -r_t), r_t, "finish")]
 
 
 def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
@@ -84,11 +77,10 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> Machini
         raise GeometryError(f"post {post.name}: has no inverse-time feed (G93) for a cylindrical cam's 4-axis program")
     rho = cam.reference_radius
     r_t = m.tool_diameter_mm / 2
-    title = _title(name, built, m, "lines")
+    title = job_title(name, built.spec.kind, cam.kind, m.tool_diameter_mm, "lines", m.tolerance_mm, post.name)
     cs = m.cut_settings()
-    n_levels = len(depth_levels(cs))
     contours, paths = [], []
-    for label, at, offset in _plan(cam, r_t, rho):
+    for k, (label, at, offset, kind) in enumerate(_plan(cam, r_t)):
         curve = at(rho)
 
         def printed(elements):
@@ -104,16 +96,13 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> Machini
         # developed (u, x) → (x, arc length at ρ_ref); A = u/ρ_ref
         pts = np.array([fit.elements[0].start] + [e.end for e in fit.elements])
         try:
-            paths.append(rotary_toolpath(pts[:, ::-1], cam.base_radius, cs, title, developed_radius_mm=rho))
+            paths.append(rotary_toolpath(pts[:, ::-1], cam.base_radius, cs, title, developed_radius_mm=rho,
+                                         contour=k, kind=kind))
         except InputError as err:
             raise GeometryError(f"{name} {label}: {err}") from None
         contours.append(CutContour(label, curve, fit, path, dev, offset, False, segs, "both", errors[0], errors[1]))
-    toolpath = _join(title, paths)
-    try:
-        program = write_program(toolpath, post, name)
-    except (GeometryError, InputError) as err:
-        raise GeometryError(f"post {post.name}: {err}") from None
-    k = len(contours)
+    toolpath = join_toolpaths(title, paths)
+    program = post.write_program(toolpath, name)
     notes = (f"4-axis: X along the cam axis, A = program cam angle (deg), developed at R{rho:g} mm",)
     if m.mode == "arcs":
         notes += ("mode arcs: a 4-axis G1 X A program has lines only",)
@@ -123,5 +112,4 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> Machini
                if cam.kind == "oscillating-roller" else "the flank's slope changes with depth")
         notes += (f"4-axis: the cut leaves the exact groove by up to {worst:.4f} mm at the groove top/bottom ({why})",)
     return MachiningResult(name, built.spec.kind, cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, "lines",
-                           tuple(contours), toolpath, program,
-                           tuple(i for i in range(k) for _ in range(n_levels)), (True,) * (k * n_levels), rho, notes)
+                           tuple(contours), toolpath, program, rho, notes, deviation_checks(contours, m.tolerance_mm))

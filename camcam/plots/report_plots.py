@@ -5,7 +5,6 @@ from __future__ import annotations
 import numpy as np
 
 from camcam.plots.render import plt, png_bytes
-from camcam.report.fitted_motion import FittedMotion
 
 __all__ = ["deviation_png", "fitted_motion_png"]
 
@@ -28,21 +27,25 @@ def deviation_png(angles_deg: np.ndarray, deviation_mm: np.ndarray, tolerance_mm
     return png_bytes(fig)
 
 
-def fitted_motion_png(fm: FittedMotion, title: str) -> bytes:
-    """Design and as-machined lift, velocity, acceleration, jerk, stacked."""
+def fitted_motion_png(angles_deg: np.ndarray, design: np.ndarray, fitted: np.ndarray, units, title: str) -> bytes:
+    """Design and as-machined lift, velocity, acceleration, jerk, stacked.
+
+    ``design`` and ``fitted`` are (4, n) over ``angles_deg`` (n,), in ``units`` (4 strings).
+    """
     names = ["lift", "velocity", "acceleration", "jerk"]
     fig, axes = plt.subplots(4, 1, figsize=(8, 8.5), sharex=True)
     for k, ax in enumerate(axes):
-        ax.plot(fm.angles_deg, fm.design[k], color="0.2", lw=1.6, label="design")
+        ax.plot(angles_deg, design[k], color="0.2", lw=1.6, label="design")
         style = dict(ls="none", marker=".", ms=2.5) if k == 3 else dict(lw=0.9)
-        ax.plot(fm.angles_deg, fm.fitted[k], color="C3", label="as machined (fitted program)", **style)
-        ax.set_ylabel(f"{names[k]}\n[{fm.units[k]}]")
+        ax.plot(angles_deg, fitted[k], color="C3", label="as machined (fitted program)", **style)
+        ax.set_ylabel(f"{names[k]}\n[{units[k]}]")
         ax.grid(True, alpha=0.3)
-    err_a, at_a = fm.max_error(2)
-    err_j, at_j = fm.max_error(3)
+    err = np.abs(np.asarray(fitted) - np.asarray(design))
+    i_a, i_j = int(np.argmax(err[2])), int(np.argmax(err[3]))
     axes[0].legend(loc="upper right", fontsize=8)
-    axes[2].set_title(f"largest acceleration error {err_a:.4g} {fm.units[2]} at {at_a:g}°", fontsize=9)
-    axes[3].set_title(f"largest jerk error {err_j:.4g} {fm.units[3]} at {at_j:g}° (jerk is impulsive at every arc join)", fontsize=9)
+    axes[2].set_title(f"largest acceleration error {err[2][i_a]:.4g} {units[2]} at {angles_deg[i_a]:g}°", fontsize=9)
+    axes[3].set_title(f"largest jerk error {err[3][i_j]:.4g} {units[3]} at {angles_deg[i_j]:g}° "
+                      f"(jerk is impulsive at every arc join)", fontsize=9)
     axes[-1].set_xlim(0, 360)
     axes[-1].set_xticks(np.arange(0, 361, 30))
     axes[-1].set_xlabel("cam angle [deg]")

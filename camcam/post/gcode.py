@@ -9,25 +9,17 @@ time (G93): every feed move carries F = feed / move length (1/min).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+
+from typing import TYPE_CHECKING
 
 from camcam.errors import InputError, PostError
-from camcam.post.post import Post
-from camcam.toolpath.elements import Arc, Line
+from camcam.nc.result import Program
 from camcam.toolpath.path import ArcMove, Feed, Rapid, Toolpath
 
+if TYPE_CHECKING:  # annotations only: post.post imports this module to print its programs
+    from camcam.post.post import Post
+
 __all__ = ["Program", "write_program", "format_number", "printed_elements"]
-
-
-@dataclass(frozen=True)
-class Program:
-    """A printed program and its block counts (moves only)."""
-
-    text: str
-    extension: str
-    line_blocks: int
-    arc_blocks: int
-    rapid_blocks: int
 
 
 def format_number(v: float, post: Post, signed: bool = False) -> str:
@@ -189,7 +181,7 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam") -> Progr
     Examples
     --------
     >>> from camcam.post.post import load_post
-    >>> tp = Toolpath("demo", (Rapid(0.0, 0.0, 5.0), Feed(10.0, 0.0, 5.0, 300.0)), 1000)
+    >>> tp = Toolpath.of_moves("demo", (Rapid(0.0, 0.0, 5.0), Feed(10.0, 0.0, 5.0, 300.0)), 1000)
     >>> print(write_program(tp, load_post("linuxcnc")).text.splitlines()[-3])
     G1 X10 F300
     """

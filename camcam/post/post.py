@@ -35,6 +35,9 @@ from importlib import resources
 from pathlib import Path
 
 from camcam.errors import InputError
+from camcam.nc.result import Program
+from camcam.post.gcode import write_program
+from camcam.toolpath.path import Toolpath
 from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["Post", "load_post", "known_posts", "parse_post"]
@@ -71,6 +74,10 @@ class Post:
     def quantizer(self) -> Quantizer:
         """The printed rounding of this post (decimals and arc format): the one model of what it prints."""
         return Quantizer(self.decimals, self.arc_format)
+
+    def write_program(self, toolpath: Toolpath, name: str = "camcam") -> Program:
+        """``toolpath`` printed in this dialect (:func:`camcam.post.gcode.write_program`)."""
+        return write_program(toolpath, self, name)
 
 
 def _post_dir():

@@ -11,7 +11,9 @@ import html
 from dataclasses import dataclass
 from typing import Sequence, Union
 
-__all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Code", "Section", "render_html"]
+from camcam.verdict import Verdict
+
+__all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Code", "VerdictBlock", "Section", "render_html"]
 
 
 @dataclass(frozen=True)
@@ -51,7 +53,14 @@ class Code:
     caption: str = ""
 
 
-Block = Union[Figure, KeyValues, DataTable, Paragraph, Code]
+@dataclass(frozen=True)
+class VerdictBlock:
+    """The PASS/FAIL banner and the table of checks (:class:`camcam.verdict.Verdict`)."""
+
+    verdict: Verdict
+
+
+Block = Union[Figure, KeyValues, DataTable, Paragraph, Code, VerdictBlock]
 
 
 @dataclass(frozen=True)
@@ -69,12 +78,24 @@ td:first-child,th:first-child{text-align:left}table.kv td:first-child{font-weigh
 figure{margin:1em 0}figure img{max-width:100%;border:1px solid #ddd}figcaption{color:#444;font-size:.9em}
 pre{background:#f6f8fa;border:1px solid #ddd;padding:.6em;font-size:.85em;overflow-x:auto}
 .ok{color:#176b2c;font-weight:600}.bad{color:#a11;font-weight:600}
+.verdict{font-size:1.5em;font-weight:700;padding:.4em .8em;border-radius:4px;color:#fff;display:inline-block}
+.verdict.pass{background:#176b2c}.verdict.fail{background:#b3191f}
 @media print{h2{page-break-after:avoid}figure,table{page-break-inside:avoid}}
 """
 
 
 def _block(b: Block) -> str:
     e = html.escape
+    if isinstance(b, VerdictBlock):
+        v = b.verdict
+        head = f'<p class="verdict {v.status.lower()}">{e(v.status)}</p>'
+        if v.accepted and not v.passed:
+            head += "<p>Out of tolerance, accepted by the spec (accept_out_of_tolerance = true).</p>"
+        rows = "".join(f'<tr><td>{e(c.name)}</td><td>{c.value:.5g} {e(c.unit)}</td><td>{c.limit:g} {e(c.unit)}</td>'
+                       f'<td class="{"ok" if c.ok else "bad"}">{"within" if c.ok else ("FAIL" if c.fails else "warning")}'
+                       f'</td><td>{e(c.where)}</td><td>{e("" if c.ok else c.advice)}</td></tr>' for c in v.checks)
+        return (head + "<table><thead><tr><th>check</th><th>measured</th><th>limit</th><th>result</th><th>where</th>"
+                f"<th>way out</th></tr></thead><tbody>{rows}</tbody></table>")
     if isinstance(b, Figure):
         data = base64.b64encode(b.png).decode("ascii")
         return f'<figure><img alt="{e(b.caption)}" src="data:image/png;base64,{data}"><figcaption>{e(b.caption)}</figcaption></figure>'

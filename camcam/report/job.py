@@ -17,9 +17,10 @@ from camcam.motion.program import MotionProgram
 from camcam.plots.report_plots import deviation_png, fitted_motion_png
 from camcam.report.deviation_along import signed_deviation
 from camcam.report.fitted_motion import fitted_motion
-from camcam.report.html import Code, DataTable, Figure, KeyValues, Paragraph, Section, render_html
+from camcam.report.html import Code, DataTable, Figure, KeyValues, Paragraph, Section, VerdictBlock, render_html
+from camcam.verdict import Verdict
 from camcam.report.inspection import inspection_table
-from camcam.nc.job import MachiningResult
+from camcam.nc.result import MachiningResult
 
 __all__ = ["JobReport", "job_report"]
 
@@ -49,11 +50,13 @@ def _job_rows(name, spec, built: BuiltCam | None, m: MachiningResult | None):
 
 
 def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: BuiltCam | None, cam_figures: dict,
-               cam_png: bytes | None, machining: MachiningResult | None, inspection_step_deg: float = 10.0) -> JobReport:
-    """Build the HTML page, the report's extra JSON figures and its files."""
+               cam_png: bytes | None, machining: MachiningResult | None, inspection_step_deg: float = 10.0,
+               verdict: Verdict | None = None) -> JobReport:
+    """Build the HTML page, the report's extra JSON figures and its files; the verdict opens the page."""
     files: dict[str, bytes] = {}
     figures: dict = {}
-    sections = [Section("Job", (KeyValues(_job_rows(name, spec, built, machining)),))]
+    sections = [Section("Verdict", (VerdictBlock(verdict),))] if verdict is not None else []
+    sections.append(Section("Job", (KeyValues(_job_rows(name, spec, built, machining)),)))
     sections.append(Section("Motion (design)", (Figure(svaj, "Displacement, velocity, acceleration and jerk over the revolution; dashed: segment boundaries."),)))
     if built is not None:
         blocks = []
@@ -93,7 +96,8 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: Buil
         if isinstance(disc, DiscCam):
             c0 = m.contours[0]
             fm = fitted_motion(disc, c0.printed, c0.offset_mm, np.arange(0.0, 360.0, 0.5))
-            png = fitted_motion_png(fm, f"{name}: follower motion the fitted program will produce")
+            png = fitted_motion_png(fm.angles_deg, fm.design, fm.fitted, fm.units,
+                                    f"{name}: follower motion the fitted program will produce")
             files[f"{name}-fitted-motion.png"] = png
             ea, aa = fm.max_error(2)
             ej, aj = fm.max_error(3)

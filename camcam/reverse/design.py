@@ -29,8 +29,7 @@ from camcam.reverse.disc import disc_follower, profile_normals, solve_disc
 from camcam.reverse.fit import DEFAULT_MAX_GAP_DEG, RecoveredMotion, fit_motion
 from camcam.reverse.points import MeasuredPoints
 from camcam.reverse.slopes import periodic_fit
-from camcam.spec.cam import CamSpec
-from camcam.spec.follower import FollowerSpec
+from camcam.geometry.params import CamSpec, FollowerSpec
 
 __all__ = ["ReverseOptions", "ReverseResult", "reverse_design", "design_motion", "BASE_TOL"]
 

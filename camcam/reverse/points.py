@@ -10,14 +10,13 @@ naming the row (the line number in the file).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from camcam.errors import InputError
-from camcam.inputs import data_rows, read_text
+from camcam.inputs import data_rows, parse_number, read_text
 
 __all__ = ["MeasuredPoints", "parse_points", "load_points", "MIN_POINTS"]
 
@@ -80,16 +79,7 @@ def parse_points(text: str, source: str = "points") -> MeasuredPoints:
         if len(fields) != ncol or "" in fields:
             names = "x, y, z" if ncol == 3 else "x, y"
             raise InputError(f"{where}: expected {ncol} values ({names}), got {stripped!r}")
-        vals = []
-        for name, f in zip("xyz", fields):
-            try:
-                v = float(f)
-            except ValueError:
-                raise InputError(f"{where}: {name} {f!r} is not a number") from None
-            if not math.isfinite(v):
-                raise InputError(f"{where}: {name} {f} is not a finite number")
-            vals.append(v)
-        rows.append(vals)
+        rows.append([parse_number(f, name, where) for name, f in zip("xyz", fields)])
         lines.append(lineno)
     if len(rows) < MIN_POINTS:
         raise InputError(f"{source}: {len(rows)} point(s); reverse design needs at least {MIN_POINTS}")

@@ -15,26 +15,10 @@ length = 120.0         # cylindrical, mm
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
+from camcam.geometry.params import CAM_KINDS, CamSpec
 from camcam.spec.reader import Table
 
 __all__ = ["CamSpec", "read_cam", "CAM_KINDS"]
-
-CAM_KINDS = ("disc", "disc-groove", "cylindrical")
-
-
-@dataclass(frozen=True)
-class CamSpec:
-    kind: str
-    base_radius: float
-    bore: float = 0.0
-    rotation: str = "ccw"
-    thickness: float | None = None
-    groove_depth: float | None = None
-    outer_radius: float | None = None
-    length: float | None = None
-
 
 def read_cam(t: Table) -> CamSpec:
     kind = t.string("kind", "disc", choices=CAM_KINDS)

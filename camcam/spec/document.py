@@ -88,7 +88,30 @@ def parse_spec(data: dict, source: Path) -> Spec:
 
 
 def load_spec(path: str | Path) -> Spec:
-    """Read and validate the spec file at ``path``."""
+    """Read and validate the spec file at ``path``.
+
+    Parameters
+    ----------
+    path : str or Path
+        A TOML spec (README "Spec reference"); relative paths inside it are
+        taken from its folder.
+
+    Returns
+    -------
+    Spec
+        Frozen, validated tables: ``motion``, ``cam``, ``follower``, ``machining``, ...
+
+    Raises
+    ------
+    SpecError
+        One line naming the key path and what was expected.
+
+    Examples
+    --------
+    >>> spec = load_spec("samples/disc-translating-roller.toml")
+    >>> spec.name, spec.cam.kind, spec.follower.kind, spec.machining.tolerance_mm
+    ('disc-translating-roller', 'disc', 'translating-roller', 0.01)
+    """
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")

@@ -14,32 +14,10 @@ An oscillating follower makes the motion unit degrees.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
+from camcam.geometry.params import FOLLOWER_KINDS, FollowerSpec
 from camcam.spec.reader import Table
 
 __all__ = ["FollowerSpec", "read_follower", "FOLLOWER_KINDS"]
-
-FOLLOWER_KINDS = ("translating-roller", "oscillating-roller", "translating-flat", "oscillating-flat")
-
-
-@dataclass(frozen=True)
-class FollowerSpec:
-    kind: str
-    roller_radius: float = 0.0
-    offset: float = 0.0
-    pivot_distance: float | None = None
-    arm_length: float | None = None
-
-    @property
-    def unit(self) -> str:
-        """Motion unit: "deg" for an oscillating follower, else "mm"."""
-        return "deg" if self.kind.startswith("oscillating") else "mm"
-
-    @property
-    def is_roller(self) -> bool:
-        return self.kind.endswith("roller")
-
 
 def read_follower(t: Table, cam_kind: str | None = None) -> FollowerSpec:
     kind = t.string("kind", choices=FOLLOWER_KINDS)

@@ -15,46 +15,15 @@ stepdown = 4.0             # mm
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 
 from camcam.errors import InputError
-from camcam.post.post import Post, load_post
+from camcam.nc.settings import MachiningSpec
+from camcam.post.post import load_post
 from camcam.spec.reader import Table
 from camcam.toolpath.budget import DEFAULT_BUDGET
-from camcam.toolpath.path import CutSettings
 
 __all__ = ["MachiningSpec", "read_machining"]
-
-
-@dataclass(frozen=True)
-class MachiningSpec:
-    """The validated ``[machining]`` table (lengths in mm, feeds in mm/min)."""
-
-    post: Post
-    tool_diameter_mm: float
-    tolerance_mm: float
-    mode: str
-    feed_mm_min: float
-    spindle_rpm: float
-    depth_mm: float
-    stepdown_mm: float
-    plunge_feed_mm_min: float
-    safe_z_mm: float
-    clearance_z_mm: float
-    lead_radius_mm: float
-    finish_allowance_mm: float
-    spring_pass: bool
-    tool_number: int
-
-    def cut_settings(self, stock_side: str = "right") -> CutSettings:
-        """Settings for :func:`camcam.toolpath.path.contour_toolpath`."""
-        return CutSettings(depth_mm=self.depth_mm, stepdown_mm=self.stepdown_mm, feed_mm_min=self.feed_mm_min,
-                           spindle_rpm=self.spindle_rpm, plunge_feed_mm_min=self.plunge_feed_mm_min,
-                           safe_z_mm=self.safe_z_mm, clearance_z_mm=self.clearance_z_mm,
-                           lead_radius_mm=self.lead_radius_mm, stock_side=stock_side,
-                           finish_allowance_mm=self.finish_allowance_mm, spring_pass=self.spring_pass,
-                           tool_number=self.tool_number, tool_diameter_mm=self.tool_diameter_mm)
 
 
 def read_machining(t: Table, base: Path) -> MachiningSpec:
@@ -81,6 +50,7 @@ def read_machining(t: Table, base: Path) -> MachiningSpec:
     allowance = t.number("finish_allowance", 0.0, minimum=0.0, unit="mm")
     spring = t.boolean("spring_pass", False)
     tool_number = t.integer("tool_number", 1, minimum=0, maximum=999)
+    accept = t.boolean("accept_out_of_tolerance", False)
     t.done()
     return MachiningSpec(post, tool, tol, mode, feed, spindle, depth, stepdown, plunge, safe, clearance, lead,
-                         allowance, spring, tool_number)
+                         allowance, spring, tool_number, accept)

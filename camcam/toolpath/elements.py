@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Line", "Arc", "arc_from_tangent", "element_points", "element_nearest", "element_distance", "contour_length"]
+__all__ = ["Line", "Arc", "element_tangent", "arc_from_tangent", "element_points", "element_nearest", "element_distance", "contour_length"]
 
 
 @dataclass(frozen=True)
@@ -86,6 +86,22 @@ class Arc:
         ang = self.start_angle + (1.0 if self.ccw else -1.0) * self.sweep * u
         r = self.radius + (self.end_radius - self.radius) * u
         return np.asarray(self.centre) + r[:, None] * np.stack([np.cos(ang), np.sin(ang)], axis=-1)
+
+
+def element_tangent(e: Line | Arc, end: bool = True) -> np.ndarray:
+    """Unit tangent of ``e`` in its direction of travel, at its end (or start).
+
+    Examples
+    --------
+    >>> element_tangent(Arc((1.0, 0.0), (0.0, 1.0), (0.0, 0.0), True)).round(12).tolist()
+    [-1.0, -0.0]
+    """
+    if isinstance(e, Line):
+        v = np.subtract(e.end, e.start)
+        return v / np.hypot(*v)
+    r = np.subtract(e.end if end else e.start, e.centre)
+    r = r / np.hypot(*r)
+    return np.array([-r[1], r[0]]) if e.ccw else np.array([r[1], -r[0]])
 
 
 def arc_from_tangent(start, tangent, end, line_sagitta: float = 0.0) -> Line | Arc:

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from camcam.toolpath.elements import Arc, Line, arc_from_tangent, element_distance
+from camcam.toolpath.elements import Arc, arc_from_tangent, element_distance, element_tangent
 
 __all__ = ["pieces", "Piece", "unit", "end_tangent", "dev", "biarc", "sweep_ok", "greedy", "signed_angle"]
 
@@ -57,12 +57,8 @@ def unit(angle):
 
 
 def end_tangent(e) -> np.ndarray:
-    if isinstance(e, Line):
-        v = np.subtract(e.end, e.start)
-        return v / np.hypot(*v)
-    r = np.subtract(e.end, e.centre)
-    r = r / np.hypot(*r)
-    return np.array([-r[1], r[0]]) if e.ccw else np.array([r[1], -r[0]])
+    """Unit tangent at the end of ``e`` (:func:`element_tangent`)."""
+    return element_tangent(e, True)
 
 
 def _seg_dist(q, poly):

@@ -15,10 +15,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from camcam.errors import InputError
-from camcam.toolpath.elements import Arc, Line
+from camcam.toolpath.elements import Arc, Line, element_tangent
 
-__all__ = ["Rapid", "Feed", "ArcMove", "Toolpath", "CutSettings", "contour_toolpath", "offset_elements",
-           "rotary_toolpath", "slot_toolpath", "depth_levels"]
+__all__ = ["Rapid", "Feed", "ArcMove", "Pass", "PASS_KINDS", "Toolpath", "CutSettings", "contour_toolpath",
+           "offset_elements", "rotary_toolpath", "slot_toolpath", "depth_levels", "join_toolpaths"]
 
 
 @dataclass(frozen=True)
@@ -55,17 +55,81 @@ class ArcMove:
     feed_mm_min: float
 
 
+#: What a pass does: ``rough`` runs at a finishing allowance off the contour; ``finish`` cuts the
+#: contour (at one depth level); ``spring`` repeats the final finish pass; ``slot`` runs inside a
+#: groove where the tool's full width may engage (a groove's centre pass).
+PASS_KINDS = ("rough", "finish", "spring", "slot")
+
+
+@dataclass(frozen=True)
+class Pass:
+    """One pass of the tool along one contour at one depth: the record every consumer reads.
+
+    Parameters
+    ----------
+    contour : int
+        Index of the contour the pass follows (into the job's contours).
+    kind : str
+        One of :data:`PASS_KINDS`.
+    z : float
+        The pass depth: Z of the tool tip (disc cams, top face at 0), or its
+        distance from the cam axis (4-axis cylindrical cams).
+    moves : tuple
+        The pass's moves, from the approach over its start to the retract.
+    """
+
+    contour: int
+    kind: str
+    z: float
+    moves: tuple
+
+    def __post_init__(self) -> None:
+        if self.kind not in PASS_KINDS:
+            raise ValueError(f"kind: expected one of {PASS_KINDS}, got {self.kind!r}")
+
+    @property
+    def finishes(self) -> bool:
+        """Whether the pass cuts the contour itself (not at a finishing allowance)."""
+        return self.kind != "rough"
+
+
 @dataclass(frozen=True)
 class Toolpath:
-    """A frozen program in neutral form."""
+    """A frozen program in neutral form: its passes between a first and a last move (retracts).
+
+    ``moves`` is every move in order: ``opening``, each pass's moves, ``closing``.
+    """
 
     title: str
-    moves: tuple
+    passes: tuple[Pass, ...]
     spindle_rpm: float
     tool_number: int = 1
     tool_diameter_mm: float = 0.0
     rotary: bool = False
     comments: tuple[str, ...] = ()
+    opening: tuple = ()
+    closing: tuple = ()
+
+    @property
+    def moves(self) -> tuple:
+        return self.opening + tuple(m for p in self.passes for m in p.moves) + self.closing
+
+    @classmethod
+    def of_moves(cls, title: str, moves, spindle_rpm: float, **kw) -> "Toolpath":
+        """A toolpath of plain moves with no pass structure (tests, hand-made programs)."""
+        return cls(title, (), spindle_rpm, opening=tuple(moves), **kw)
+
+
+def join_toolpaths(title: str, paths) -> Toolpath:
+    """One toolpath cutting ``paths`` in order: their passes, the first opening and the last closing.
+
+    Every path must open and close the same way (retract to the safe height).
+    """
+    first = paths[0]
+    comments = tuple(dict.fromkeys(c for p in paths for c in p.comments))
+    passes = tuple(q for p in paths for q in p.passes)
+    return Toolpath(title, passes, first.spindle_rpm, first.tool_number, first.tool_diameter_mm, first.rotary,
+                    comments, first.opening, paths[-1].closing)
 
 
 @dataclass(frozen=True)
@@ -105,16 +169,6 @@ class CutSettings:
                 raise InputError(f"{name}: expected {want}, got {getattr(self, name)!r}")
 
 
-def _tangent_at(e, end: bool) -> np.ndarray:
-    if isinstance(e, Line):
-        v = np.subtract(e.end, e.start)
-        return v / np.hypot(*v)
-    p = e.end if end else e.start
-    r = np.subtract(p, e.centre)
-    r = r / np.hypot(*r)
-    return np.array([-r[1], r[0]]) if e.ccw else np.array([r[1], -r[0]])
-
-
 def offset_elements(elements, distance_mm: float) -> tuple:
     """Offset a G1 contour by ``distance_mm`` to its left (negative: right); arcs stay arcs.
 
@@ -123,7 +177,7 @@ def offset_elements(elements, distance_mm: float) -> tuple:
     out = []
     for e in elements:
         if isinstance(e, Line):
-            t = _tangent_at(e, False)
+            t = element_tangent(e, False)
             n = np.array([-t[1], t[0]]) * distance_mm
             out.append(Line(tuple(np.add(e.start, n)), tuple(np.add(e.end, n))))
         else:
@@ -144,13 +198,13 @@ def _pass_moves(elements, z, feed, plunge, lead, away_left, cs):
     """One depth pass: rapid over the lead-in start, plunge, lead-in arc, contour, lead-out arc, retract."""
     first, last = elements[0], elements[-1]
     p0 = np.asarray(first.start)
-    t0 = _tangent_at(first, False)
+    t0 = element_tangent(first, False)
     s = 1.0 if away_left else -1.0
     n0 = s * np.array([-t0[1], t0[0]])
     c_in = p0 + lead * n0
     start = c_in - lead * t0
     p1 = np.asarray(last.end)
-    t1 = _tangent_at(last, True)
+    t1 = element_tangent(last, True)
     n1 = s * np.array([-t1[1], t1[0]])
     c_out = p1 + lead * n1
     finish = c_out + lead * t1
@@ -167,10 +221,20 @@ def _pass_moves(elements, z, feed, plunge, lead, away_left, cs):
     return moves
 
 
-def depth_levels(cs: CutSettings) -> list[float]:
-    """Equal depth steps no deeper than ``stepdown_mm`` down to ``top_z_mm − depth_mm``."""
+def depth_levels(cs: CutSettings, top_mm: float | None = None) -> list[float]:
+    """Equal depth steps no deeper than ``stepdown_mm`` down to ``top − depth_mm``.
+
+    ``top_mm`` is the surface the depth counts from (default ``cs.top_z_mm``;
+    a cylindrical cam's blank radius for 4-axis passes).
+
+    Examples
+    --------
+    >>> depth_levels(CutSettings(depth_mm=12, stepdown_mm=5, feed_mm_min=300, spindle_rpm=2000))
+    [-4.0, -8.0, -12.0]
+    """
+    top = cs.top_z_mm if top_mm is None else top_mm
     n = max(1, math.ceil(cs.depth_mm / cs.stepdown_mm - 1e-9))
-    return [cs.top_z_mm - cs.depth_mm * (k + 1) / n for k in range(n)]
+    return [top - cs.depth_mm * (k + 1) / n for k in range(n)]
 
 
 def _contour_moves(elements, z, feed):
@@ -183,13 +247,16 @@ def _contour_moves(elements, z, feed):
     return moves
 
 
-def slot_toolpath(elements, cs: CutSettings, title: str = "camcam") -> Toolpath:
+def slot_toolpath(elements, cs: CutSettings, title: str = "camcam", contour: int = 0, kind: str = "slot") -> Toolpath:
     """Depth passes along a contour inside a slot or groove: plunge at its start, no leads.
 
     For a groove both sides of the path are walls, so there is no free side
     for a lead arc; the plunge point lies in the groove (material the pass
     removes anyway).  ``spring_pass`` repeats the last pass; a finishing
     allowance does not apply (the flanks are cut by their own passes).
+    ``kind`` is "slot" for a pass the tool's full width may engage (a
+    groove's centre pass) or "finish" for a flank; ``contour`` indexes the
+    job's contour in the passes.
 
     Examples
     --------
@@ -204,18 +271,19 @@ def slot_toolpath(elements, cs: CutSettings, title: str = "camcam") -> Toolpath:
     levels = depth_levels(cs)
     plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
     start = elements[0].start
-    moves: list = [Rapid(None, None, cs.safe_z_mm)]
-    for z in levels + ([levels[-1]] if cs.spring_pass else []):
-        moves += [Rapid(float(start[0]), float(start[1]), None), Rapid(None, None, cs.clearance_z_mm),
-                  Feed(None, None, z, plunge)]
+    passes = []
+    for z, k in [(z, kind) for z in levels] + ([(levels[-1], "spring")] if cs.spring_pass else []):
+        moves = [Rapid(float(start[0]), float(start[1]), None), Rapid(None, None, cs.clearance_z_mm),
+                 Feed(None, None, z, plunge)]
         moves += _contour_moves(elements, z, cs.feed_mm_min)
         moves.append(Rapid(None, None, cs.clearance_z_mm))
-    moves.append(Rapid(None, None, cs.safe_z_mm))
-    return Toolpath(title, tuple(moves), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False,
-                    (f"{len(levels)} depth passes to {levels[-1]:g} mm, plunged in the groove",))
+        passes.append(Pass(contour, k, z, tuple(moves)))
+    return Toolpath(title, tuple(passes), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False,
+                    (f"{len(levels)} depth passes to {levels[-1]:g} mm, plunged in the groove",),
+                    (Rapid(None, None, cs.safe_z_mm),), (Rapid(None, None, cs.safe_z_mm),))
 
 
-def contour_toolpath(elements, cs: CutSettings, title: str = "camcam") -> Toolpath:
+def contour_toolpath(elements, cs: CutSettings, title: str = "camcam", contour: int = 0) -> Toolpath:
     """Depth passes over a fitted contour (tool-centre elements in the direction of cut).
 
     Passes go down in equal steps no deeper than ``stepdown_mm``; with a
@@ -232,25 +300,25 @@ def contour_toolpath(elements, cs: CutSettings, title: str = "camcam") -> Toolpa
     """
     if not elements:
         raise InputError("contour: no elements to cut")
-    n = max(1, math.ceil(cs.depth_mm / cs.stepdown_mm - 1e-9))
-    levels = [cs.top_z_mm - cs.depth_mm * (k + 1) / n for k in range(n)]
+    levels = depth_levels(cs)
     away_left = cs.stock_side == "right"
     plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
+    allowance = cs.finish_allowance_mm > 0
     rough = offset_elements(elements, cs.finish_allowance_mm * (1 if away_left else -1)) \
-        if cs.finish_allowance_mm > 0 else tuple(elements)
-    moves: list = [Rapid(None, None, cs.safe_z_mm)]
-    for z in levels:
-        moves += _pass_moves(rough, z, cs.feed_mm_min, plunge, cs.lead_radius_mm, away_left, cs)
-    finals = (1 if cs.finish_allowance_mm > 0 else 0) + (1 if cs.spring_pass else 0)
-    for _ in range(finals):
-        moves += _pass_moves(tuple(elements), levels[-1], cs.feed_mm_min, plunge, cs.lead_radius_mm, away_left, cs)
-    moves.append(Rapid(None, None, cs.safe_z_mm))
-    return Toolpath(title, tuple(moves), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False,
-                    (f"{n} depth passes to {levels[-1]:g} mm",))
+        if allowance else tuple(elements)
+    plan = [(rough, z, "rough" if allowance else "finish") for z in levels]
+    plan += [(tuple(elements), levels[-1], "finish")] if allowance else []
+    plan += [(tuple(elements), levels[-1], "spring")] if cs.spring_pass else []
+    passes = tuple(Pass(contour, kind, z, tuple(_pass_moves(path, z, cs.feed_mm_min, plunge, cs.lead_radius_mm,
+                                                             away_left, cs)))
+                   for path, z, kind in plan)
+    return Toolpath(title, passes, cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False,
+                    (f"{len(levels)} depth passes to {levels[-1]:g} mm",),
+                    (Rapid(None, None, cs.safe_z_mm),), (Rapid(None, None, cs.safe_z_mm),))
 
 
 def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "camcam",
-                    developed_radius_mm: float | None = None) -> Toolpath:
+                    developed_radius_mm: float | None = None, contour: int = 0, kind: str = "slot") -> Toolpath:
     """4-axis moves from a developed polyline: x stays X, y/radius becomes A (degrees).
 
     ``points_xy`` is (n, 2) on the developed plane at ``developed_radius_mm``
@@ -264,18 +332,18 @@ def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "
     dev_r = radius_mm if developed_radius_mm is None else developed_radius_mm
     if dev_r <= 0:
         raise InputError(f"developed_radius_mm: expected > 0, got {dev_r!r}")
-    n = max(1, math.ceil(cs.depth_mm / cs.stepdown_mm - 1e-9))
-    levels = [radius_mm - cs.depth_mm * (k + 1) / n for k in range(n)]
+    levels = depth_levels(cs, radius_mm)
     a = np.degrees(pts[:, 1] / dev_r)
     seg = np.hypot(*np.diff(pts, axis=0).T)
     plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
-    moves: list = [Rapid(None, None, radius_mm + cs.safe_z_mm)]
+    passes = []
     for z in levels:
-        moves.append(Rapid(float(pts[0, 0]), None, None))
-        moves.append(Feed(None, None, radius_mm + cs.clearance_z_mm, plunge, float(a[0]), cs.safe_z_mm))
-        moves.append(Feed(None, None, z, plunge, float(a[0]), cs.clearance_z_mm + radius_mm - z))
+        moves = [Rapid(float(pts[0, 0]), None, None),
+                 Feed(None, None, radius_mm + cs.clearance_z_mm, plunge, float(a[0]), cs.safe_z_mm),
+                 Feed(None, None, z, plunge, float(a[0]), cs.clearance_z_mm + radius_mm - z)]
         for k in range(1, len(pts)):
             moves.append(Feed(float(pts[k, 0]), None, z, cs.feed_mm_min, float(a[k]), float(seg[k - 1])))
         moves.append(Rapid(None, None, radius_mm + cs.safe_z_mm))
-    return Toolpath(title, tuple(moves), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, True,
-                    (f"4-axis, developed at R{radius_mm:g}",))
+        passes.append(Pass(contour, kind, z, tuple(moves)))
+    return Toolpath(title, tuple(passes), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, True,
+                    (f"4-axis, developed at R{radius_mm:g}",), (Rapid(None, None, radius_mm + cs.safe_z_mm),))

@@ -14,7 +14,7 @@ from camcam.geometry.build import build_cam
 from camcam.spec import load_spec
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Line
-from camcam.nc.job import machine
+from camcam.nc import machine
 from camcam.verify.rs274 import feed_passes, print_margin_mm, rs274_available, run_rs274
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -38,10 +38,12 @@ def built_and_result(sample: str):
 
 def _interpreted_disc(result, moves):
     passes = feed_passes(moves)
-    assert len(passes) == len(result.pass_contours)
-    for (z, elements), k, finish in zip(passes, result.pass_contours, result.pass_finish):
-        c = result.contours[k]
-        yield c, (elements[1:-1] if c.leads else elements), finish
+    assert len(passes) == len(result.passes)
+    for (z, elements), p in zip(passes, result.passes):
+        c = result.contours[p.contour]
+        # the interpreted pass runs at the depth its record states (rs274 prints 4 decimals)
+        assert z == pytest.approx(p.z, abs=1e-4)
+        yield c, (elements[1:-1] if c.leads else elements), p.finishes
 
 
 def _interpreted_rotary(result, moves):
@@ -56,8 +58,8 @@ def _interpreted_rotary(result, moves):
         cur, z = [(m.x, m.a)], (m.z if m.kind == "line" else None)
     if len(cur) > 2:
         runs.append(cur)
-    assert len(runs) == len(result.pass_contours)
-    for run, k in zip(runs, result.pass_contours):
+    assert len(runs) == len(result.passes)
+    for run, k in zip(runs, (p.contour for p in result.passes)):
         uv = [(math.radians(a) * rho, x) for x, a in run]
         yield result.contours[k], tuple(Line(p, q) for p, q in zip(uv[:-1], uv[1:]) if p != q), True
 

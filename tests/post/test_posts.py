@@ -78,7 +78,7 @@ def test_deterministic_and_dialect(name):
 
 def test_inverse_time_rotary():
     moves = (Rapid(None, None, 30.0), Feed(0.0, None, 20.0, 100.0, 0.0, 10.0), Feed(5.0, None, 20.0, 400.0, 90.0, 20.0))
-    tp = Toolpath("rot", moves, 1000, rotary=True)
+    tp = Toolpath.of_moves("rot", moves, 1000, rotary=True)
     t = write_program(tp, load_post("linuxcnc")).text
     assert "G93" in t and "G94" in t
     assert "G1 X5 A90 F20" in t  # 400 mm/min over 20 mm → 20 per minute
@@ -89,9 +89,9 @@ def test_inverse_time_rotary():
 
 # an arc the fitter would never make: a fault of ours (exit 1), not the user's input
 def test_bad_arc_is_refused():
-    tp = Toolpath("x", (Rapid(0.0, 0.0, 1.0), ArcMove(10.0, 0.0, 5.0, 0.1, True, 1.0, 100.0)), 1000)
+    tp = Toolpath.of_moves("x", (Rapid(0.0, 0.0, 1.0), ArcMove(10.0, 0.0, 5.0, 0.1, True, 1.0, 100.0)), 1000)
     with pytest.raises(PostError, match="sweeps"):
         write_program(tp, load_post("linuxcnc"))
-    tp = Toolpath("x", (Rapid(0.0, 0.0, 1.0), ArcMove(10.0, 0.0, 4.0, 0.0, True, 1.0, 100.0)), 1000)
+    tp = Toolpath.of_moves("x", (Rapid(0.0, 0.0, 1.0), ArcMove(10.0, 0.0, 4.0, 0.0, True, 1.0, 100.0)), 1000)
     with pytest.raises(PostError, match="radius differ"):
         write_program(tp, load_post("grbl"))

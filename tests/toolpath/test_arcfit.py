@@ -11,7 +11,7 @@ from camcam.toolpath.quantizer import Quantizer
 from camcam.toolpath.arcfit import fit_contour, line_estimate_blocks, lower_bound_blocks
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Arc, Line
-from camcam.toolpath.path import _tangent_at  # noqa: PLC2701 (test of a private helper)
+from camcam.toolpath.elements import element_tangent
 from tests.nc_curves import ellipse, polar_cam, wavy
 
 CASES = {
@@ -65,7 +65,7 @@ def test_no_degenerate_arcs_and_tangent_continuity(fits, key):
             assert 1e-4 < e.sweep <= math.radians(120) + 1e-6
     for e, f in zip(els, els[1:]):
         assert e.end == f.start  # positional continuity is exact on the grid
-        t0, t1 = _tangent_at(e, True), _tangent_at(f, False)
+        t0, t1 = element_tangent(e, True), element_tangent(f, False)
         kink = abs(math.atan2(t0[0] * t1[1] - t0[1] * t1[0], t0 @ t1))
         # G1 up to rounding: ends and centres moved ≤ 0.71e-4 mm over lengths ≥ ~0.5 mm
         assert kink < 2e-3, kink

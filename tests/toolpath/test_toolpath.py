@@ -5,7 +5,8 @@ import pytest
 
 from camcam.errors import InputError
 from camcam.toolpath.elements import Arc, Line
-from camcam.toolpath.path import ArcMove, CutSettings, Feed, Rapid, _tangent_at, contour_toolpath, offset_elements
+from camcam.toolpath.elements import element_tangent
+from camcam.toolpath.path import ArcMove, CutSettings, Feed, Rapid, contour_toolpath, offset_elements
 
 SQUAREISH = (Line((0.0, 0.0), (10.0, 0.0)), Arc((10.0, 0.0), (10.0, 10.0), (10.0, 5.0), True),
              Line((10.0, 10.0), (0.0, 10.0)))
@@ -28,7 +29,7 @@ def test_leads_are_tangent_and_on_the_free_side(side):
     lead = next(m for m in moves if isinstance(m, ArcMove))
     start = next(m for m in moves if isinstance(m, Rapid) and m.x is not None)
     arc = Arc((start.x, start.y), (lead.x, lead.y), (lead.cx, lead.cy), lead.ccw)
-    t_lead, t_contour = _tangent_at(arc, True), _tangent_at(SQUAREISH[0], False)
+    t_lead, t_contour = element_tangent(arc, True), element_tangent(SQUAREISH[0], False)
     assert np.allclose(t_lead, t_contour, atol=1e-12)  # G1 entry (exact construction, float rounding)
     # the first element runs along +X: stock on the right means the lead comes from +Y
     assert (lead.cy > 0) == (side == "right")

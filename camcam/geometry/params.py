@@ -1,0 +1,50 @@
+"""The geometry stage's inputs: what cam and which follower to build (the ``[cam]`` and ``[follower]`` tables).
+
+:mod:`camcam.spec.cam` and :mod:`camcam.spec.follower` read and validate them
+from a spec file; :func:`camcam.geometry.build.build_cam` takes them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["CamSpec", "FollowerSpec", "CAM_KINDS", "FOLLOWER_KINDS"]
+
+CAM_KINDS = ("disc", "disc-groove", "cylindrical")
+
+
+@dataclass(frozen=True)
+class CamSpec:
+    """The cam to build (lengths in mm): ``kind`` one of :data:`CAM_KINDS`, rotation "ccw" or "cw"."""
+
+    kind: str
+    base_radius: float
+    bore: float = 0.0
+    rotation: str = "ccw"
+    thickness: float | None = None
+    groove_depth: float | None = None
+    outer_radius: float | None = None
+    length: float | None = None
+
+
+FOLLOWER_KINDS = ("translating-roller", "oscillating-roller", "translating-flat", "oscillating-flat")
+
+
+@dataclass(frozen=True)
+class FollowerSpec:
+    """The follower (lengths in mm): ``kind`` one of :data:`FOLLOWER_KINDS`."""
+
+    kind: str
+    roller_radius: float = 0.0
+    offset: float = 0.0
+    pivot_distance: float | None = None
+    arm_length: float | None = None
+
+    @property
+    def unit(self) -> str:
+        """Motion unit: "deg" for an oscillating follower, else "mm"."""
+        return "deg" if self.kind.startswith("oscillating") else "mm"
+
+    @property
+    def is_roller(self) -> bool:
+        return self.kind.endswith("roller")

@@ -1,0 +1,109 @@
+"""The result of a machining job: contours, passes, program, figures and checks (no files)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from camcam.nc.settings import PostDialect
+from camcam.toolpath.contours import CutContour
+from camcam.toolpath.path import Pass, Toolpath
+from camcam.verdict import Check
+
+__all__ = ["MachiningResult", "Program", "deviation_checks"]
+
+
+@dataclass(frozen=True)
+class Program:
+    """A printed program and its block counts (moves only), as a post writes it."""
+
+    text: str
+    extension: str
+    line_blocks: int
+    arc_blocks: int
+    rapid_blocks: int
+
+
+def deviation_checks(contours, tolerance_mm: float) -> tuple[Check, ...]:
+    """One check per contour: its two-sided deviation on the printed program against the tolerance."""
+    return tuple(Check(f"NC deviation ({c.label})", c.deviation.max_deviation_mm, tolerance_mm, "mm",
+                       c.deviation.max_deviation_mm <= tolerance_mm, where="two-sided, on the printed program",
+                       advice="this is a fault of the fitter: please report it")
+                 for c in contours)
+
+
+@dataclass(frozen=True)
+class MachiningResult:
+    """Everything the NC step made for one cam (no files: exporters write them).
+
+    ``toolpath.passes`` are the pass records (:class:`~camcam.toolpath.path.Pass`):
+    which contour each pass follows, its kind and depth, in the order the
+    program cuts them.  ``checks`` are the job's figures held to their limits
+    (:mod:`camcam.verdict`).
+    """
+
+    name: str
+    cam_kind: str
+    follower_kind: str
+    post: PostDialect
+    tool_diameter_mm: float
+    tolerance_mm: float
+    mode: str
+    contours: tuple[CutContour, ...]
+    toolpath: Toolpath
+    program: Program
+    reference_radius_mm: float | None = None
+    notes: tuple[str, ...] = ()
+    checks: tuple[Check, ...] = ()
+
+    @property
+    def rotary(self) -> bool:
+        return self.toolpath.rotary
+
+    @property
+    def passes(self) -> tuple[Pass, ...]:
+        return self.toolpath.passes
+
+    @property
+    def program_filename(self) -> str:
+        return f"{self.name}.{self.program.extension}"
+
+    @property
+    def max_deviation_mm(self) -> float:
+        """Largest two-sided deviation of a printed contour from its exact tool-centre curve."""
+        return max(c.deviation.max_deviation_mm for c in self.contours)
+
+    @property
+    def line_blocks(self) -> int:
+        """Line blocks on the contours (one pass each; leads and depth repeats not counted)."""
+        return sum(c.fit.line_blocks for c in self.contours)
+
+    @property
+    def arc_blocks(self) -> int:
+        return sum(c.fit.arc_blocks for c in self.contours)
+
+    @property
+    def lower_bound_blocks(self) -> float:
+        """N_lb = ∫(|κ′|/192δ)^⅓ ds (arcs) or ∫√(|κ|/8δ) ds (lines), summed over the contours."""
+        return float(sum(c.lower_bound for c in self.contours))
+
+    def figures(self) -> dict:
+        """The NC figures of ``<name>-report.json`` (block counts of one pass per contour)."""
+        contours = []
+        for c in self.contours:
+            contours.append({
+                "label": c.label, "offset_mm": c.offset_mm, "max_deviation_mm": c.deviation.max_deviation_mm,
+                "line_blocks": c.fit.line_blocks, "arc_blocks": c.fit.arc_blocks, "lower_bound_blocks": c.lower_bound,
+                "error_top_mm": c.error_top_mm, "error_bottom_mm": c.error_bottom_mm,
+                "segments": [{"from_deg": s.from_deg, "to_deg": s.to_deg, "blocks": s.blocks,
+                              "lower_bound_blocks": s.lower_bound} for s in c.segments],
+            })
+        return {
+            "post": self.post.name, "program": self.program_filename, "tool_diameter_mm": self.tool_diameter_mm,
+            "tolerance_mm": self.tolerance_mm, "mode": self.mode, "max_deviation_mm": self.max_deviation_mm,
+            "line_blocks": self.line_blocks, "arc_blocks": self.arc_blocks,
+            "lower_bound_blocks": self.lower_bound_blocks,
+            "lower_bound_kind": "arcs: ∫(|κ′|/192δ)^⅓ ds" if self.mode == "arcs" else "lines: ∫√(|κ|/8δ) ds",
+            "program_blocks": {"line": self.program.line_blocks, "arc": self.program.arc_blocks,
+                               "rapid": self.program.rapid_blocks},
+            "reference_radius_mm": self.reference_radius_mm, "contours": contours, "notes": list(self.notes),
+        }

@@ -1,0 +1,67 @@
+"""The settings of a machining job: the validated ``[machining]`` table as the NC stage reads it.
+
+:func:`camcam.spec.machining.read_machining` builds a :class:`MachiningSpec`
+from a spec file; the NC stage takes it from there.  The post is reached
+through :class:`PostDialect` only (what a job needs of a controller dialect),
+so the NC stage does not depend on the post package that prints its result.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Protocol
+
+from camcam.toolpath.path import CutSettings, Toolpath
+from camcam.toolpath.quantizer import Quantizer
+
+__all__ = ["MachiningSpec", "PostDialect"]
+
+
+class PostDialect(Protocol):
+    """What a machining job needs of a controller dialect (:class:`camcam.post.Post` provides it)."""
+
+    name: str
+    max_arc_sweep_deg: float
+    inverse_time: bool
+
+    @property
+    def quantizer(self) -> Quantizer:
+        """The printed rounding."""
+
+    def write_program(self, toolpath: Toolpath, name: str):
+        """The printed program (:class:`camcam.post.Program`)."""
+
+
+@dataclass(frozen=True)
+class MachiningSpec:
+    """The validated ``[machining]`` table (lengths in mm, feeds in mm/min).
+
+    ``post`` is the controller dialect (a :class:`camcam.post.Post`): the job
+    reads its :class:`PostDialect` face only.
+    """
+
+    post: PostDialect
+    tool_diameter_mm: float
+    tolerance_mm: float
+    mode: str
+    feed_mm_min: float
+    spindle_rpm: float
+    depth_mm: float
+    stepdown_mm: float
+    plunge_feed_mm_min: float
+    safe_z_mm: float
+    clearance_z_mm: float
+    lead_radius_mm: float
+    finish_allowance_mm: float
+    spring_pass: bool
+    tool_number: int
+    accept_out_of_tolerance: bool = False
+
+    def cut_settings(self, stock_side: str = "right") -> CutSettings:
+        """Settings for :func:`camcam.toolpath.path.contour_toolpath`."""
+        return CutSettings(depth_mm=self.depth_mm, stepdown_mm=self.stepdown_mm, feed_mm_min=self.feed_mm_min,
+                           spindle_rpm=self.spindle_rpm, plunge_feed_mm_min=self.plunge_feed_mm_min,
+                           safe_z_mm=self.safe_z_mm, clearance_z_mm=self.clearance_z_mm,
+                           lead_radius_mm=self.lead_radius_mm, stock_side=stock_side,
+                           finish_allowance_mm=self.finish_allowance_mm, spring_pass=self.spring_pass,
+                           tool_number=self.tool_number, tool_diameter_mm=self.tool_diameter_mm)

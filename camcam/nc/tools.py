@@ -1,0 +1,68 @@
+"""Tool-size rules of a machining job: which tools can cut a profile or a groove, and how.
+
+A disc profile's concave parts need a tool radius below their smallest
+radius of curvature.  A groove (face groove or barrel cam) is as wide as the
+roller: a tool of the roller's size cuts it in one centre pass; a narrower one
+cuts a centre pass and then each flank; a tool below a third of the groove
+width would leave a band between those passes.
+"""
+
+from __future__ import annotations
+
+from camcam.errors import GeometryError
+
+__all__ = ["SAME_TOOL_MM", "check_profile_tool", "groove_passes", "job_title"]
+
+#: A tool whose diameter is within this of the groove width counts as the roller's size (mm).
+SAME_TOOL_MM = 1e-6
+
+
+def check_profile_tool(tool_radius_mm: float, min_concave) -> None:
+    """Refuse a tool too large for the profile's smallest concave radius (``min_concave``: an extreme or None).
+
+    Examples
+    --------
+    >>> check_profile_tool(8.0, None)  # a convex profile takes any tool
+    """
+    if min_concave is not None and tool_radius_mm >= min_concave.value:
+        raise GeometryError(f"machining.tool_diameter: {2 * tool_radius_mm:g} mm is too large: the profile's smallest "
+                            f"concave radius is {min_concave.value:.3f} mm at cam angle {min_concave.angle_deg:.2f}°; "
+                            f"expected a tool radius below it")
+
+
+def groove_passes(tool_radius_mm: float, roller_radius_mm: float) -> str:
+    """How a groove as wide as the roller is cut: ``"centre"`` or ``"centre+flanks"``.
+
+    Raises
+    ------
+    GeometryError
+        A tool wider than the groove, or below a third of its width.
+
+    Examples
+    --------
+    >>> groove_passes(10.0, 10.0), groove_passes(6.0, 10.0)
+    ('centre', 'centre+flanks')
+    """
+    r_t, r_r = tool_radius_mm, roller_radius_mm
+    if r_t > r_r + SAME_TOOL_MM:
+        raise GeometryError(f"machining.tool_diameter: {2 * r_t:g} mm is wider than the groove ({2 * r_r:g} mm, "
+                            f"twice the roller radius)")
+    if abs(r_t - r_r) <= SAME_TOOL_MM:
+        return "centre"
+    if 3 * r_t < r_r:
+        raise GeometryError(f"machining.tool_diameter: {2 * r_t:g} mm is below a third of the groove width "
+                            f"{2 * r_r:g} mm: a centre pass and two flank passes would leave material between them")
+    return "centre+flanks"
+
+
+def job_title(name: str, cam_kind: str, follower_kind: str, tool_diameter_mm: float, mode: str,
+              tolerance_mm: float, post_name: str) -> str:
+    """The program's title line.
+
+    Examples
+    --------
+    >>> job_title("c", "disc", "translating-roller", 16, "arcs", 0.01, "linuxcnc")
+    'c: disc cam, translating-roller follower, tool D16 mm, arcs within 0.01 mm, post linuxcnc'
+    """
+    return (f"{name}: {cam_kind} cam, {follower_kind} follower, tool D{tool_diameter_mm:g} mm, "
+            f"{mode} within {tolerance_mm:g} mm, post {post_name}")

@@ -1,0 +1,163 @@
+"""The package layout: stages import only earlier stages, no import cycles, no private names across modules.
+
+The stage order (README "Layout"): motion → geometry/optimize/lifttable →
+reverse, toolpath → nc → post/export/plots/report/verify → spec → cli, on top of
+the foundation modules (errors, inputs, verdict).  Imports inside ``if
+TYPE_CHECKING:`` are annotations only and do not count; imports inside
+functions (lazy imports) do.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parents[1] / "camcam"
+
+#: Rank of each top-level package or module of camcam: an import may only go to the same or a lower rank.
+RANK = {
+    "__init__": 0, "errors": 0, "inputs": 0, "verdict": 0, "lazy": 0, "data": 0,
+    "motion": 1,
+    "geometry": 2, "optimize": 2, "lifttable": 2,
+    "reverse": 3, "toolpath": 3,
+    "nc": 4,
+    "post": 5, "export": 5, "plots": 5, "report": 5, "verify": 5,
+    "spec": 6,
+    "cli": 7, "__main__": 7,
+}
+
+
+def _module_name(path: Path) -> str:
+    rel = path.relative_to(PACKAGE.parent).with_suffix("")
+    parts = list(rel.parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def _is_type_checking(node: ast.If) -> bool:
+    t = node.test
+    return (isinstance(t, ast.Name) and t.id == "TYPE_CHECKING") or (
+        isinstance(t, ast.Attribute) and t.attr == "TYPE_CHECKING")
+
+
+def _imports(tree: ast.AST):
+    """(module imported, names imported, line) for every runtime import in ``tree``."""
+    skip: set[int] = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and _is_type_checking(node):
+            skip.update(id(n) for b in node.body for n in ast.walk(b))
+    for node in ast.walk(tree):
+        if id(node) in skip:
+            continue
+        if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            yield node.module, [a.name for a in node.names], node.lineno
+        elif isinstance(node, ast.Import):
+            for a in node.names:
+                yield a.name, [], node.lineno
+
+
+def _graph():
+    modules = {}
+    for path in sorted(PACKAGE.rglob("*.py")):
+        modules[_module_name(path)] = (path, list(_imports(ast.parse(path.read_text(encoding="utf-8")))))
+    return modules
+
+
+MODULES = _graph()
+
+
+def _top(module: str) -> str:
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else "__init__"
+
+
+def test_every_package_has_a_rank():
+    assert {_top(m) for m in MODULES} <= set(RANK)
+
+
+def test_stage_order():
+    bad = []
+    for name, (path, imports) in MODULES.items():
+        src = _top(name)
+        for target, _, line in imports:
+            if target.split(".")[0] != "camcam":
+                continue
+            dst = _top(target)
+            if RANK[dst] > RANK[src]:
+                bad.append(f"{path.relative_to(PACKAGE.parent)}:{line} ({src}, rank {RANK[src]}) imports {target} "
+                           f"({dst}, rank {RANK[dst]})")
+    assert not bad, "\n".join(bad)
+
+
+def _cycle(graph: dict[str, set[str]]) -> list[str] | None:
+    """One cycle of ``graph`` as a list of nodes, or None (iterative DFS with colours)."""
+    colour = dict.fromkeys(graph, 0)
+    for root in sorted(graph):
+        if colour[root]:
+            continue
+        stack = [(root, iter(sorted(graph[root])))]
+        path = [root]
+        colour[root] = 1
+        while stack:
+            node, children = stack[-1]
+            for child in children:
+                if colour.get(child, 2) == 1:
+                    return path[path.index(child):] + [child]
+                if colour.get(child, 2) == 0:
+                    colour[child] = 1
+                    path.append(child)
+                    stack.append((child, iter(sorted(graph[child]))))
+                    break
+            else:
+                colour[node] = 2
+                stack.pop()
+                path.pop()
+    return None
+
+
+def _resolve(importer: str, target: str, names: list[str]) -> set[str]:
+    """The camcam modules an import statement loads (``from pkg import mod`` loads pkg.mod).
+
+    A package that contains the importer is left out: Python has imported it
+    already (a parent is always imported before its modules).
+    """
+    out = {target} if target in MODULES and not importer.startswith(target + ".") else set()
+    out |= {f"{target}.{n}" for n in names if f"{target}.{n}" in MODULES}
+    return out
+
+
+def test_no_module_cycle():
+    graph = {name: set() for name in MODULES}
+    for name, (_, imports) in MODULES.items():
+        for target, names, _ in imports:
+            graph[name] |= _resolve(name, target, names) - {name}
+    assert _cycle(graph) is None
+
+
+def test_no_package_cycle():
+    graph: dict[str, set[str]] = {}
+    for name, (_, imports) in MODULES.items():
+        src = _top(name)
+        graph.setdefault(src, set())
+        for target, _, _ in imports:
+            if target.split(".")[0] == "camcam" and _top(target) != src:
+                graph[src].add(_top(target))
+    assert _cycle(graph) is None
+
+
+def test_no_private_names_across_modules():
+    bad = [f"{path.relative_to(PACKAGE.parent)}:{line} imports {n} from {target}"
+           for name, (path, imports) in MODULES.items()
+           for target, names, line in imports
+           if target.startswith("camcam") and target != name
+           for n in names if n.startswith("_") and not n.endswith("__")]
+    assert not bad, "\n".join(bad)
+
+
+@pytest.mark.parametrize("graph, cycle", [({"a": {"b"}, "b": {"a"}}, True), ({"a": {"b"}, "b": set()}, False)])
+def test_cycle_finder(graph, cycle):
+    # the checks above are only as good as this
+    assert (_cycle(graph) is not None) == cycle
