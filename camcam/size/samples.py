@@ -80,4 +80,4 @@ def sample_program(program: MotionProgram, samples_per_rev: int) -> ProgramSampl
     data = np.concatenate(rows, axis=1) * scale
     step = 2 * math.pi / samples_per_rev
     return ProgramSamples(np.concatenate(thetas), data[0], data[1], data[2], np.concatenate(inner),
-                          best_hi * scale, best_lo * scale, step)
+                          float(best_hi * scale), float(best_lo * scale), step)
