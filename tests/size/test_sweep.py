@@ -140,3 +140,57 @@ def test_csv_and_parquet_tables_hold_the_same_numbers(tmp_path):
                 assert float(cell) == v or (math.isnan(v) and cell == "nan")  # repr round-trips exactly
             else:
                 assert cell == str(v)
+
+
+OSCILLATING = """
+name = "osc"
+[motion]
+rpm = 60
+segments = [
+  { law = "cycloidal", from = 0, to = 150, rise = 20.0 },
+  { law = "dwell", from = 150, to = 200 },
+  { law = "cycloidal", from = 200, to = 330, rise = -20.0 },
+  { law = "dwell", from = 330, to = 360 },
+]
+[cam]
+kind = "disc"
+base_radius = 40.0
+thickness = 10.0
+rotation = "cw"
+[follower]
+kind = "{kind}"
+{follower}
+[size]
+{size}
+samples = 720
+"""
+
+
+@pytest.mark.parametrize("kind,follower,size,check", [
+    ("oscillating-roller", "roller_radius = 8.0\npivot_distance = 110.0\narm_length = 90.0",
+     "base_radius = [20, 50, 10]\npivot_distance = [100, 120, 10]\nmax_pressure_angle_deg = 35\nmin_curvature_radius_rollers = 1.0",
+     lambda an, rr: an.max_pressure_angle_deg.value <= 35.0 and an.profile.min_radius_mm >= rr),
+    ("translating-flat", "offset = 0.0",
+     "base_radius = [5, 40, 5]\nmin_curvature_radius_mm = 10.0",
+     lambda an, rr: an.profile.min_radius_mm >= 10.0),
+])
+def test_other_followers_best_design_meets_every_constraint_by_the_full_geometry(kind, follower, size, check, tmp_path):
+    spec_path = tmp_path / "osc.toml"
+    spec_path.write_text(OSCILLATING.replace("{kind}", kind).replace("{follower}", follower).replace("{size}", size))
+    code, out, err = cli("size", str(spec_path), "-o", str(tmp_path / "out"), "--in-process", "--table", "csv", "--json")
+    assert code == 0, err
+    summary = json.loads(out)
+    assert 0 < summary["feasible"] < summary["designs"]  # the constraints bite
+    spec = load_spec(tmp_path / "out" / "osc-best.toml")
+    built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))  # undercut/cusp would raise
+    assert check(built.analysis, spec.follower.roller_radius)
+    # the smallest feasible base radius on the grid: one step smaller fails by the full geometry
+    rb = summary["best"]["base_radius_mm"]
+    step = 10.0 if kind == "oscillating-roller" else 5.0
+    if rb - step >= (20.0 if kind == "oscillating-roller" else 5.0):
+        smaller = replace(spec.cam, base_radius=rb - step)
+        try:
+            worse = build_cam(smaller, spec.follower, spec.motion.program(spec.unit))
+        except GeometryError:
+            return
+        assert not check(worse.analysis, spec.follower.roller_radius)
