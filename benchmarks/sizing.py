@@ -8,7 +8,8 @@ base radius × offset cut to the asked number of designs (3,600 cam-angle sample
 a revolution).  "evaluate" is the closed-form evaluation of every design (the part
 that scales with the sweep: sampling the motion once and the exact check of the
 best design are reported apart); each figure is the best of ``--repeat`` runs
-(the machine is shared).  The Dask runs start their LocalCluster first and warm it
+(the machine is shared: the load average is printed beside the figures, and the
+in-process CPU time, which load inflates far less than the wall time).  The Dask runs start their LocalCluster first and warm it
 up with one sweep, so the figures are the work, not the start-up.
 """
 
@@ -17,6 +18,7 @@ from __future__ import annotations
 import argparse
 import logging
 import math
+import os
 import time
 from dataclasses import replace
 from pathlib import Path
@@ -59,6 +61,7 @@ def main() -> None:
     from camcam.size.samples import sample_program
     from camcam.size.sweep import SweepContext, evaluate_chunk, run_sweep
 
+    load0 = os.getloadavg()[0]
     spec = sweep_spec(a.designs)
     grid = DesignGrid.of(spec.size)
     n = len(grid)
@@ -70,9 +73,9 @@ def main() -> None:
     rows = []
     wall, cpu = timed(lambda: InProcess().map(evaluate_chunk, chunks, ctx=ctx), a.repeat)
     rows.append(("in-process (one core)", wall, n / wall))
-    t0 = time.perf_counter()
+    c0, t0 = time.process_time(), time.perf_counter()
     result = run_sweep(spec, InProcess())
-    t_all = time.perf_counter() - t0
+    t_all, c_all = time.perf_counter() - t0, time.process_time() - c0
     try:
         from distributed import Client, LocalCluster
     except ImportError:
@@ -85,9 +88,10 @@ def main() -> None:
                 ex.map(evaluate_chunk, chunks, ctx=ctx)  # warm-up: imports, first scatter
                 w, _ = timed(lambda: ex.map(evaluate_chunk, chunks, ctx=ctx), a.repeat)
                 rows.append((f"Dask LocalCluster, {workers} worker{'s' if workers > 1 else ''}", w, n / w))
-    print(f"{n:,} designs ({spec.size.samples} cam-angle samples a revolution, {len(chunks)} chunks of up to 512)")
+    print(f"{n:,} designs ({spec.size.samples} cam-angle samples a revolution, {len(chunks)} chunks of up to 512); "
+          f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores (before: {load0:.1f})")
     print(f"motion sampled once: {t_sample * 1000:.0f} ms; whole in-process sweep with the exact check of the best: {t_all:.2f} s "
-          f"({len(result.checked)} exact check{'s' if len(result.checked) != 1 else ''})")
+          f"wall, {c_all:.2f} s CPU ({len(result.checked)} exact check{'s' if len(result.checked) != 1 else ''})")
     print(f"in-process evaluate: {cpu:.2f} s of CPU ({n / cpu:,.0f} designs per CPU-second)")
     print()
     print("| engine | evaluate (s) | designs/s |")
