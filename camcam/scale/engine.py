@@ -32,11 +32,11 @@ def dask_available() -> bool:
 
 
 class _Bar:
-    """A progress bar on ``stream`` when it is a terminal; nothing otherwise."""
+    """A progress bar on ``stream`` (stderr) when ``enabled``; nothing otherwise."""
 
-    def __init__(self, what: str, total: int, stream: TextIO | None = None) -> None:
+    def __init__(self, what: str, total: int, enabled: bool, stream: TextIO | None = None) -> None:
         self.stream = stream if stream is not None else sys.stderr
-        self.on = bool(getattr(self.stream, "isatty", lambda: False)()) and total > 1
+        self.on = enabled and total > 1
         self.what, self.total, self.done = what, total, 0
 
     def step(self) -> None:
@@ -55,6 +55,8 @@ class Executor:
     label = "executor"
     workers = 1
     note = ""
+    #: Draw a progress bar on stderr (the commands set it: a terminal, or ``--progress``).
+    progress = False
 
     def map(self, fn: Callable, items: Sequence, what: str = "tasks", **shared: Any) -> list:
         raise NotImplementedError
@@ -75,7 +77,7 @@ class InProcess(Executor):
         self.note = note
 
     def map(self, fn, items, what="tasks", **shared):
-        bar = _Bar(what, len(items))
+        bar = _Bar(what, len(items), self.progress)
         out = []
         for item in items:
             out.append(fn(item, **shared))
@@ -102,15 +104,23 @@ class DaskExecutor(Executor):
         # hash=False: a fresh key each call, so releasing an earlier call's copy cannot drop this one
         scattered = {k: self.client.scatter(v, broadcast=True, hash=False) for k, v in shared.items()}
         futures = self.client.map(fn, list(items), pure=False, **scattered)
-        bar = _Bar(what, len(futures))
+        bar = _Bar(what, len(futures), self.progress)
         for _ in as_completed(futures):
             bar.step()
         return self.client.gather(futures)
 
 
 @contextmanager
-def open_executor(scheduler: str | None = None, workers: int | None = None, in_process: bool = False) -> Iterator[Executor]:
+def open_executor(scheduler: str | None = None, workers: int | None = None, in_process: bool = False,
+                  progress: bool = False) -> Iterator[Executor]:
     """The executor a command runs on (see the module docstring); closes what it opened."""
+    with _opened(scheduler, workers, in_process) as executor:
+        executor.progress = progress
+        yield executor
+
+
+@contextmanager
+def _opened(scheduler, workers, in_process) -> Iterator[Executor]:
     if in_process:
         yield InProcess()
         return

@@ -92,3 +92,16 @@ def test_no_feasible_design_writes_the_chart_and_exits_3(tmp_path):
     assert err.startswith("camcam: FAIL: none of the 3 designs meets every constraint") and err.count("\n") == 1
     names = sorted(p.name for p in (tmp_path / "o").iterdir())
     assert "size-translating-roller-sizing.png" in names and not any(n.endswith("best.toml") for n in names)
+
+
+def test_progress_bar_only_when_asked(tmp_path):
+    spec = tmp_path / "s.toml"
+    # 2 law combinations: two chunks, so there is a bar to draw
+    spec.write_text(BASE + '[size]\nbase_radius = [20, 30, 5]\nlaw = [{ segment = 0, choices = ["cycloidal", "harmonic"] }]\n'
+                    "samples = 720\n")
+    code, _, err = cli("size", str(spec), "-o", str(tmp_path / "a"), "--in-process")
+    assert code == 0 and err == ""  # stderr is no terminal here and --progress was not given
+    code, _, err = cli("size", str(spec), "-o", str(tmp_path / "b"), "--in-process", "--progress")
+    assert code == 0
+    assert "\rcamcam: 6 designs [###############...............] 1/2" in err and err.endswith("2/2\n")
+    assert sorted(p.read_bytes() for p in (tmp_path / "a").iterdir()) == sorted(p.read_bytes() for p in (tmp_path / "b").iterdir())
