@@ -2,8 +2,9 @@
 
     PYTHONPATH=. python docs/make_tour.py
 
-Runs `camcam run` on samples/disc-translating-roller.toml and
-samples/cylindrical-translating.toml, copies their plots into docs/tour/, takes
+Runs `camcam run` on samples/disc-translating-roller.toml,
+samples/cylindrical-translating.toml and samples/cylindrical-translating-small-tool.toml
+(its 3-D groove deviation map), copies their plots into docs/tour/, takes
 a headless-Chromium screenshot of the report (top part) and writes the first
 lines of the NC program to docs/tour/program-head.ngc; the sizing chart of
 samples/size/translating-roller.toml goes to docs/tour/sizing.png.
@@ -40,7 +41,7 @@ def run() -> None:
     TOUR.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as d:
         work = Path(d)
-        for sample in ("disc-translating-roller", "cylindrical-translating"):
+        for sample in ("disc-translating-roller", "cylindrical-translating", "cylindrical-translating-small-tool"):
             out = work / sample
             assert main(["run", str(ROOT / "samples" / f"{sample}.toml"), "-o", str(out)]) == 0
         disc = work / "disc-translating-roller"
@@ -52,6 +53,8 @@ def run() -> None:
         ]:
             shutil.copy(disc / src, TOUR / dst)
         shutil.copy(work / "cylindrical-translating" / "cylindrical-translating-profile.png", TOUR / "cylindrical.png")
+        small = "cylindrical-translating-small-tool"
+        shutil.copy(work / small / f"{small}-groove-map.png", TOUR / "groove-map.png")
         head = (disc / "disc-translating-roller.ngc").read_text().splitlines()[:16]
         (TOUR / "program-head.ngc").write_text("\n".join(head) + "\n")
         shoot(disc / "disc-translating-roller-report.html", TOUR / "report.png", work)

@@ -51,8 +51,12 @@ def test_run_sample(spec, tmp_path):
         report = json.loads((tmp_path / f"{name}-report.json").read_text())
         for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks"):
             assert key in report
-        # the measured two-sided deviation of the printed program is within its tolerance
-        assert report["max_deviation_mm"] <= report["tolerance_mm"]
+        # the measured two-sided deviation of the printed program is within its tolerance, or the
+        # verdict says FAIL and the sample accepts it (a sample that shows the FAIL verdict)
+        verdict = report.get("verdict", {"status": "PASS", "accepted": False})
+        within = report["max_deviation_mm"] <= report["tolerance_mm"]
+        assert within == (verdict["status"] == "PASS")
+        assert within or (verdict["accepted"] and "accept_out_of_tolerance = true" in spec.read_text())
         assert any(f.endswith(".dxf") for f in files)
 
 

@@ -1,7 +1,9 @@
 """The ``camcam`` command.
 
-Each sub-command lives in its own module with ``register(subparsers)``; this
-module assembles them and maps what went wrong to an exit status:
+Each sub-command lives in its own module with ``register(subparsers)``
+(:mod:`camcam.cli.commands` names them); only the module of the command that
+runs is imported, so ``camcam --help`` and ``camcam laws`` do not load the
+plotting, geometry and NC stages.  This module assembles them and maps what went wrong to an exit status:
 
 =====  ==============================================================================
 0      done
@@ -16,6 +18,7 @@ module assembles them and maps what went wrong to an exit status:
 from __future__ import annotations
 
 import argparse
+import importlib
 import os
 import sys
 import tempfile
@@ -23,12 +26,10 @@ import traceback
 from pathlib import Path
 
 from camcam import __version__
-from camcam.cli import batch, fit, laws, motion, optimize, reverse, run, size
+from camcam.cli.commands import COMMANDS
 from camcam.errors import CamcamError
 
 __all__ = ["main", "main_exit", "USAGE_ERROR", "INTERNAL_ERROR"]
-
-COMMANDS = (laws, motion, run, fit, optimize, reverse, size, batch)
 
 #: Exit status for every user error (bad spec, table, points, arguments).
 USAGE_ERROR = 2
@@ -44,12 +45,19 @@ class _Parser(argparse.ArgumentParser):
         raise SystemExit(USAGE_ERROR)
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
+    """The parser for ``argv``: the full parser of the command it names (every command's
+    when ``argv`` is None), a bare entry with its help for each other command."""
     parser = _Parser(prog="camcam", description="Cam design to verified NC programs.")
     parser.add_argument("--version", action="version", version=f"camcam {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
-    for module in COMMANDS:
-        module.register(sub)
+    # the top-level options take no value, so the first word that names a command is the command
+    chosen = set(COMMANDS) if argv is None else next(({a} for a in argv if a in COMMANDS), set())
+    for name, (module, help_text) in COMMANDS.items():
+        if name in chosen:
+            importlib.import_module(module).register(sub)
+        else:
+            sub.add_parser(name, help=help_text)
     return parser
 
 
@@ -84,8 +92,9 @@ def fault_report(err: BaseException, argv: list[str] | None, output: str | None)
 
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; returns the exit status (see the module notes)."""
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    words = sys.argv[1:] if argv is None else list(argv)
+    parser = build_parser(words)
+    args = parser.parse_args(words)
     if not getattr(args, "func", None):
         parser.print_help()
         return USAGE_ERROR

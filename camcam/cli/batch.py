@@ -16,6 +16,7 @@ import sys
 from pathlib import Path
 
 from camcam.cli.output import print_json, to_json
+from camcam.cli.commands import help_of
 from camcam.cli.scaling import add_scale_arguments, executor_from_args, tell_scale_note
 
 __all__ = ["register", "batch_task", "summary_row", "COLUMNS"]
@@ -28,7 +29,7 @@ COLUMNS = ("spec", "folder", "name", "verdict", "accepted", "max_deviation_mm", 
 
 
 def register(sub) -> None:
-    p = sub.add_parser("batch", help="run many specs, each into its own folder, with one summary table and index page")
+    p = sub.add_parser("batch", help=help_of("batch"))
     p.add_argument("specs", nargs="+", metavar="SPEC", help="spec files (TOML)")
     p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")

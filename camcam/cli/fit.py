@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from camcam.cli.commands import help_of
 from camcam.cli.output import publish, to_json
 from camcam.errors import SpecError
 from camcam.export.faired_table import faired_csv
@@ -23,7 +24,7 @@ __all__ = ["register", "fit_summary"]
 
 
 def register(sub) -> None:
-    p = sub.add_parser("fit", help="remove bad points from a lift table, fair it and fit a spline")
+    p = sub.add_parser("fit", help=help_of("fit"))
     p.add_argument("table", help="lift table: angle_deg, lift_mm (CSV or whitespace)")
     p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")

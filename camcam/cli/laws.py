@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from camcam.cli.commands import help_of
 from camcam.cli.output import print_json
 from camcam.motion.catalog import LAWS, make_law
 
@@ -9,7 +10,7 @@ __all__ = ["register", "law_table"]
 
 
 def register(sub) -> None:
-    p = sub.add_parser("laws", help="list the motion laws and their characteristic values")
+    p = sub.add_parser("laws", help=help_of("laws"))
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=run)
 

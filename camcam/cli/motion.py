@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from camcam.cli.commands import help_of
 from camcam.cli.output import publish, warn
 from camcam.export.files import OutputSet
 from camcam.export.motion_table import motion_csv
@@ -14,7 +15,7 @@ __all__ = ["register", "motion_summary", "motion_outputs"]
 
 
 def register(sub) -> None:
-    p = sub.add_parser("motion", help="tabulate and plot a spec's motion program")
+    p = sub.add_parser("motion", help=help_of("motion"))
     p.add_argument("spec", help="spec file (TOML)")
     p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
     p.add_argument("--step", type=float, default=0.5, help="table step in degrees (default 0.5)")
@@ -36,12 +37,14 @@ def motion_summary(program: MotionProgram) -> dict:
     return out
 
 
-def motion_outputs(out: OutputSet, name: str, program: MotionProgram, step_deg: float) -> bytes:
-    """Add the motion table and the SVAJ plot to ``out``; returns the plot (the report shows it too)."""
+def motion_outputs(out: OutputSet, name: str, program: MotionProgram, step_deg: float):
+    """Add the motion table and the SVAJ plot to ``out``; returns the plot (the report shows it too),
+    a :class:`~camcam.plots.concurrent.PendingPNG` while it is drawn in a child process."""
+    from camcam.plots.concurrent import render_later
     from camcam.plots.svaj import svaj_png  # plotting is loaded only when a plot is drawn
 
     out.add(f"{name}-motion.csv", motion_csv(program, step_deg))
-    png = svaj_png(program, title=f"{name}: motion at {program.rpm:g} rpm")
+    png = render_later(svaj_png, program, title=f"{name}: motion at {program.rpm:g} rpm")
     out.add(f"{name}-svaj.png", png)
     return png
 

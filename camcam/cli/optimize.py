@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from camcam.cli.commands import help_of
 from camcam.cli.output import print_json, to_json
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.errors import SpecError
@@ -22,7 +23,7 @@ __all__ = ["register", "optimize"]
 
 
 def register(sub) -> None:
-    p = sub.add_parser("optimize", help="optimise a B-spline cam curve ([optimize] table)")
+    p = sub.add_parser("optimize", help=help_of("optimize"))
     p.add_argument("spec", help="spec file (TOML) with an [optimize] table")
     p.add_argument("-o", "--output", help="write the law as JSON to this file")
     p.add_argument("--json", action="store_true", help="print the law as one JSON object")

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from camcam.cli.commands import help_of
 from camcam.cli.output import publish, to_json
 from camcam.errors import SpecError
 from camcam.export.files import OutputSet
@@ -27,7 +28,7 @@ __all__ = ["register", "compare"]
 
 
 def register(sub) -> None:
-    p = sub.add_parser("reverse", help="recover the follower motion from measured cam points")
+    p = sub.add_parser("reverse", help=help_of("reverse"))
     p.add_argument("points", help="points: x, y (disc profile) or x, y, z (cylindrical flank), mm")
     p.add_argument("--spec", required=True, help="spec with [cam], [follower] and optionally the design [motion]")
     p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")

@@ -15,6 +15,7 @@ import sys
 from importlib import resources
 from pathlib import Path
 
+from camcam.cli.commands import help_of
 from camcam.cli.output import publish, to_json, warn
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
@@ -51,7 +52,7 @@ def job_verdict(machining, machining_spec) -> Verdict:
 
 
 def register(sub) -> None:
-    p = sub.add_parser("run", help="run the whole flow for a spec (default: the bundled sample job)")
+    p = sub.add_parser("run", help=help_of("run"))
     p.add_argument("spec", nargs="?", help="spec file (TOML); omitted: the bundled default job")
     p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
@@ -86,11 +87,14 @@ def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
         from camcam.export.cam_report import cam_report
         from camcam.export.stl import stl_bytes
         from camcam.geometry.build import build_cam
+        from camcam.plots.concurrent import render_later
         from camcam.plots.profile import cam_png
         from camcam.report.job import job_report
 
         with progress.step("cam geometry, analysis and mesh"):
             built = build_cam(spec.cam, spec.follower, program)
+            # drawn in a child process while the NC step runs (camcam.plots.concurrent)
+            profile_png = render_later(cam_png, built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
             report = cam_report(built)
         machining = None
         if spec.machining is not None:
@@ -100,7 +104,6 @@ def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
         report["verdict"] = verdict.as_dict()
         with progress.step("drawing, model and report"):
             out.add(f"{spec.name}.stl", stl_bytes(built.mesh))
-            profile_png = cam_png(built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
             out.add(f"{spec.name}-profile.png", profile_png)
             page = job_report(spec.name, spec, program, svaj, built, report, profile_png, machining,
                               spec.report.inspection_step_deg, verdict)
@@ -129,8 +132,10 @@ def run(args) -> int:
             print(f"max pressure angle {c['max_pressure_angle_deg']:.4f}° at {c['max_pressure_angle_at_deg']:.2f}°; "
                   f"min radius of curvature {c['min_curvature_radius_mm']:.4f} mm at {c['min_curvature_radius_at_deg']:.2f}°")
             if "machining" in c:
+                what = ("3-D groove deviation" if "flank_deviation" in c["machining"] else "max deviation")
+                where = (" (both walls, every radius)" if "flank_deviation" in c["machining"] else "")
                 print(f"NC: {c['line_blocks']} line + {c['arc_blocks']} arc blocks (lower bound {c['lower_bound_blocks']:.1f}), "
-                      f"max deviation {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm on the printed program")
+                      f"{what} {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm{where} on the printed program")
 
     with progress.step("writing files"):
         publish(out, summary, args.json, show, (verdict.line(),) if verdict.checks else ())

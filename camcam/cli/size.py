@@ -14,6 +14,7 @@ import tomllib
 from pathlib import Path
 
 from camcam.cli.output import print_json
+from camcam.cli.commands import help_of
 from camcam.cli.scaling import add_scale_arguments, executor_from_args, tell_scale_note
 
 __all__ = ["register"]
@@ -23,7 +24,7 @@ NO_DESIGN = 3
 
 
 def register(sub) -> None:
-    p = sub.add_parser("size", help="sweep a spec's [size] table: the smallest cam that meets every constraint")
+    p = sub.add_parser("size", help=help_of("size"))
     p.add_argument("spec", help="spec file (TOML) with a [size] table")
     p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
     p.add_argument("--table", choices=("auto", "parquet", "csv"), default="auto",

@@ -12,6 +12,8 @@ import os
 import tempfile
 from pathlib import Path
 
+from camcam.plots.concurrent import PendingPNG, resolve
+
 __all__ = ["OutputSet", "atomic_write"]
 
 
@@ -39,10 +41,11 @@ class OutputSet:
         self.directory = Path(directory)
         self._files: dict[str, bytes] = {}
 
-    def add(self, name: str, data: bytes | str) -> None:
+    def add(self, name: str, data: bytes | str | PendingPNG) -> None:
+        """Add a file; a plot still being drawn (:class:`PendingPNG`) is collected at :meth:`commit`."""
         if "/" in name or name in ("", ".", ".."):
             raise ValueError(f"output name must be a plain file name, got {name!r}")
-        self._files[name] = data.encode("utf-8") if isinstance(data, str) else bytes(data)
+        self._files[name] = data.encode("utf-8") if isinstance(data, str) else data if isinstance(data, PendingPNG) else bytes(data)
 
     @property
     def names(self) -> list[str]:
@@ -54,6 +57,7 @@ class OutputSet:
 
     def commit(self) -> list[Path]:
         """Write every file; on any failure remove what was written and re-raise."""
+        self._files = {name: resolve(data) for name, data in self._files.items()}  # every plot drawn before a byte is written
         self.directory.mkdir(parents=True, exist_ok=True)
         temps: list[tuple[str, Path]] = []
         try:

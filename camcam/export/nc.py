@@ -19,7 +19,16 @@ def _title_lines(built: BuiltCam, r: MachiningResult) -> list[str]:
     return [f"{r.name}: {built.spec.kind} cam, base radius {cam.base_radius:g} mm, rotation {cam.rotation}",
             f"follower {cam.kind}{roller}",
             f"tool D{r.tool_diameter_mm:g} mm, post {r.post.name} ({r.program_filename}), {r.mode}",
-            f"tolerance {r.tolerance_mm:g} mm two-sided; measured {r.max_deviation_mm:.4f} mm on the printed program"]
+            _measured_line(r)]
+
+
+def _measured_line(r: MachiningResult) -> str:
+    if r.groove is None:
+        return f"tolerance {r.tolerance_mm:g} mm two-sided; measured {r.max_deviation_mm:.4f} mm on the printed program"
+    g = r.groove
+    verdict = "within" if g.max_deviation_mm <= r.tolerance_mm else "OUT OF TOLERANCE"
+    return (f"tolerance {r.tolerance_mm:g} mm; 3-D groove deviation {g.max_deviation_mm:.4f} mm ({verdict}), "
+            f"both walls, r = {g.radii_mm[0]:g}-{g.radii_mm[-1]:g} mm, whole revolution, on the printed program")
 
 
 def _disc_extras(built: BuiltCam, r: MachiningResult) -> dict:

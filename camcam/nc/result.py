@@ -3,11 +3,15 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from camcam.nc.settings import PostDialect
 from camcam.toolpath.contours import CutContour
 from camcam.toolpath.path import Pass, Toolpath
 from camcam.verdict import Check
+
+if TYPE_CHECKING:
+    from camcam.nc.groove3d import GrooveMeasurement
 
 __all__ = ["MachiningResult", "Program", "deviation_checks"]
 
@@ -54,6 +58,8 @@ class MachiningResult:
     reference_radius_mm: float | None = None
     notes: tuple[str, ...] = ()
     checks: tuple[Check, ...] = ()
+    groove: GrooveMeasurement | None = None
+    smallest_tool_mm: float | None = None
 
     @property
     def rotary(self) -> bool:
@@ -69,7 +75,12 @@ class MachiningResult:
 
     @property
     def max_deviation_mm(self) -> float:
-        """Largest two-sided deviation of a printed contour from its exact tool-centre curve."""
+        """Largest two-sided deviation of a printed contour from its exact tool-centre curve.
+
+        Barrel cams: the 3-D groove figure (:mod:`camcam.nc.groove3d`), both walls, every radius.
+        """
+        if self.groove is not None:
+            return self.groove.max_deviation_mm
         return max(c.deviation.max_deviation_mm for c in self.contours)
 
     @property
@@ -93,11 +104,10 @@ class MachiningResult:
             contours.append({
                 "label": c.label, "offset_mm": c.offset_mm, "max_deviation_mm": c.deviation.max_deviation_mm,
                 "line_blocks": c.fit.line_blocks, "arc_blocks": c.fit.arc_blocks, "lower_bound_blocks": c.lower_bound,
-                "error_top_mm": c.error_top_mm, "error_bottom_mm": c.error_bottom_mm,
                 "segments": [{"from_deg": s.from_deg, "to_deg": s.to_deg, "blocks": s.blocks,
                               "lower_bound_blocks": s.lower_bound} for s in c.segments],
             })
-        return {
+        out = {
             "post": self.post.name, "program": self.program_filename, "tool_diameter_mm": self.tool_diameter_mm,
             "tolerance_mm": self.tolerance_mm, "mode": self.mode, "max_deviation_mm": self.max_deviation_mm,
             "line_blocks": self.line_blocks, "arc_blocks": self.arc_blocks,
@@ -107,3 +117,10 @@ class MachiningResult:
                                "rapid": self.program.rapid_blocks},
             "reference_radius_mm": self.reference_radius_mm, "contours": contours, "notes": list(self.notes),
         }
+        if self.groove is not None:
+            g = self.groove.as_dict()
+            out["flank_deviation"] = g.pop("walls")
+            out["groove_3d"] = g
+            if self.smallest_tool_mm is not None:
+                out["smallest_tool_diameter_mm"] = self.smallest_tool_mm
+        return out

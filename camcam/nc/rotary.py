@@ -1,115 +1,180 @@
-"""Cylindrical cams on a 4-axis machine: ``G1 X A`` moves, inverse-time feeds.
+"""Cylindrical cams on a 4-axis machine: ``G1 X A`` moves, inverse-time feeds, checked in 3-D.
 
-The tool is a radial end mill (axis through the cam axis, like the roller of
-:mod:`camcam.geometry.cylindrical`); X runs along the cam axis and A is the
-program cam angle in degrees.  Everything is worked in the developed plane
-(u, x) at the groove's reference radius ρ_ref (u = arc length there): the
-contours are fitted there with lines (``G1 X A`` cannot carry arcs) and the
-chordal error is measured there, on the printed X and A.
+Machine frame (DESIGN.md "Machine frames", stated in every program's header):
+the cam axis is machine X with Y = Z = 0 on it and X0 at the left end face;
+A turns the part about +X, a part point p sits at Rx(a)·p with a = A
+(``[machining] a_axis = "right-hand"``) or −A ("left-hand"); the tool is
+radial (B = 0, axis +Z) and X Y Z are its tip.  The follower at program
+angle θ sees the cam turned by σθ (σ = +1 ccw, −1 cw), so the program prints
+A = σ·θ (right-hand) or −σ·θ (left-hand): cw and ccw cut mirror-image grooves.
+
+The contours are worked in the developed plane (u = ρ_d·θ, x) at the
+development radius ρ_d = the outer radius: a printed chord's error normal to
+the wall is its gap along x times cos ψ, ψ the wall's slope, and cos ψ is
+largest at the outer radius, so a fit held there holds at every depth.
 
 * Tool as wide as the groove (diameter = 2 · roller radius): one centre pass
-  along the developed groove centre line.
-* Narrower tool: a centre pass, then each flank at the developed flank offset
-  by the tool radius into the groove (the developed plane's circle model of
-  the tool's cross-section).
+  along the groove centre line; for a translating roller this is exact at
+  every radius, to the fit.
+* Narrower tool: a centre pass, then each flank pass displaced from the
+  centre line along the wall normal by q(θ), chosen per station to minimise
+  the largest 3-D error over the flank depth (:mod:`camcam.nc.flank`,
+  translating rollers; an oscillating roller's flank passes use the offset
+  that is exact at the development radius).
 
-The tool cuts the same (X, A) path at every depth, but the exact surface does
-not scale with the radius: the developed flank at radius ρ is steeper at the
-bottom than at the top, so the offset a flank needs changes with depth.
-``error_top_mm`` / ``error_bottom_mm`` of each contour measure that: the
-two-sided deviation at the groove top (ρ = base radius) and bottom between
-the printed path developed at ρ and the exact tool-centre curve there (the
-centre line, or the flank offset by the tool radius).  For a translating
-roller and a tool of its size both are the fit's chordal error; an
-oscillating roller's axis tilts with the arm, which a radial tool cannot
-follow.
+The final depth pass runs below the groove bottom by what the tool's flat end
+needs to reach the wall corner there: the wall contact is r_t·sin α off the
+tool's axis plane (α the pressure angle at the bottom), where the end face
+sits at √(Z² + (r_t sin α)²) from the cam axis.
+
+The result is measured, from the printed program's own axis words, by
+:func:`camcam.nc.groove3d.measure_groove`: that 3-D figure is the job's
+deviation and the ``Check`` it returns.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import math
 
 import numpy as np
 
 from camcam.errors import GeometryError, InputError
 from camcam.geometry.build import BuiltCam
+from camcam.nc.flank import DisplacedCurve, plan_flank, smallest_tool_radius
+from camcam.nc.groove3d import A_AXIS_SENSE, CylinderTool, GrooveMeasurement, measure_groove, poses_from_program
 from camcam.nc.result import MachiningResult, deviation_checks
-from camcam.nc.tools import groove_passes, job_title
 from camcam.nc.settings import MachiningSpec
-from camcam.toolpath.budget import DEFAULT_BUDGET
+from camcam.nc.tools import SAME_TOOL_MM, groove_passes, job_title
 from camcam.toolpath.contours import CutContour, OffsetCurve, fit_printed
-from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Line
 from camcam.toolpath.path import join_toolpaths, rotary_toolpath
 from camcam.toolpath.quantizer import Quantizer
+from camcam.verdict import Check
 
-__all__ = ["machine_cylindrical", "developed_printed", "printed_axes"]
+__all__ = ["machine_cylindrical", "developed_printed", "printed_axes", "groove_check", "machine_frame_lines"]
 
 
-def printed_axes(elements, quantizer: Quantizer, radius_mm: float) -> np.ndarray:
-    """(X, A°) of the contour's vertices as printed: x and u/ρ in degrees on the post's grid."""
+def printed_axes(elements, quantizer: Quantizer, radius_mm: float, turn: int = 1) -> np.ndarray:
+    """(X, A°) of the contour's vertices as printed: x and turn·u/ρ in degrees on the post's grid."""
     pts = np.array([elements[0].start] + [e.end for e in elements])
     x = quantizer.snap(pts[:, 1])
-    a = quantizer.snap(np.degrees(pts[:, 0] / radius_mm))
+    a = quantizer.snap(turn * np.degrees(pts[:, 0] / radius_mm))
     return np.stack([x, a], axis=-1)
 
 
-def developed_printed(axes: np.ndarray, radius_mm: float) -> tuple:
-    """The printed (X, A°) polyline developed at ``radius_mm``: lines in (u, x)."""
-    uv = np.stack([np.radians(axes[:, 1]) * radius_mm, axes[:, 0]], axis=-1)
+def developed_printed(axes: np.ndarray, radius_mm: float, turn: int = 1) -> tuple:
+    """The printed (X, A°) polyline developed at ``radius_mm``: lines in (u, x), u = ρ·A/turn."""
+    uv = np.stack([turn * np.radians(axes[:, 1]) * radius_mm, axes[:, 0]], axis=-1)
     return tuple(Line(tuple(map(float, p)), tuple(map(float, q))) for p, q in zip(uv[:-1], uv[1:]) if tuple(p) != tuple(q))
 
 
-def _plan(cam, r_t: float):
-    """[(label, exact curve at radius ρ as a function of ρ, offset, pass kind)]."""
-    centre = ("groove centre", cam.developed_centre, cam.roller_radius, "slot")
-    if groove_passes(r_t, cam.roller_radius) == "centre":
-        return [centre]
-    # flank 0 is the −X wall: the groove lies to its left in (u, x) (u grows with the cam angle)
-    return [("groove centre (rough)", cam.developed_centre, cam.roller_radius, "slot"),
-            ("flank 0 (-X wall)", lambda r: OffsetCurve(cam.developed_flank(0, r), r_t), r_t, "finish"),
-            ("flank 1 (+X wall)", lambda r: OffsetCurve(cam.developed_flank(1, r), -r_t), r_t, "finish")]
+def machine_frame_lines(a_axis: str, rho_d: float) -> tuple[str, ...]:
+    """The header comment lines stating the development radius and the machine frame."""
+    sense = "right-hand rule" if a_axis == "right-hand" else "left-hand rule [a_axis = left-hand]"
+    return (f"developed at R{rho_d:g} mm: A = cam angle, u = R{rho_d:g} x A",
+            "machine frame: cam axis = X, Y = Z = 0 on it, X0 at the left end face",
+            f"A turns the part about +X by the {sense}; part point p at Rx[A].p",
+            "tool axis +Z [B = 0]; X Y Z = tool tip, centre of the flat end")
+
+
+def _plan(cam, r_t: float, rho_d: float):
+    """[(label, developed curve at ρ_d, offset from the wall)] and the flank plan's first-order error."""
+    r_r = cam.roller_radius
+    centre = cam.developed_centre(rho_d)
+    if groove_passes(r_t, r_r) == "centre":
+        return [("groove centre", centre, r_r, "slot")], 0.0
+    rough = ("groove centre (rough)", centre, r_r, "slot")
+    if cam.kind == "translating-roller":
+        plan = plan_flank(cam, r_t, rho_d)
+        # flank 0 is the −X wall: to the right of the centre line in (u, x) (u grows with the cam angle)
+        return [rough, ("flank 0 (-X wall)", DisplacedCurve(centre, -1.0, plan), r_t, "finish"),
+                ("flank 1 (+X wall)", DisplacedCurve(centre, 1.0, plan), r_t, "finish")], plan.error_mm
+    return [rough, ("flank 0 (-X wall)", OffsetCurve(cam.developed_flank(0, rho_d), r_t), r_t, "finish"),
+            ("flank 1 (+X wall)", OffsetCurve(cam.developed_flank(1, rho_d), -r_t), r_t, "finish")], 0.0
+
+
+def _corner_depth_mm(cam, r_t: float) -> float:
+    """How far below the groove bottom the tool tip goes so that its end clears the wall corner (mm)."""
+    th = np.linspace(0.0, 2 * math.pi, 2881)
+    alpha = np.abs(cam.pressure_angle(th).value).max()  # at the groove bottom, where it is largest
+    y = r_t * math.sin(alpha)
+    rb = cam.bottom_radius
+    return rb - math.sqrt(rb * rb - y * y)
+
+
+def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool_mm: float | None) -> Check:
+    """The 3-D groove deviation held to the tolerance, with the way out of a miss."""
+    value, tol = groove.max_deviation_mm, m.tolerance_mm
+    holds = math.ceil(value * 1e4) / 1e4
+    r_r = cam.roller_radius
+    if cam.kind == "oscillating-roller":
+        advice = ("the roller axis tilts with the arm and a radial tool cannot follow it: cut it with "
+                  f"[machining] axes = 5 and a tool of the roller's diameter (D{2 * r_r:g} mm), "
+                  f"or accept a tolerance of at least {holds:g} mm")
+    elif m.tool_diameter_mm < 2 * r_r - 2 * SAME_TOOL_MM:
+        tool = (f" (any tool from D{smallest_tool_mm:.2f} mm up holds {tol:g} mm)"
+                if smallest_tool_mm is not None else "")
+        advice = (f"use a tool of the roller's diameter, D{2 * r_r:g} mm{tool}, "
+                  f"or accept a tolerance of at least {holds:g} mm")
+    else:
+        advice = (f"check depth and flute_length (the tool must reach the groove bottom), "
+                  f"or accept a tolerance of at least {holds:g} mm")
+    return Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(), advice)
 
 
 def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
-    """The 4-axis program of a cylindrical cam (see the module notes)."""
+    """The 4-axis program of a cylindrical cam and its 3-D measurement (see the module notes)."""
     cam, post = built.cam, m.post
     if not post.inverse_time:
         raise GeometryError(f"post {post.name}: has no inverse-time feed (G93) for a cylindrical cam's 4-axis program")
-    rho = cam.reference_radius
+    rho_d = cam.base_radius
+    turn = A_AXIS_SENSE[m.a_axis] * cam.sigma  # printed A = turn · θ
     r_t = m.tool_diameter_mm / 2
     title = job_title(name, built.spec.kind, cam.kind, m.tool_diameter_mm, "lines", m.tolerance_mm, post.name)
-    cs = m.cut_settings()
+    cs0 = m.cut_settings()
+    corner = _corner_depth_mm(cam, r_t) if m.depth_mm >= cam.groove_depth - 1e-9 else 0.0
+    scale = (m.depth_mm + corner) / m.depth_mm
+    cs = dataclasses.replace(cs0, depth_mm=m.depth_mm + corner, stepdown_mm=m.stepdown_mm * scale)
+    plan, flank_err = _plan(cam, r_t, rho_d)
+    fit_tol = m.tolerance_mm - flank_err if flank_err < 0.5 * m.tolerance_mm else m.tolerance_mm / 2
     contours, paths = [], []
-    for k, (label, at, offset, kind) in enumerate(_plan(cam, r_t)):
-        curve = at(rho)
+    for k, (label, curve, offset, kind) in enumerate(plan):
+        tol = fit_tol if label.startswith("flank") else m.tolerance_mm
 
         def printed(elements):
-            return developed_printed(printed_axes(elements, post.quantizer, rho), rho)
+            return developed_printed(printed_axes(elements, post.quantizer, rho_d, turn), rho_d, turn)
 
-        fit, path, dev, segs = fit_printed(curve, m.tolerance_mm, "lines", post.quantizer, post.max_arc_sweep_deg,
+        fit, path, dev, segs = fit_printed(curve, tol, "lines", post.quantizer, post.max_arc_sweep_deg,
                                            printed, f"{name} {label}")
-        axes = printed_axes(fit.elements, post.quantizer, rho)
-        errors = []
-        for r in (cam.base_radius, cam.bottom_radius):
-            e = measure_deviation(at(r), developed_printed(axes, r), margin_mm=DEFAULT_BUDGET.margin_mm(m.tolerance_mm))
-            errors.append(e.max_deviation_mm)
-        # developed (u, x) → (x, arc length at ρ_ref); A = u/ρ_ref
         pts = np.array([fit.elements[0].start] + [e.end for e in fit.elements])
+        pts = np.stack([pts[:, 1], turn * pts[:, 0]], axis=-1)  # (x, turn·u): A = turn·θ
         try:
-            paths.append(rotary_toolpath(pts[:, ::-1], cam.base_radius, cs, title, developed_radius_mm=rho,
+            paths.append(rotary_toolpath(pts, cam.base_radius, cs, title, developed_radius_mm=rho_d,
                                          contour=k, kind=kind))
         except InputError as err:
             raise GeometryError(f"{name} {label}: {err}") from None
-        contours.append(CutContour(label, curve, fit, path, dev, offset, False, segs, "both", errors[0], errors[1]))
-    toolpath = join_toolpaths(title, paths)
+        contours.append(CutContour(label, curve, fit, path, dev, offset, False, segs, "both"))
+    comments = tuple(f"{c}" for c in machine_frame_lines(m.a_axis, rho_d))
+    if corner > 0:
+        comments += (f"last pass {corner:.3f} mm below the groove bottom: the tool end clears the wall corner",)
+    toolpath = dataclasses.replace(join_toolpaths(title, paths), comments=comments)
     program = post.write_program(toolpath, name)
-    notes = (f"4-axis: X along the cam axis, A = program cam angle (deg), developed at R{rho:g} mm",)
+    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses_from_program(program.text, m.a_axis))
+    smallest = None
+    if cam.kind == "translating-roller" and r_t < cam.roller_radius - SAME_TOOL_MM:
+        smallest = 2 * smallest_tool_radius(cam, 0.5 * m.tolerance_mm, rho_d)
+    check = groove_check(cam, m, groove, smallest)
+    notes = (f"4-axis: X along the cam axis, A = {'+' if turn > 0 else '-'}cam angle (deg), developed at R{rho_d:g} mm",)
     if m.mode == "arcs":
         notes += ("mode arcs: a 4-axis G1 X A program has lines only",)
-    worst = max(max(c.error_top_mm, c.error_bottom_mm) for c in contours)
-    if worst > m.tolerance_mm:
-        why = ("the roller axis tilts with the arm, a radial tool cannot follow it"
-               if cam.kind == "oscillating-roller" else "the flank's slope changes with depth")
-        notes += (f"4-axis: the cut leaves the exact groove by up to {worst:.4f} mm at the groove top/bottom ({why})",)
+    if corner > 0:
+        notes += (f"4-axis: the last pass runs {corner:.3f} mm below the groove bottom so the tool's flat end "
+                  f"reaches the wall corner",)
+    if flank_err > 0:
+        notes += (f"4-axis: flank passes balanced over the depth; first-order flank error {flank_err:.4f} mm"
+                  + (f", smallest tool holding half the tolerance D{smallest:.2f} mm" if smallest else ""),)
+    checks = deviation_checks(contours, m.tolerance_mm) + (check,)
     return MachiningResult(name, built.spec.kind, cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, "lines",
-                           tuple(contours), toolpath, program, rho, notes, deviation_checks(contours, m.tolerance_mm))
+                           tuple(contours), toolpath, program, rho_d, notes, checks, groove=groove,
+                           smallest_tool_mm=smallest)

@@ -56,6 +56,8 @@ class MachiningSpec:
     spring_pass: bool
     tool_number: int
     accept_out_of_tolerance: bool = False
+    flute_length_mm: float = 0.0  # the tool's cutting length (barrel cams' 3-D check)
+    a_axis: str = "right-hand"  # barrel cams: a positive A turns the part by the right-hand rule about +X
 
     def cut_settings(self, stock_side: str = "right") -> CutSettings:
         """Settings for :func:`camcam.toolpath.path.contour_toolpath`."""

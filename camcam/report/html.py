@@ -11,6 +11,7 @@ import html
 from dataclasses import dataclass
 from typing import Sequence, Union
 
+from camcam.plots.concurrent import PendingPNG, resolve
 from camcam.verdict import Verdict
 
 __all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Code", "VerdictBlock", "Section", "render_html"]
@@ -20,7 +21,7 @@ __all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Code", "VerdictBloc
 class Figure:
     """A PNG plot with a caption."""
 
-    png: bytes
+    png: bytes | PendingPNG  # a plot still being drawn is collected when the page is rendered
     caption: str
 
 
@@ -97,7 +98,7 @@ def _block(b: Block) -> str:
         return (head + "<table><thead><tr><th>check</th><th>measured</th><th>limit</th><th>result</th><th>where</th>"
                 f"<th>way out</th></tr></thead><tbody>{rows}</tbody></table>")
     if isinstance(b, Figure):
-        data = base64.b64encode(b.png).decode("ascii")
+        data = base64.b64encode(resolve(b.png)).decode("ascii")
         return f'<figure><img alt="{e(b.caption)}" src="data:image/png;base64,{data}"><figcaption>{e(b.caption)}</figcaption></figure>'
     if isinstance(b, KeyValues):
         rows = "".join(f"<tr><td>{e(k)}</td><td>{e(v)}</td></tr>" for k, v in b.rows)

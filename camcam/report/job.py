@@ -14,6 +14,8 @@ from camcam.geometry.build import BuiltCam
 from camcam.geometry.disc import DiscCam
 from camcam.geometry.groove import GrooveCam
 from camcam.motion.program import MotionProgram
+from camcam.plots.concurrent import PendingPNG, render_later
+from camcam.plots.groove_map import groove_map_png
 from camcam.plots.report_plots import deviation_png, fitted_motion_png
 from camcam.report.deviation_along import signed_deviation
 from camcam.report.fitted_motion import fitted_motion
@@ -29,7 +31,7 @@ __all__ = ["JobReport", "job_report"]
 class JobReport:
     html: str
     figures: dict  # extra JSON keys
-    files: dict  # name → bytes (plots also shown in the HTML, and the inspection CSV)
+    files: dict  # name → bytes, or PendingPNG for a plot being drawn (also shown in the HTML), and the inspection CSV
 
 
 def _job_rows(name, spec, built: BuiltCam | None, m: MachiningResult | None):
@@ -49,8 +51,30 @@ def _job_rows(name, spec, built: BuiltCam | None, m: MachiningResult | None):
     return tuple(rows)
 
 
-def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: BuiltCam | None, cam_figures: dict,
-               cam_png: bytes | None, machining: MachiningResult | None, inspection_step_deg: float = 10.0,
+def _deviation_label(m: MachiningResult) -> str:
+    if m.groove is None:
+        return "measured deviation (two-sided, printed program)"
+    return "3-D groove deviation (both walls, every radius, printed program)"
+
+
+def _groove_rows(m: MachiningResult) -> tuple:
+    if m.groove is None:
+        return ()
+    rows = []
+    for w in m.groove.walls:
+        rows.append((w.label, f"largest overcut {w.overcut_mm:.4f} mm at {w.overcut.describe()}; largest material "
+                              f"left {w.material_left_mm:.4f} mm at {w.material_left.describe()}"))
+    g = m.groove
+    rows.append(("3-D measurement", f"radii {g.radii_mm[0]:g}-{g.radii_mm[-1]:g} mm ({len(g.radii_mm)} on the map, "
+                                    f"extremes refined between), cam angle step {g.cam_angle_deg[1]:g}°, motion "
+                                    f"sampling bound {g.sampling_bound_mm:.1e} mm"))
+    if m.smallest_tool_mm is not None:
+        rows.append(("smallest tool holding half the tolerance on the flanks", f"Ø{m.smallest_tool_mm:.2f} mm"))
+    return tuple(rows)
+
+
+def job_report(name: str, spec, program: MotionProgram, svaj: bytes | PendingPNG, built: BuiltCam | None, cam_figures: dict,
+               cam_png: bytes | PendingPNG | None, machining: MachiningResult | None, inspection_step_deg: float = 10.0,
                verdict: Verdict | None = None) -> JobReport:
     """Build the HTML page, the report's extra JSON figures and its files; the verdict opens the page."""
     files: dict[str, bytes] = {}
@@ -69,15 +93,23 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: Buil
     if machining is not None:
         m = machining
         verdict = "within" if m.max_deviation_mm <= m.tolerance_mm else "OUTSIDE"
+        fit_kind = "fit deviation (developed plane)" if m.groove is not None else "deviation"
         blocks = [KeyValues((
-            ("measured deviation (two-sided, printed program)", f"{m.max_deviation_mm:.5f} mm — {verdict} ±{m.tolerance_mm:g} mm"),
+            (_deviation_label(m), f"{m.max_deviation_mm:.5f} mm — {verdict} ±{m.tolerance_mm:g} mm"),
+            *_groove_rows(m),
             ("blocks on the contour", f"{m.arc_blocks} arcs + {m.line_blocks} lines"),
             ("lower bound (N_lb; lines: ∫√(κ/8δ) ds)", f"{m.lower_bound_blocks:.1f}"),
-            *((f"contour {c.label}", f"{c.fit.arc_blocks} arcs + {c.fit.line_blocks} lines, deviation {c.deviation.max_deviation_mm:.5f} mm"
-               + (f", flank error top/bottom {c.error_top_mm:.4f}/{c.error_bottom_mm:.4f} mm" if c.error_top_mm is not None else ""))
-              for c in m.contours),
+            *((f"contour {c.label}", f"{c.fit.arc_blocks} arcs + {c.fit.line_blocks} lines, {fit_kind} "
+               f"{c.deviation.max_deviation_mm:.5f} mm") for c in m.contours),
             *(("note", n) for n in m.notes),
         ))]
+        if m.groove is not None:
+            png = render_later(groove_map_png, m.groove, m.tolerance_mm,
+                               f"{name}: cut groove − designed groove, normal to the walls")
+            files[f"{name}-groove-map.png"] = png
+            blocks.append(Figure(png, "3-D deviation of the cut groove walls from the designed walls (the roller's "
+                                      "envelope), over radius and cam angle, measured on the printed program's axis "
+                                      "words: + overcut, − material left."))
         disc = built.cam if built is not None and isinstance(built.cam, (DiscCam, GrooveCam)) else None
         if disc is not None:
             curve, elements = m.contours[0].curve, m.contours[0].printed
@@ -87,7 +119,8 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: Buil
             # a groove's flanks are drawn unsigned
             normal = disc.normal(th) if isinstance(disc, DiscCam) else None
             dev = signed_deviation(curve, elements, th, normal)
-            files[f"{name}-deviation.png"] = deviation_png(ang, dev, m.tolerance_mm, f"{name}: printed tool path − exact tool-centre curve")
+            files[f"{name}-deviation.png"] = render_later(deviation_png, ang, dev, m.tolerance_mm,
+                                                          f"{name}: printed tool path − exact tool-centre curve")
             blocks.append(Figure(files[f"{name}-deviation.png"], "Deviation of the printed tool path from the exact tool-centre curve along the cam angle (+ leaves stock)."))
             figures["deviation_along_profile_mm"] = {"min": float(dev.min()), "max": float(dev.max())}
         excerpt = m.program.text.splitlines()[:24]
@@ -96,8 +129,8 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes, built: Buil
         if isinstance(disc, DiscCam):
             c0 = m.contours[0]
             fm = fitted_motion(disc, c0.printed, c0.offset_mm, np.arange(0.0, 360.0, 0.5))
-            png = fitted_motion_png(fm.angles_deg, fm.design, fm.fitted, fm.units,
-                                    f"{name}: follower motion the fitted program will produce")
+            png = render_later(fitted_motion_png, fm.angles_deg, fm.design, fm.fitted, fm.units,
+                               f"{name}: follower motion the fitted program will produce")
             files[f"{name}-fitted-motion.png"] = png
             ea, aa = fm.max_error(2)
             ej, aj = fm.max_error(3)

@@ -1,25 +1,32 @@
 """A whole spec file: reading the TOML and validating each table.
 
 The spec is the only place that reads files named by the user besides the
-exporters; the stages receive the frozen values built here.
+exporters; the stages receive the frozen values built here.  Each table's
+reader is imported when the file has that table: the readers bring in their
+stage's settings (``[machining]`` the NC stage, ``[motion]`` the lift-table
+fitting), which a spec with only ``[optimize]`` does not need.
 """
 
 from __future__ import annotations
 
+import importlib
 import re
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from camcam.errors import SpecError
-from camcam.spec.cam import CamSpec, read_cam
-from camcam.spec.follower import FollowerSpec, read_follower
-from camcam.spec.machining import MachiningSpec, read_machining
-from camcam.spec.motion import MotionSpec, read_motion
-from camcam.spec.optimize import OptimizeSpec, read_optimize
 from camcam.spec.reader import Table, fmt
 from camcam.spec.report import DEFAULT_REPORT, ReportSpec, read_report
 from camcam.spec.size import SizeSpec, read_size
+
+if TYPE_CHECKING:
+    from camcam.spec.cam import CamSpec
+    from camcam.spec.follower import FollowerSpec
+    from camcam.spec.machining import MachiningSpec
+    from camcam.spec.motion import MotionSpec
+    from camcam.spec.optimize import OptimizeSpec
 
 __all__ = ["Spec", "load_spec", "parse_spec"]
 
@@ -53,6 +60,11 @@ class Spec:
         return value
 
 
+def _reader(table: str, function: str):
+    """``camcam.spec.<table>.<function>``, imported now (module docstring)."""
+    return getattr(importlib.import_module(f"camcam.spec.{table}"), function)
+
+
 def parse_spec(data: dict, source: Path) -> Spec:
     """Validate a parsed TOML document (``source`` names it and anchors relative paths)."""
     root = Table(data, "")
@@ -60,9 +72,9 @@ def parse_spec(data: dict, source: Path) -> Spec:
     root.check("name", bool(_NAME.match(name)), f'{fmt(name)} must be 1–64 letters, digits, "_", "-" or "." (it names the output files)')
     base = source.parent
     cam_t = root.table("cam", None)
-    cam = read_cam(cam_t) if cam_t is not None else None
+    cam = _reader("cam", "read_cam")(cam_t) if cam_t is not None else None
     fol_t = root.table("follower", None)
-    follower = read_follower(fol_t, cam.kind if cam else None) if fol_t is not None else None
+    follower = _reader("follower", "read_follower")(fol_t, cam.kind if cam else None) if fol_t is not None else None
     if cam is not None and follower is None:
         raise SpecError("follower", "missing; a [cam] needs a [follower] table")
     if follower is not None and cam is not None:
@@ -70,15 +82,15 @@ def parse_spec(data: dict, source: Path) -> Spec:
             raise SpecError("follower.kind", f'"{follower.kind}": a {cam.kind} cam needs a roller follower')
     unit = follower.unit if follower is not None else "mm"
     motion = root.table("motion", None)
-    motion_spec = read_motion(motion, base, unit) if motion is not None else None
+    motion_spec = _reader("motion", "read_motion")(motion, base, unit) if motion is not None else None
     if motion is not None:
         motion.done()
     optimize = root.table("optimize", None)
-    optimize_spec = read_optimize(optimize) if optimize is not None else None
+    optimize_spec = _reader("optimize", "read_optimize")(optimize) if optimize is not None else None
     if optimize is not None:
         optimize.done()
     machining = root.table("machining", None)
-    machining_spec = read_machining(machining, base) if machining is not None else None
+    machining_spec = _reader("machining", "read_machining")(machining, base) if machining is not None else None
     report_t = root.table("report", None)
     report_spec = read_report(report_t) if report_t is not None else DEFAULT_REPORT
     size_t = root.table("size", None)

@@ -10,6 +10,9 @@ feed = 400.0               # mm/min
 spindle = 3000             # rev/min
 depth = 12.0               # mm
 stepdown = 4.0             # mm
+flute_length = 32.0        # mm, the tool's cutting length (default: twice its diameter)
+a_axis = "right-hand"      # barrel cams: a positive A turns the part by the right-hand rule about +X
+accept_out_of_tolerance = false  # true: a FAIL verdict only warns (exit 0)
 ```
 """
 
@@ -51,6 +54,8 @@ def read_machining(t: Table, base: Path) -> MachiningSpec:
     spring = t.boolean("spring_pass", False)
     tool_number = t.integer("tool_number", 1, minimum=0, maximum=999)
     accept = t.boolean("accept_out_of_tolerance", False)
+    flute = t.number("flute_length", 2.0 * tool, minimum=0.0, inclusive=False, unit="mm")
+    a_axis = t.string("a_axis", "right-hand", choices=("right-hand", "left-hand"))
     t.done()
     return MachiningSpec(post, tool, tol, mode, feed, spindle, depth, stepdown, plunge, safe, clearance, lead,
-                         allowance, spring, tool_number, accept)
+                         allowance, spring, tool_number, accept, flute_length_mm=flute, a_axis=a_axis)

@@ -50,9 +50,8 @@ class CutContour:
     the path as the program prints it (same plane), ``deviation`` measured
     between the two.  ``offset_mm`` is the tool centre's distance from the
     surface the pass finishes (the tool radius; for a groove centre pass the
-    roller radius from each flank).  ``error_top_mm``/``error_bottom_mm``:
-    cylindrical cams only, the deviation of the cut from the exact surface at
-    the groove top and bottom (see :mod:`camcam.nc.rotary`).
+    roller radius from each flank).  A barrel cam's cut is measured in 3-D
+    by :mod:`camcam.nc.groove3d`, not here.
     """
 
     label: str
@@ -64,8 +63,6 @@ class CutContour:
     leads: bool
     segments: tuple[SegmentBlocks, ...]
     stock_side: str = "right"
-    error_top_mm: float | None = None
-    error_bottom_mm: float | None = None
 
     @property
     def lower_bound(self) -> float:
@@ -141,13 +138,18 @@ class OffsetCurve:
     def closed(self) -> bool:
         return self.base.closed
 
+    def distance(self, t: np.ndarray, order: int, piece: int | None):
+        """The offset at ``t`` (a number here; a jet in subclasses whose offset varies)."""
+        return self.distance_mm
+
     def evaluate(self, t, order: int = 0, piece: int | None = None) -> np.ndarray:
         if not 0 <= order <= 2:
             raise ValueError(f"an offset curve gives derivatives up to order 2, asked {order}")
-        x, y = self.base.jets(np.atleast_1d(np.asarray(t, float)), order + 1, piece)
+        t = np.atleast_1d(np.asarray(t, float))
+        x, y = self.base.jets(t, order + 1, piece)
         tx, ty = x.derivative(), y.derivative()
         v = hypot(tx, ty)
-        d = self.distance_mm
+        d = self.distance(t, order, piece)
         ox = x.truncate(order) + (-ty) / v * d
         oy = y.truncate(order) + tx / v * d
         return np.stack([ox.d[order], oy.d[order]], axis=-1)

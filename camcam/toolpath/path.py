@@ -338,7 +338,7 @@ def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "
     plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
     passes = []
     for z in levels:
-        moves = [Rapid(float(pts[0, 0]), None, None),
+        moves = [Rapid(float(pts[0, 0]), 0.0, None),  # Y0: the tool axis through the cam axis
                  Feed(None, None, radius_mm + cs.clearance_z_mm, plunge, float(a[0]), cs.safe_z_mm),
                  Feed(None, None, z, plunge, float(a[0]), cs.clearance_z_mm + radius_mm - z)]
         for k in range(1, len(pts)):
@@ -346,4 +346,4 @@ def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "
         moves.append(Rapid(None, None, radius_mm + cs.safe_z_mm))
         passes.append(Pass(contour, kind, z, tuple(moves)))
     return Toolpath(title, tuple(passes), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, True,
-                    (f"4-axis, developed at R{radius_mm:g}",), (Rapid(None, None, radius_mm + cs.safe_z_mm),))
+                    (f"4-axis, developed at R{dev_r:g} mm",), (Rapid(None, None, radius_mm + cs.safe_z_mm),))

@@ -1,0 +1,127 @@
+"""Wall time of camcam's commands against the time it takes to import its libraries.
+
+    PYTHONPATH=. python benchmarks/speed.py [--repeat 3] [--only disc-translating-roller]
+
+Prints, from one run, side by side:
+
+* the import floor: ``python -c "import numpy, scipy.interpolate, scipy.optimize,
+  matplotlib.pyplot, ezdxf, trimesh"``, the libraries a run that writes every file needs;
+* ``camcam --help``, ``camcam laws`` and ``camcam optimize`` (exact, Table 1), target ≤ 0.5 s;
+* ``camcam run`` of every disc and cylindrical sample, and of every disc sample at
+  ``tolerance = 0.001`` mm, targets ≤ 1.7 × the floor (disc) and ≤ 2.5 × (cylindrical).
+
+Every figure is the median of ``--repeat`` whole processes (a fresh interpreter each,
+imports included), and the repeats are interleaved (floor, commands, samples, then
+again) so that a change in the machine's load hits them all alike.  Besides wall
+seconds it prints CPU seconds (user + system of the process and its children): on a
+shared, loaded machine the wall figures move with the load, the CPU figures much less;
+a run that renders its plots concurrently uses more CPU than wall on an idle machine.
+The load average is printed before and after.  No test asserts any of these figures.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import tomllib
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+FLOOR = "import numpy, scipy.interpolate, scipy.optimize, matplotlib.pyplot, ezdxf, trimesh"
+COMMAND_LIMIT_S = 0.5
+RUN_LIMITS = {"disc": 1.7, "cylindrical": 2.5}
+FINE_TOLERANCE_MM = 0.001
+
+
+def _timed(argv: list[str], env: dict) -> tuple[float, float]:
+    """(wall s, CPU s) of one whole process; raises if it fails."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    r = subprocess.run(argv, capture_output=True, text=True, env=env, cwd=ROOT)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if r.returncode not in (0, 3):  # 3: written but out of tolerance (the run still did all its work)
+        raise SystemExit(f"{' '.join(argv)} failed ({r.returncode}): {r.stderr.strip()[-300:]}")
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return wall, cpu
+
+
+def _fine_spec(spec: Path, out_dir: Path) -> Path:
+    """A copy of ``spec`` with ``[machining] tolerance = 0.001``."""
+    text = spec.read_text()
+    fine, n = re.subn(r"(?m)^tolerance\s*=\s*[0-9.eE+-]+", f"tolerance = {FINE_TOLERANCE_MM}", text)
+    if n != 1:
+        raise SystemExit(f"{spec}: expected one `tolerance = …` line, found {n}")
+    path = out_dir / f"{spec.stem}-fine.toml"
+    path.write_text(fine)
+    return path
+
+
+def _jobs(out_dir: Path, only: str | None) -> list[tuple[str, str, list[str]]]:
+    """(label, kind, argv) of every timed command; kind names its target."""
+    py = sys.executable
+    cli = [py, "-m", "camcam"]
+    jobs = [
+        ("import floor", "floor", [py, "-c", FLOOR]),
+        ("camcam --help", "command", cli + ["--help"]),
+        ("camcam laws", "command", cli + ["laws"]),
+        ("camcam optimize table1 (exact)", "command", cli + ["optimize", "samples/optimize/table1.toml"]),
+    ]
+    runs = []
+    for spec in sorted((ROOT / "samples").glob("*.toml")):
+        cam = tomllib.loads(spec.read_text()).get("cam")
+        if cam is None or (only and only not in spec.stem):
+            continue
+        kind = "cylindrical" if cam.get("kind") == "cylindrical" else "disc"
+        runs.append((f"run {spec.stem}", kind, spec))
+        if kind == "disc":
+            runs.append((f"run {spec.stem} @ {FINE_TOLERANCE_MM} mm", kind, _fine_spec(spec, out_dir)))
+    for k, (label, kind, spec) in enumerate(runs):
+        jobs.append((label, kind, cli + ["run", str(spec), "-o", str(out_dir / f"out{k}")]))
+    return jobs
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--repeat", type=int, default=3, help="processes per figure (median), default 3")
+    ap.add_argument("--only", help="time only the samples whose name contains this")
+    args = ap.parse_args()
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    print(f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, {os.cpu_count()} CPUs, Python {sys.version.split()[0]}, "
+          f"load average before {os.getloadavg()[0]:.2f}, PYTHONDONTWRITEBYTECODE={os.environ.get('PYTHONDONTWRITEBYTECODE', '')!r}")
+    with tempfile.TemporaryDirectory() as d:
+        jobs = _jobs(Path(d), args.only)
+        wall: dict[str, list[float]] = {label: [] for label, _, _ in jobs}
+        cpu: dict[str, list[float]] = {label: [] for label, _, _ in jobs}
+        for _ in range(args.repeat):
+            for label, _, argv in jobs:
+                w, c = _timed(argv, env)
+                wall[label].append(w)
+                cpu[label].append(c)
+    med = {k: statistics.median(v) for k, v in wall.items()}
+    medc = {k: statistics.median(v) for k, v in cpu.items()}
+    floor, floor_cpu = med["import floor"], medc["import floor"]
+    print(f"\n| what | wall s | × floor | CPU s | CPU × floor CPU | target | met |")
+    print("|---|---|---|---|---|---|---|")
+    for label, kind, _ in jobs:
+        w, c = med[label], medc[label]
+        if kind == "floor":
+            target, ok = "", ""
+        elif kind == "command":
+            target, ok = f"≤ {COMMAND_LIMIT_S} s", "yes" if w <= COMMAND_LIMIT_S else "NO"
+        else:
+            lim = RUN_LIMITS[kind]
+            target, ok = f"≤ {lim} × floor", "yes" if w <= lim * floor else "NO"
+        print(f"| {label} | {w:.2f} | {w / floor:.2f} | {c:.2f} | {c / floor_cpu:.2f} | {target} | {ok} |")
+    print(f"\nload average after {os.getloadavg()[0]:.2f}")
+
+
+if __name__ == "__main__":
+    main()

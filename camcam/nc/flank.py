@@ -1,0 +1,171 @@
+"""Flank passes of a translating barrel cam cut with a radial tool smaller than the roller.
+
+Roller and tool are both radial cylinders, so on the cylinder r = ρ, in the
+developed plane there (u = ρ·θ, x), each cuts the same convex section
+translated along its path: K(r, ρ) = {(ρ·asin(r sin φ / ρ), r cos φ)}.  The
+designed wall is the boundary of (roller centre path) ⊕ K(r_r, ρ), the cut
+wall that of (tool path) ⊕ K(r_t, ρ); along the wall's outward normal n_ρ
+their gap is, to first order in the tool's displacement from the centre path,
+
+    e(ρ) = q·g(ρ) + h(K(r_t, ρ), n_ρ) − h(K(r_r, ρ), n_ρ),
+
+h the support function, q the tool's displacement along the wall normal at
+the development radius ρ_d, g(ρ) = (ρ·N_d)/(ρ_d·N_ρ) what that displacement
+is along n_ρ (N_ρ = √(ρ² + s′²)).  The error changes with depth because n_ρ
+and the section shapes do: one q cannot zero it at every radius.  Each
+station's q is the one that minimises the largest |e(ρ)| over the flank
+depth (times the 3-D factor √(1 − n_r²), see :mod:`camcam.nc.groove3d`):
+all e(ρ) rise with q, so the optimum balances the largest overcut against
+the largest material left (bisection).  q(θ) is interpolated by a quintic
+spline per motion segment, so the flank curve keeps exact derivatives for
+the fit.  The true figure is the 3-D measurement of the printed program.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.interpolate import make_interp_spline
+
+from camcam.geometry.cylindrical import CylindricalCam
+from camcam.geometry.jet import Jet
+from camcam.toolpath.contours import OffsetCurve
+
+__all__ = ["FlankPlan", "plan_flank", "flank_error_mm", "smallest_tool_radius"]
+
+#: Radii across the flank depth at which a station's error is balanced.
+DEPTH_RADII = 21
+
+_GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
+
+
+def _support(r: float, rho: np.ndarray, nu: np.ndarray, nx: np.ndarray) -> np.ndarray:
+    """h(K(r, ρ), n): max over φ of nu·ρ·asin(r sin φ/ρ) + nx·r cos φ (grid, then golden search)."""
+    phi = np.linspace(-math.pi, math.pi, 97)
+    shape = np.broadcast(rho, nu, nx).shape
+    rho, nu, nx = (np.broadcast_to(v, shape)[..., None] for v in (rho, nu, nx))
+
+    def f(p):
+        return nu[..., 0] * rho[..., 0] * np.arcsin(r * np.sin(p) / rho[..., 0]) + nx[..., 0] * r * np.cos(p)
+
+    v = nu * rho * np.arcsin(r * np.sin(phi) / rho) + nx * r * np.cos(phi)
+    j = np.argmax(v, axis=-1)
+    step = phi[1] - phi[0]
+    a, b = phi[j] - step, phi[j] + step
+    c, d = b - _GOLDEN * (b - a), a + _GOLDEN * (b - a)
+    fc, fd = f(c), f(d)
+    for _ in range(40):
+        left = fc >= fd
+        b, a = np.where(left, d, b), np.where(left, a, c)
+        cn, dn = b - _GOLDEN * (b - a), a + _GOLDEN * (b - a)
+        c, d = np.where(left, cn, d), np.where(left, c, dn)
+        fn = f(np.where(left, cn, dn))
+        fc, fd = np.where(left, fn, fd), np.where(left, fc, fn)
+    return np.maximum(np.maximum(fc, fd), v.max(axis=-1))
+
+
+def _station_terms(cam: CylindricalCam, theta: np.ndarray, r_t: float, rho_d: float, radii: np.ndarray):
+    """g(ρ), b(ρ) = h_t − h_r and the 3-D factor at each (station, radius): arrays (n, m)."""
+    s1 = cam.lift(theta, 1).d[1][:, None]  # ds/dθ, mm/rad
+    rho = radii[None, :]
+    N_r = np.sqrt(rho**2 + s1**2)
+    N_d = np.sqrt(rho_d**2 + s1**2)
+    g = rho * N_d / (rho_d * N_r)
+    # wall 1's outward normal in (u_ρ, x); the section shapes are symmetric, so wall 0 gives the same terms
+    nu, nx = -s1 / N_r, rho / N_r
+    b = _support(r_t, rho, nu, nx) - _support(cam.roller_radius, rho, nu, nx)
+    sin2 = s1**2 / N_r**2
+    f3 = np.sqrt(1.0 - (cam.roller_radius * sin2 / rho) ** 2)
+    return g, b, f3
+
+
+def _balance(g: np.ndarray, b: np.ndarray, f3: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per station (row) the q minimising max_ρ |f3·(q·g + b)| and that smallest largest error."""
+    lo = np.min(-b / g, axis=1) - 1.0
+    hi = np.max(-b / g, axis=1) + 1.0
+    for _ in range(60):
+        q = 0.5 * (lo + hi)
+        e = f3 * (q[:, None] * g + b)
+        up = e.max(axis=1) + e.min(axis=1) > 0
+        hi, lo = np.where(up, q, hi), np.where(up, lo, q)
+    q = 0.5 * (lo + hi)
+    e = f3 * (q[:, None] * g + b)
+    return q, np.abs(e).max(axis=1)
+
+
+def _radii(cam: CylindricalCam) -> np.ndarray:
+    return np.linspace(cam.bottom_radius, cam.base_radius, DEPTH_RADII)
+
+
+def _stations(cam: CylindricalCam, per_degree: float = 1.0) -> np.ndarray:
+    return np.linspace(0.0, 2 * math.pi, int(360 * per_degree) + 1)
+
+
+def flank_error_mm(cam: CylindricalCam, tool_radius_mm: float, rho_d: float) -> float:
+    """The largest balanced flank error over the revolution for a tool radius (first order, mm)."""
+    th = _stations(cam)
+    g, b, f3 = _station_terms(cam, th, tool_radius_mm, rho_d, _radii(cam))
+    return float(_balance(g, b, f3)[1].max())
+
+
+def smallest_tool_radius(cam: CylindricalCam, budget_mm: float, rho_d: float) -> float:
+    """The smallest tool radius whose balanced flank error stays within ``budget_mm`` (bisection)."""
+    lo, hi = cam.roller_radius / 3.0, cam.roller_radius
+    if flank_error_mm(cam, lo, rho_d) <= budget_mm:
+        return lo
+    for _ in range(14):  # to 1e-4 of the roller radius
+        mid = 0.5 * (lo + hi)
+        if flank_error_mm(cam, mid, rho_d) <= budget_mm:
+            hi = mid
+        else:
+            lo = mid
+    return hi
+
+
+@dataclass(frozen=True)
+class FlankPlan:
+    """Per-station displacements q(θ) of a flank pass (interpolated per motion segment) and the error they leave."""
+
+    breaks: np.ndarray
+    splines: tuple
+    error_mm: float
+
+    def q(self, theta: np.ndarray, K: int, piece: int | None) -> Jet:
+        theta = np.atleast_1d(np.asarray(theta, float))
+        if piece is None:
+            idx = np.clip(np.searchsorted(self.breaks, theta, side="right") - 1, 0, len(self.splines) - 1)
+        else:
+            idx = np.full(theta.shape, piece)
+        rows = np.zeros((K + 1, theta.size))
+        for i in np.unique(idx):
+            m = idx == i
+            for k in range(K + 1):
+                rows[k, m] = self.splines[i](theta[m], nu=k)
+        return Jet(rows)
+
+
+def plan_flank(cam: CylindricalCam, tool_radius_mm: float, rho_d: float, per_segment: int = 49) -> FlankPlan:
+    """Balanced displacements q(θ) for a flank pass of a tool of ``tool_radius_mm`` (see the module notes)."""
+    br = cam.breaks
+    splines, worst = [], 0.0
+    radii = _radii(cam)
+    for lo, hi in zip(br[:-1], br[1:]):
+        # Chebyshev–Lobatto stations: the quintic interpolant stays close to q at the segment ends
+        x = 0.5 * (lo + hi) - 0.5 * (hi - lo) * np.cos(np.linspace(0, math.pi, per_segment))
+        g, b, f3 = _station_terms(cam, x, tool_radius_mm, rho_d, radii)
+        q, err = _balance(g, b, f3)
+        splines.append(make_interp_spline(x, q, k=5))
+        worst = max(worst, float(err.max()))
+    return FlankPlan(np.asarray(br, float), tuple(splines), worst)
+
+
+@dataclass(frozen=True)
+class DisplacedCurve(OffsetCurve):
+    """``base`` moved along its unit normal by ``distance_mm`` (±1: left or right) × q(θ) of ``plan``."""
+
+    plan: FlankPlan | None = None
+
+    def distance(self, t: np.ndarray, order: int, piece: int | None) -> Jet:
+        return self.plan.q(t, order, piece) * self.distance_mm

@@ -1,0 +1,741 @@
+"""The cut groove of a barrel cam against the designed groove, in 3-D, normal to the walls.
+
+What is compared
+----------------
+*Cut*: a flat end mill (a cylinder of ``radius_mm`` and cutting length
+``length_mm`` from its tip) posed by the program's own axis words
+(:class:`ToolPoses`: the tool tip X Y Z, A, B as printed), moving linearly in
+all axis words from pose to pose, as the controller interpolates them.
+*Design*: the roller, an unbounded cylinder of the roller radius posed by the
+follower at every program angle (translating: axis radial at x = length/2 +
+s(θ); oscillating, seed 002: axis along the arm through the pivot (length/2,
+0, d), tilted by the swing θf).  The designed walls are the envelope of the
+roller over the revolution, at every radius from the groove bottom up to the
+outer radius (what the roller needs there, had it been long enough).
+
+Machine frame (DESIGN.md "Machine frames"): cam axis = machine X, Y = Z = 0
+on it, X0 at the left end face; a part point p sits at machine position
+Rx(a)·p, a = A (``a_axis = "right-hand"``) or −A ("left-hand"); the tool
+axis is (sin B, 0, cos B); X Y Z are the tool tip.  The follower at program
+angle θ sees the cam turned by a = σθ (σ = +1 ccw, −1 cw).
+
+How
+---
+At radius ρ a part point is (x, γ): γ its angle about X (from +Z, by the
+right-hand rule).  A pose puts it at machine angle β = γ + a, and the tool
+contains it when (closed form, ξ = x − X, η = ρ sin β + Y, ζ = ρ cos β − Z)
+
+    (ξ cos B − ζ sin B)² + η² ≤ r²   and   0 ≤ ξ sin B + ζ cos B ≤ length,
+
+an x-interval per (pose, γ).  The wall of the cut at (ρ, γ) is the extreme of
+that interval over the whole motion; the designed wall the same over the
+roller's motion.  Each is found by sampling the motion (the section of one
+sample moves at most ``pose_step_mm`` from the next) and refining the best
+sample by golden-section search between its neighbours (the motion parameter
+is continuous).  A local maximum whose best sample is beaten by another
+move's sample yet whose true value is higher is the only miss; it is bounded
+by the scallop of a circle of the tool radius stepped by the pose step,
+h²/(8r): ``sampling_bound_mm``.
+
+The deviation normal to the wall: in the developed plane at ρ (u = ρ·γ, x,
+a true length plane) the x-gap between cut and designed wall at one γ is
+turned to the normal by cos ψ (ψ the designed wall's slope there, from the
+envelope theorem), and from the in-plane normal to the 3-D normal of the
+wall surface by √(1 − n_r²), n_r the radial component of the designed wall's
+normal (the roller's surface normal at the contact).  The map uses this
+first-order form; the reported extremes are refined in γ and ρ by golden
+search and their in-plane distance taken exactly as the nearest point on the
+designed wall curve.
+
+Cam angles are reported as the program cam angle at which that part of the
+groove passes under the follower (u/ρ on the developed plane, 0…360°).
+
+Sign: positive = overcut (material removed beyond the designed wall),
+negative = material left (the designed wall not reached).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from camcam.geometry.cylindrical import BarrelOscillatingRoller, CylindricalCam
+
+__all__ = ["ToolPoses", "CylinderTool", "WallExtreme", "WallDeviation", "GrooveMeasurement", "measure_groove",
+           "poses_from_program", "poses_from_canon", "follower_poses", "A_AXIS_SENSE", "WALL_LABELS",
+           "design_walls", "cut_walls", "section_interval"]
+
+#: Sign of the part's turn for a positive A: Rx(sign·A).
+A_AXIS_SENSE = {"right-hand": 1, "left-hand": -1}
+
+WALL_LABELS = ("flank 0 (-X wall)", "flank 1 (+X wall)")
+
+_GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
+
+
+def _frozen(a, shape_tail=()) -> np.ndarray:
+    arr = np.array(a, dtype=float)
+    arr.setflags(write=False)
+    return arr
+
+
+@dataclass(frozen=True)
+class ToolPoses:
+    """Tool poses as printed: tip X Y Z (mm), A and B (degrees), in program order.
+
+    The tool moves linearly in every axis word from one pose to the next.
+
+    Examples
+    --------
+    >>> p = ToolPoses([[0.0, 0.0, 60.0], [10.0, 0.0, 60.0]], [0.0, 90.0], [0.0, 0.0])
+    >>> len(p), p.a_axis
+    (2, 'right-hand')
+    """
+
+    tip_mm: np.ndarray
+    a_deg: np.ndarray
+    b_deg: np.ndarray
+    a_axis: str = "right-hand"
+
+    def __post_init__(self) -> None:
+        tip = _frozen(self.tip_mm)
+        a = _frozen(self.a_deg)
+        b = _frozen(self.b_deg)
+        if tip.ndim != 2 or tip.shape[1] != 3 or len(tip) < 2:
+            raise ValueError(f"tip_mm must be (n, 3) with n ≥ 2, got shape {tip.shape}")
+        if a.shape != (len(tip),) or b.shape != (len(tip),):
+            raise ValueError(f"a_deg and b_deg must have {len(tip)} values, got {a.shape} and {b.shape}")
+        if not (np.all(np.isfinite(tip)) and np.all(np.isfinite(a)) and np.all(np.isfinite(b))):
+            raise ValueError("tool poses must be finite")
+        if np.any(np.abs(b) >= 90.0):
+            raise ValueError("B must stay within ±90°")
+        if self.a_axis not in A_AXIS_SENSE:
+            raise ValueError(f'a_axis must be "right-hand" or "left-hand", got {self.a_axis!r}')
+        object.__setattr__(self, "tip_mm", tip)
+        object.__setattr__(self, "a_deg", a)
+        object.__setattr__(self, "b_deg", b)
+
+    def __len__(self) -> int:
+        return len(self.a_deg)
+
+
+@dataclass(frozen=True)
+class CylinderTool:
+    """A flat end mill: ``radius_mm``, cutting length ``length_mm`` from the tip."""
+
+    radius_mm: float
+    length_mm: float
+
+    def __post_init__(self) -> None:
+        if not (self.radius_mm > 0 and self.length_mm > 0):
+            raise ValueError(f"tool radius and length must be > 0, got {self.radius_mm!r}, {self.length_mm!r}")
+
+
+@dataclass(frozen=True)
+class WallExtreme:
+    """A signed wall deviation (mm, + overcut) at radius ``radius_mm`` and program cam angle ``cam_angle_deg``."""
+
+    deviation_mm: float
+    radius_mm: float
+    cam_angle_deg: float
+
+    def describe(self) -> str:
+        return f"r = {self.radius_mm:.2f} mm, cam angle {self.cam_angle_deg:.2f}°"
+
+
+@dataclass(frozen=True)
+class WallDeviation:
+    """One wall's largest overcut and largest material left (both as signed deviations)."""
+
+    index: int
+    overcut: WallExtreme
+    material_left: WallExtreme
+
+    @property
+    def label(self) -> str:
+        return WALL_LABELS[self.index]
+
+    @property
+    def overcut_mm(self) -> float:
+        """Largest material removed beyond the wall (0 when the cut never passes it)."""
+        return max(self.overcut.deviation_mm, 0.0)
+
+    @property
+    def material_left_mm(self) -> float:
+        """Largest material left on the wall (0 when the cut always reaches it)."""
+        return max(-self.material_left.deviation_mm, 0.0)
+
+    @property
+    def worst(self) -> WallExtreme:
+        return self.overcut if self.overcut_mm >= self.material_left_mm else self.material_left
+
+    def as_dict(self) -> dict:
+        o, m = self.overcut, self.material_left
+        return {"wall": self.index, "label": self.label,
+                "overcut_mm": self.overcut_mm, "overcut_radius_mm": o.radius_mm,
+                "overcut_cam_angle_deg": o.cam_angle_deg,
+                "material_left_mm": self.material_left_mm, "material_left_radius_mm": m.radius_mm,
+                "material_left_cam_angle_deg": m.cam_angle_deg}
+
+
+@dataclass(frozen=True)
+class GrooveMeasurement:
+    """The 3-D wall deviation of a cut groove.
+
+    ``deviation_mm[w, i, j]``: wall w (0: −X, 1: +X) at ``radii_mm[i]`` and
+    program cam angle ``cam_angle_deg[j]``, normal to the wall (first order,
+    see the module notes); ``walls`` hold the refined extremes.
+    ``sampling_bound_mm`` bounds what the sampling of the motion may miss.
+    """
+
+    radii_mm: np.ndarray
+    cam_angle_deg: np.ndarray
+    deviation_mm: np.ndarray
+    walls: tuple[WallDeviation, WallDeviation]
+    sampling_bound_mm: float
+    pose_step_mm: float
+    uncut_points: int = 0
+
+    @property
+    def max_deviation_mm(self) -> float:
+        """The largest overcut or material left on either wall, mm."""
+        return max(max(w.overcut_mm, w.material_left_mm) for w in self.walls)
+
+    @property
+    def worst(self) -> WallDeviation:
+        return max(self.walls, key=lambda w: max(w.overcut_mm, w.material_left_mm))
+
+    def where(self) -> str:
+        """Where the largest figure is, in words."""
+        w = self.worst
+        kind = "overcut" if w.overcut_mm >= w.material_left_mm else "material left"
+        return f"{kind} on {w.label}, {w.worst.describe()}"
+
+    def as_dict(self) -> dict:
+        return {"max_deviation_mm": self.max_deviation_mm, "sampling_bound_mm": self.sampling_bound_mm,
+                "pose_step_mm": self.pose_step_mm, "radii_mm": [float(r) for r in self.radii_mm],
+                "angle_step_deg": float(self.cam_angle_deg[1] - self.cam_angle_deg[0]),
+                "uncut_points": self.uncut_points, "walls": [w.as_dict() for w in self.walls]}
+
+
+# -- poses from text -----------------------------------------------------------------------
+_WORD = re.compile(r"([A-Z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
+_COMMENT = re.compile(r"\([^)]*\)|;.*$")
+
+
+def poses_from_program(text: str, a_axis: str = "right-hand", assume: dict | None = None) -> ToolPoses:
+    """Tool poses read back from a printed G-code program (G0/G1 with X Y Z A B, modal).
+
+    Poses start once X, Y, Z and A are all known (B is 0 until given);
+    ``assume`` gives axis values a program never prints (e.g. ``{"Y": 0.0}``
+    for a program that leaves Y where the machine has it).
+    Arcs (G2/G3) are refused: a barrel-cam program has none.
+
+    Examples
+    --------
+    >>> p = poses_from_program("G0 X0 Y0 Z60 A0\\nG1 X10 A90 F3\\nM2\\n")
+    >>> p.tip_mm.tolist(), p.a_deg.tolist()
+    ([[0.0, 0.0, 60.0], [10.0, 0.0, 60.0]], [0.0, 90.0])
+    """
+    pos = {"X": None, "Y": None, "Z": None, "A": None, "B": 0.0}
+    pos.update(assume or {})
+    motion = None
+    rows = []
+    for raw in text.splitlines():
+        line = _COMMENT.sub("", raw.upper()).strip()
+        if not line or line.startswith("%") or line.startswith("O"):
+            continue
+        words = _WORD.findall(line)
+        moved = False
+        for letter, num in words:
+            if letter == "G":
+                g = float(num)
+                if g in (0.0, 1.0):
+                    motion = int(g)
+                elif g in (2.0, 3.0):
+                    raise ValueError(f"arc move in a barrel-cam program: {raw.strip()!r}")
+            elif letter in pos:
+                pos[letter] = float(num)
+                moved = True
+        if moved and motion is not None and all(pos[k] is not None for k in "XYZA"):
+            rows.append((pos["X"], pos["Y"], pos["Z"], pos["A"], pos["B"]))
+    if len(rows) < 2:
+        raise ValueError("the program positions X, Y, Z and A fewer than twice")
+    arr = np.array(rows)
+    return ToolPoses(arr[:, :3], arr[:, 3], arr[:, 4], a_axis)
+
+
+def poses_from_canon(moves, a_axis: str = "right-hand") -> ToolPoses:
+    """Tool poses from rs274's canonical moves (:func:`camcam.verify.rs274.run_rs274`)."""
+    rows = []
+    for m in moves:
+        if m.kind == "arc":
+            raise ValueError("arc move in an interpreted barrel-cam program")
+        rows.append((m.x, m.y, m.z, m.a, float(getattr(m, "b", 0.0))))
+    arr = np.array(rows)
+    return ToolPoses(arr[:, :3], arr[:, 3], arr[:, 4], a_axis)
+
+
+# -- the section of a posed cylinder on the cylinder r = ρ ---------------------------------
+def section_interval(X, Y, Z, a, B, r, L, rho, gamma):
+    """x-interval (lo, hi) of a posed cylinder on r = ρ at part angle γ; NaN where it misses."""
+    beta = gamma + a
+    sb, cb = np.sin(B), np.cos(B)
+    eta = rho * np.sin(beta) + Y
+    zeta = rho * np.cos(beta) - Z
+    q2 = r * r - eta * eta
+    q = np.sqrt(np.maximum(q2, 0.0))
+    lo = (zeta * sb - q) / cb
+    hi = (zeta * sb + q) / cb
+    tilted = np.abs(sb) > 1e-15
+    safe = np.where(tilted, sb, 1.0)
+    e0 = -zeta * cb / safe  # axial position 0 (the tip plane)
+    e1 = (L - zeta * cb) / safe  # axial position L
+    alo = np.where(sb > 0, e0, e1)
+    ahi = np.where(sb > 0, e1, e0)
+    lo = np.where(tilted, np.maximum(lo, alo), lo)
+    hi = np.where(tilted, np.minimum(hi, ahi), hi)
+    ok = (q2 >= 0) & (lo <= hi) & (tilted | ((zeta >= 0) & (zeta <= L)))
+    return np.where(ok, X + lo, np.nan), np.where(ok, X + hi, np.nan)
+
+
+def _side(X, Y, Z, a, B, r, L, rho, gamma, side):
+    """The wall-side extent: hi for side 1, −lo for side 0 (both maximised); −inf where it misses."""
+    lo, hi = section_interval(X, Y, Z, a, B, r, L, rho, gamma)
+    v = hi if side == 1 else -lo
+    return np.where(np.isnan(v), -np.inf, v)
+
+
+class _Motion:
+    """A continuous motion p ↦ pose (X, Y, Z, a, B) of a cylinder (r, L)."""
+
+    r: float
+    L: float
+    periodic: bool
+    p_lo: float
+    p_hi: float
+
+    def pose(self, p):
+        raise NotImplementedError
+
+    def samples(self, pose_step_mm: float, rho_max: float) -> np.ndarray:
+        raise NotImplementedError
+
+    def clamp(self, p):
+        return p if self.periodic else np.clip(p, self.p_lo, self.p_hi)
+
+
+class _ProgramMotion(_Motion):
+    periodic = False
+
+    def __init__(self, poses: ToolPoses, tool: CylinderTool):
+        self.r, self.L = tool.radius_mm, tool.length_mm
+        s = A_AXIS_SENSE[poses.a_axis]
+        self.q = np.column_stack([poses.tip_mm, s * np.radians(poses.a_deg), np.radians(poses.b_deg)])
+        self.p_lo, self.p_hi = 0.0, float(len(self.q) - 1)
+
+    def pose(self, p):
+        p = np.asarray(p, float)
+        k = np.clip(np.floor(p).astype(int), 0, len(self.q) - 2)
+        t = (p - k)[..., None]
+        v = self.q[k] * (1 - t) + self.q[k + 1] * t
+        return tuple(v[..., i] for i in range(5))
+
+    def samples(self, pose_step_mm, rho_max):
+        d = np.abs(np.diff(self.q, axis=0))
+        size = d[:, 0] + d[:, 1] + d[:, 2] + rho_max * d[:, 3] + (self.L + self.r) * d[:, 4]
+        m = np.maximum(1, np.ceil(size / pose_step_mm)).astype(int)
+        starts = np.repeat(np.arange(len(m)), m)
+        frac = np.arange(m.sum()) - np.repeat(np.cumsum(m) - m, m)
+        p = starts + frac / np.repeat(m, m)
+        return np.append(p, self.p_hi)
+
+
+class _RollerMotion(_Motion):
+    """The roller at program angle θ = p (radians), exactly."""
+
+    periodic = True
+
+    def __init__(self, cam: CylindricalCam):
+        self.cam = cam
+        self.r = cam.roller_radius
+        f = cam.follower
+        self.osc = isinstance(f, BarrelOscillatingRoller)
+        self.d = f.pivot_distance if self.osc else 0.0
+        self.L = 2.0 * self.d if self.osc else 2.0 * cam.base_radius
+        self.p_lo, self.p_hi = 0.0, 2 * math.pi
+
+    def pose(self, p):
+        th = np.asarray(p, float)
+        flat = np.mod(th.ravel(), 2 * math.pi)
+        s = self.cam.lift(flat, 0).value.reshape(th.shape)
+        a = self.cam.sigma * th
+        half = 0.5 * self.cam.length
+        zero = np.zeros_like(th)
+        if not self.osc:
+            return half + s, zero, zero, a, zero
+        # axis through the pivot (half, 0, d) along (sin θf, 0, cos θf); tip at the pivot's depth d below it
+        return half - self.d * np.sin(s), zero, self.d - self.d * np.cos(s), a, s
+
+    def samples(self, pose_step_mm, rho_max):
+        n = int(math.ceil(2 * math.pi * (rho_max + self._speed()) / pose_step_mm))
+        return np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+
+    def _speed(self) -> float:
+        """Largest |dx/dθ| of the roller axis (mm/rad), from a dense view (sets only the sample count)."""
+        th = np.linspace(0, 2 * math.pi, 4001)
+        v = np.abs(self.cam.lift(th, 1).d[1]).max()
+        return float(v * (self.d + self.r if self.osc else 1.0))
+
+
+def follower_poses(cam: CylindricalCam, theta) -> tuple:
+    """The roller's pose (X, Y, Z, a, B) at program angles ``theta`` (rad) in the machine frame (a, B in rad)."""
+    return _RollerMotion(cam).pose(theta)
+
+
+# -- envelopes -----------------------------------------------------------------------------
+#: Golden-section steps refining a motion extreme between two samples (bracket × 0.618²⁰ ≈ 7e-5).
+_MOTION_STEPS = 20
+
+
+@dataclass(frozen=True)
+class _Envelope:
+    value: np.ndarray  # (k,) the wall extent (hi, or −lo), −inf where nothing reaches
+    p: np.ndarray  # (k,) motion parameter of the extreme, NaN where nothing reaches
+
+
+def _golden(f, lo, hi, iterations: int):
+    """Vectorised golden-section maximisation of f on [lo, hi] (arrays); returns (p, f(p))."""
+    a, b = np.array(lo, float), np.array(hi, float)
+    c = b - _GOLDEN * (b - a)
+    d = a + _GOLDEN * (b - a)
+    fc, fd = f(c), f(d)
+    for _ in range(iterations):
+        left = fc >= fd  # keep [a, d]
+        b = np.where(left, d, b)
+        a = np.where(left, a, c)
+        c_new = b - _GOLDEN * (b - a)
+        d_new = a + _GOLDEN * (b - a)
+        c2 = np.where(left, c_new, d)
+        d2 = np.where(left, c, d_new)
+        f_new = f(np.where(left, c_new, d_new))
+        fc, fd = np.where(left, f_new, fd), np.where(left, fc, f_new)
+        c, d = c2, d2
+    best = np.where(fc >= fd, c, d)
+    return best, np.maximum(fc, fd)
+
+
+def _reachable(poses: tuple, r: float, rho: float) -> np.ndarray:
+    """Samples whose cylinder can reach the cylinder r = ρ (a conservative test)."""
+    X, Y, Z, a, B = poses
+    return (Z - r * np.abs(np.sin(B)) <= rho) & (np.abs(Y) <= rho + r)
+
+
+def _envelope(motion: _Motion, samples: np.ndarray, poses: tuple, rho: float, gamma: np.ndarray,
+              iterations: int = _MOTION_STEPS) -> tuple[_Envelope, _Envelope]:
+    """The extreme wall extents over the motion at each γ: (side 0: −lo, side 1: hi).
+
+    ``gamma`` is either a full periodic grid (ascending or descending) or a few scattered angles.
+    """
+    g0, dg, regular = _grid_of(gamma)
+    if regular and dg < 0:
+        e = _envelope(motion, samples, poses, rho, gamma[::-1], iterations)
+        return tuple(_Envelope(x.value[::-1], x.p[::-1]) for x in e)
+    X, Y, Z, a, B = poses
+    r, L = motion.r, motion.L
+    k = len(gamma)
+    keep = np.nonzero(_reachable(poses, r, rho))[0]
+    # β window of a sample: |ρ sin β + Y| ≤ r
+    lo_s = np.arcsin(np.clip((-r - Y[keep]) / rho, -1, 1))
+    hi_s = np.arcsin(np.clip((r - Y[keep]) / rho, -1, 1))
+    ak = a[keep]
+    best_v = np.full((2, k), -np.inf)
+    best_j = np.full((2, k), -1)
+    if regular:
+        i0 = np.ceil((lo_s - ak - g0) / dg).astype(int)
+        i1 = np.minimum(np.floor((hi_s - ak - g0) / dg).astype(int), i0 + k - 1)
+        cnt = np.maximum(i1 - i0 + 1, 0)
+        chunk = max(1, int(2_000_000 // max(1, int(cnt.mean()) + 1)))
+        for s0 in range(0, len(keep), chunk):
+            c = cnt[s0:s0 + chunk]
+            loc = np.repeat(np.arange(s0, s0 + len(c)), c)
+            ii = np.repeat(i0[s0:s0 + chunk], c) + (np.arange(c.sum()) - np.repeat(np.cumsum(c) - c, c))
+            js = keep[loc]
+            lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, g0 + ii * dg)
+            ii = np.mod(ii, k)
+            for side, v in ((0, -lo), (1, hi)):
+                _scatter_best(ii, np.where(np.isnan(v), -np.inf, v), js, best_v[side], best_j[side])
+    else:
+        for i in range(k):
+            d_lo = np.mod(gamma[i] + ak - lo_s + math.pi, 2 * math.pi) - math.pi
+            d_hi = np.mod(hi_s - gamma[i] - ak + math.pi, 2 * math.pi) - math.pi
+            js = keep[(d_lo >= 0) & (d_hi >= 0)]
+            if len(js) == 0:
+                continue
+            lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, gamma[i])
+            for side, v in ((0, -lo), (1, hi)):
+                v = np.where(np.isnan(v), -np.inf, v)
+                m = int(np.argmax(v))
+                if np.isfinite(v[m]):
+                    best_v[side, i], best_j[side, i] = v[m], js[m]
+    return tuple(_refine_motion(motion, samples, rho, gamma, side, best_v[side], best_j[side], iterations)
+                 for side in (0, 1))
+
+
+def _refine_motion(motion, samples, rho, gamma, side, best_v, best_j, iterations) -> _Envelope:
+    """Golden-section refinement of each γ's best sample between its two neighbours."""
+    k = len(gamma)
+    found = best_j >= 0
+    p = np.full(k, np.nan)
+    if not found.any():
+        return _Envelope(best_v, p)
+    j = best_j[found]
+    n = len(samples)
+    if motion.periodic:
+        lo_p = np.where(j > 0, samples[np.maximum(j - 1, 0)], samples[-1] - 2 * math.pi)
+        hi_p = np.where(j < n - 1, samples[np.minimum(j + 1, n - 1)], samples[0] + 2 * math.pi)
+    else:
+        lo_p = samples[np.maximum(j - 1, 0)]
+        hi_p = samples[np.minimum(j + 1, n - 1)]
+    g = gamma[found]
+
+    def f(pp):
+        return _side(*motion.pose(motion.clamp(pp)), motion.r, motion.L, rho, g, side)
+
+    pr, vr = _golden(f, lo_p, hi_p, iterations)
+    better = vr > best_v[found]
+    v_out = best_v.copy()
+    v_out[found] = np.where(better, vr, best_v[found])
+    p[found] = np.where(better, pr, samples[j])
+    return _Envelope(v_out, p)
+
+
+def _grid_of(gamma: np.ndarray):
+    k = len(gamma)
+    if k >= 8:
+        dg = (gamma[-1] - gamma[0]) / (k - 1)
+        if abs(abs(dg * k) - 2 * math.pi) < 1e-9 and np.allclose(np.diff(gamma), dg, atol=1e-12):
+            return float(gamma[0]), float(dg), True
+    return 0.0, 1.0, False
+
+
+def _scatter_best(ii, v, js, best_v, best_j):
+    """best_v[i] = max over the pairs with index i (and a sample that gives it)."""
+    if len(ii) == 0:
+        return
+    before = best_v.copy()
+    np.maximum.at(best_v, ii, v)
+    hit = (v == best_v[ii]) & (v > before[ii])
+    best_j[ii[hit]] = js[hit]
+
+
+# -- the measurement -----------------------------------------------------------------------
+class _Setup:
+    """Cam, design and cut motions with their samples, for evaluating walls at any (ρ, γ)."""
+
+    def __init__(self, cam, tool, poses, pose_step_mm):
+        self.cam = cam
+        self.sigma = cam.sigma
+        self.design = _RollerMotion(cam)
+        self.cut = _ProgramMotion(poses, tool)
+        rmax = cam.base_radius
+        self.ds = self.design.samples(pose_step_mm, rmax)
+        self.dposes = self.design.pose(self.ds)
+        self.cs = self.cut.samples(pose_step_mm, rmax)
+        self.cposes = self.cut.pose(self.cs)
+
+    def gamma(self, cam_angle_rad):
+        """Part angle γ of the groove point passing under the follower at program cam angle θc."""
+        return -self.sigma * np.asarray(cam_angle_rad, float)
+
+    def design_walls(self, rho, gamma):
+        return _envelope(self.design, self.ds, self.dposes, rho, gamma)
+
+    def cut_walls(self, rho, gamma):
+        return _envelope(self.cut, self.cs, self.cposes, rho, gamma)
+
+    def slope_and_normal(self, rho, gamma, theta, side):
+        """cos ψ of the designed wall in the developed plane and √(1 − n_r²) at (ρ, γ), contact at θ."""
+        X, Y, Z, a, B = self.design.pose(theta)
+        r, L = self.design.r, self.design.L
+        h = 1e-6
+        vp = _side(X, Y, Z, a, B, r, L, rho, gamma + h, side)
+        vm = _side(X, Y, Z, a, B, r, L, rho, gamma - h, side)
+        v0 = _side(X, Y, Z, a, B, r, L, rho, gamma, side)
+        slope = (vp - vm) / (2 * h * rho)  # dx/du at fixed θ: the envelope's slope (envelope theorem)
+        cos_psi = 1.0 / np.sqrt(1.0 + slope**2)
+        # the wall point and the roller's surface normal there (machine frame at pose θ)
+        x = v0 if side == 1 else -v0
+        beta = gamma + a
+        P = np.stack([x, -rho * np.sin(beta), rho * np.cos(beta)], axis=-1)
+        w = np.stack([np.sin(B), np.zeros_like(B), np.cos(B)], axis=-1)
+        d = P - np.stack([X, Y, Z], axis=-1)
+        nvec = d - np.sum(d * w, axis=-1, keepdims=True) * w
+        nvec /= np.linalg.norm(nvec, axis=-1, keepdims=True)
+        er = np.stack([np.zeros_like(beta), -np.sin(beta), np.cos(beta)], axis=-1)
+        nr = np.sum(nvec * er, axis=-1)
+        return cos_psi, np.sqrt(np.maximum(1.0 - nr**2, 0.0))
+
+    def deviations(self, rho, cam_angle_rad):
+        """First-order signed deviations (+ overcut) normal to both walls at (ρ, θc): ((k,), (k,)), uncut mask."""
+        g = self.gamma(cam_angle_rad)
+        cut = self.cut_walls(rho, g)
+        des = self.design_walls(rho, g)
+        width = des[0].value + des[1].value  # hi − lo of the designed groove
+        uncut = ~np.isfinite(cut[0].value)
+        out = []
+        for side in (0, 1):
+            cos_psi, f3 = self.slope_and_normal(rho, g, des[side].p, side)
+            gap = np.where(uncut, -width, cut[side].value - des[side].value)
+            out.append(gap * cos_psi * f3)
+        return out, uncut
+
+    def deviation(self, rho, cam_angle_rad, side):
+        return self.deviations(rho, cam_angle_rad)[0][side]
+
+    def exact_deviation(self, rho, cam_angle_rad, side):
+        """Signed 3-D deviation at one (ρ, θc): the nearest point on the designed wall curve at ρ."""
+        g = float(self.gamma(cam_angle_rad))
+        cut = self.cut_walls(rho, np.array([g]))[side]
+        if not np.isfinite(cut.value[0]):
+            return float(self.deviation(rho, np.array([cam_angle_rad]), side)[0])
+        des = self.design_walls(rho, np.array([g]))[side]
+        xc = cut.value[0]
+        cos_psi, f3 = self.slope_and_normal(rho, np.array([g]), des.p, side)
+        span = 3.0 * abs(xc - des.value[0]) / rho + 1e-9
+        gg = g + np.linspace(-span, span, 41)
+        dd = self.design_walls(rho, gg)[side].value
+        d2 = (rho * (gg - g)) ** 2 + (dd - xc) ** 2
+        _, best = _parabola_min(gg, d2)
+        sign = 1.0 if xc >= des.value[0] else -1.0
+        return sign * math.sqrt(max(best, 0.0)) * float(f3[0])
+
+
+def _parabola_min(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
+    """The smallest sample of y(x) on an even grid, moved to the vertex of the parabola through it and its neighbours."""
+    j = int(np.argmin(y))
+    if 0 < j < len(y) - 1:
+        y0, y1, y2 = y[j - 1], y[j], y[j + 1]
+        den = y0 - 2 * y1 + y2
+        if den > 0:
+            t = 0.5 * (y0 - y2) / den  # in grid steps, |t| ≤ 1/2
+            return float(x[j] + t * (x[1] - x[0])), float(y1 - 0.25 * (y0 - y2) * t)
+    return float(x[j]), float(y[j])
+
+
+def _refine(setup: _Setup, side: int, rho0: float, th0: float, sign: float, rho_lo: float, rho_hi: float,
+            d_rho: float, d_th: float) -> tuple[float, float, float]:
+    """Refine the grid extreme of sign·deviation at (ρ0, θc0): local grids in θc, then ρ, then θc again.
+
+    Returns (ρ, θc, exact signed deviation there).
+    """
+    def best_th(rho, th, half, n):
+        tt = th + np.linspace(-half, half, n)
+        v = sign * setup.deviation(rho, tt, side)
+        return _parabola_min(tt, -v)[0]
+
+    th = best_th(rho0, th0, d_th, 33)
+    lo, hi = max(rho_lo, rho0 - d_rho), min(rho_hi, rho0 + d_rho)
+    rr = np.linspace(lo, hi, 9)
+    vals = np.array([sign * setup.deviation(float(x), np.array([th]), side)[0] for x in rr])
+    rho = float(rr[int(np.argmax(vals))])
+    th = best_th(rho, th, d_th / 8, 17)
+    return rho, th, setup.exact_deviation(rho, th, side)
+
+
+def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *, radii: int | np.ndarray = 11,
+                   angle_step_deg: float = 0.25, pose_step_mm: float = 0.1) -> GrooveMeasurement:
+    """Measure the groove the poses cut against the designed groove: both walls, all radii, all angles.
+
+    Parameters
+    ----------
+    cam : CylindricalCam
+    tool : CylinderTool
+        The flat end mill.
+    poses : ToolPoses
+        The program's poses as printed.
+    radii : int or array
+        Radii of the map: a count from the groove bottom to the outer radius, or the radii (mm).
+    angle_step_deg : float
+        Cam-angle step of the map (must divide 360).
+    pose_step_mm : float
+        Largest step of a tool section between motion samples before refinement.
+
+    Returns
+    -------
+    GrooveMeasurement
+        The map and, per wall, the largest overcut and material left, refined off the grid.
+
+    Examples
+    --------
+    A roller-sized tool posed like the roller (tip 10 mm under the groove bottom) cuts the designed groove:
+
+    >>> from camcam.geometry.cylindrical import BarrelTranslatingRoller, CylindricalCam
+    >>> from camcam.motion.catalog import make_law
+    >>> from camcam.motion.program import MotionProgram, Segment
+    >>> law = make_law("cycloidal")
+    >>> prog = MotionProgram((Segment(law, 0, 180, 20.0), Segment(law, 180, 360, -20.0, 20.0)), rpm=60)
+    >>> cam = CylindricalCam(BarrelTranslatingRoller(8.0), prog, 50.0, 80.0, 10.0)
+    >>> X, Y, Z, a, B = follower_poses(cam, np.radians(np.arange(0.0, 360.01, 0.1)))
+    >>> poses = ToolPoses(np.stack([X, Y, Z + 30.0], axis=-1), np.degrees(a), np.degrees(B))
+    >>> m = measure_groove(cam, CylinderTool(8.0, 40.0), poses, radii=3, angle_step_deg=2.0)
+    >>> bool(m.max_deviation_mm < 1e-4)  # chords 0.1° apart: s″·Δθ²/8 ≤ 2e-5 mm
+    True
+    """
+    n_ang = int(round(360.0 / angle_step_deg))
+    if abs(n_ang * angle_step_deg - 360.0) > 1e-9:
+        raise ValueError(f"angle_step_deg must divide 360, got {angle_step_deg!r}")
+    rb, R = cam.bottom_radius, cam.base_radius
+    rad = np.linspace(rb, R, int(radii)) if np.ndim(radii) == 0 else np.asarray(radii, float)
+    th = np.radians(np.arange(n_ang) * angle_step_deg)
+    setup = _Setup(cam, tool, poses, pose_step_mm)
+    dev = np.empty((2, len(rad), n_ang))
+    uncut = 0
+    for i, rho in enumerate(rad):
+        (d0, d1), u = setup.deviations(float(rho), th)  # wall 0 = −X (flank 0), wall 1 = +X (flank 1)
+        dev[0, i], dev[1, i] = d0, d1
+        uncut += int(u.sum())
+    d_rho = (rad[-1] - rad[0]) / max(len(rad) - 1, 1)
+    d_th = math.radians(angle_step_deg)
+    walls = []
+    for side in (0, 1):
+        ext = []
+        for sign in (1.0, -1.0):
+            flat = int(np.argmax(sign * dev[side]))
+            i, j = np.unravel_index(flat, dev[side].shape)
+            grid_v = float(dev[side, i, j])
+            if np.isfinite(grid_v) and abs(grid_v) < 0.5 * cam.roller_radius:
+                rho, t, v = _refine(setup, side, float(rad[i]), float(th[j]), sign, float(rad[0]), float(rad[-1]),
+                                    d_rho, d_th)
+                if sign * grid_v > sign * v:  # the refined figure never reports less than the grid found
+                    rho, t, v = float(rad[i]), float(th[j]), grid_v
+            else:  # nothing cut there: the figure is the groove width, no refinement
+                rho, t, v = float(rad[i]), float(th[j]), grid_v
+            ext.append(WallExtreme(float(v), float(rho), float(math.degrees(t) % 360.0)))
+        walls.append(WallDeviation(side, ext[0], ext[1]))
+    bound = pose_step_mm**2 / (8.0 * tool.radius_mm)
+    return GrooveMeasurement(_frozen(rad), _frozen(np.degrees(th)), _frozen(dev), (walls[0], walls[1]),
+                             float(bound), float(pose_step_mm), uncut)
+
+
+def design_walls(cam: CylindricalCam, radius_mm: float, cam_angle_deg, pose_step_mm: float = 0.1) -> np.ndarray:
+    """The designed walls' x (−X wall, +X wall) at radius ρ and program cam angles θc: (n, 2), mm."""
+    motion = _RollerMotion(cam)
+    s = motion.samples(pose_step_mm, cam.base_radius)
+    g = -cam.sigma * np.radians(np.atleast_1d(np.asarray(cam_angle_deg, float)))
+    e0, e1 = _envelope(motion, s, motion.pose(s), float(radius_mm), g)
+    return np.stack([-e0.value, e1.value], axis=-1)
+
+
+def cut_walls(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, radius_mm: float, cam_angle_deg,
+              pose_step_mm: float = 0.1) -> np.ndarray:
+    """The cut walls' x (−X wall, +X wall) at radius ρ and program cam angles θc: (n, 2), mm; NaN where uncut."""
+    motion = _ProgramMotion(poses, tool)
+    s = motion.samples(pose_step_mm, cam.base_radius)
+    g = -cam.sigma * np.radians(np.atleast_1d(np.asarray(cam_angle_deg, float)))
+    e0, e1 = _envelope(motion, s, motion.pose(s), float(radius_mm), g)
+    out = np.stack([-e0.value, e1.value], axis=-1)
+    return np.where(np.isfinite(out), out, np.nan)
