@@ -52,7 +52,9 @@ class OutputSet:
         return list(self._files)
 
     def contents(self) -> dict[str, bytes]:
-        """The files added so far, by name (a copy), e.g. to send them elsewhere to be written."""
+        """The files added so far as bytes, by name (plots still being drawn are collected first),
+        e.g. to send them to another process to be written."""
+        self._files = {name: resolve(data) for name, data in self._files.items()}
         return dict(self._files)
 
     def commit(self) -> list[Path]:
