@@ -32,13 +32,15 @@ def nc_step(out, spec, built, report: dict):
     from camcam.export.nc import nc_files
     from camcam.nc import machine
 
-    result = machine(built, spec.machining, spec.name)
+    result = machine(built, spec.machining, spec.name, spec.stock)
     for name, data in nc_files(built, result).items():
         out.add(name, data)
     nc = result.figures()
     for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks"):
         report[key] = nc[key]
     report["machining"] = nc
+    if "material" in nc:
+        report["material"] = nc["material"]
     for note in result.notes:
         warn(note)
     return result
@@ -136,6 +138,11 @@ def run(args) -> int:
                 where = (" (both walls, every radius)" if "flank_deviation" in c["machining"] else "")
                 print(f"NC: {c['line_blocks']} line + {c['arc_blocks']} arc blocks (lower bound {c['lower_bound_blocks']:.1f}), "
                       f"{what} {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm{where} on the printed program")
+            if "material" in c:
+                mt = c["material"]
+                print(f"material: {mt['blank']['description']}; {len(mt['passes'])} passes, largest engagement "
+                      f"{mt['max_engagement_mm']:.3f} mm of {mt['stepover_mm']:g} mm, {mt['plunges_into_material']} "
+                      f"plunges into material, left {mt['material_left_mm']:.4f} mm, overcut {mt['overcut_mm']:.4f} mm")
 
     with progress.step("writing files"):
         publish(out, summary, args.json, show, (verdict.line(),) if verdict.checks else ())

@@ -16,7 +16,7 @@ from camcam.geometry.mesh import cylinder_mesh, disc_mesh, groove_mesh, ring_poi
 from camcam.motion.program import MotionProgram
 from camcam.geometry.params import CamSpec, FollowerSpec
 
-__all__ = ["BuiltCam", "build_cam", "disc_follower"]
+__all__ = ["BuiltCam", "build_cam", "disc_follower", "groove_outer_radius"]
 
 
 @dataclass(frozen=True)
@@ -83,8 +83,12 @@ def build_cam(c: CamSpec, f: FollowerSpec, program: MotionProgram) -> BuiltCam:
         return BuiltCam(disc, analyse(disc), disc_mesh(disc, c.thickness, c.bore), c)
     cam = GrooveCam(disc, c.groove_depth)
     check_undercut(cam)
-    outer = c.outer_radius
-    if outer is None:
-        _, pts = ring_points(cam.flanks[1])
-        outer = float(np.ceil(np.hypot(pts[:, 0], pts[:, 1]).max() + cam.roller_radius))
-    return BuiltCam(cam, analyse(cam), groove_mesh(cam, c.thickness, c.bore, outer), c)
+    return BuiltCam(cam, analyse(cam), groove_mesh(cam, c.thickness, c.bore, groove_outer_radius(cam, c)), c)
+
+
+def groove_outer_radius(cam: GrooveCam, c: CamSpec) -> float:
+    """A face-groove cam's outside radius: ``cam.outer_radius``, or the outer flank's reach plus a roller radius of wall."""
+    if c.outer_radius is not None:
+        return c.outer_radius
+    _, pts = ring_points(cam.flanks[1])
+    return float(np.ceil(np.hypot(pts[:, 0], pts[:, 1]).max() + cam.roller_radius))

@@ -1,12 +1,20 @@
 """The machining job: a built cam and its ``[machining]`` settings → contours, passes, program.
 
-Disc cams: the tool-centre curve is the profile offset by the tool radius away
-from the material (``offset_profile(r_t)``), cut with tangent leads on the free
-side.  Face grooves: a tool as wide as the groove (diameter = 2 · roller
-radius) cuts it in one centre pass along the pitch curve; a narrower one cuts
-a centre pass, then each flank at ``offset_flank(i, r_t)`` (:mod:`camcam.nc.tools`),
-all plunged inside the groove without leads.  Cylindrical cams:
-:mod:`camcam.nc.rotary`.
+Disc cams are cut from the blank of ``[stock]`` (:mod:`camcam.nc.stock`): at
+every depth level a roughing spiral from the blank to the finish allowance
+(:mod:`camcam.nc.roughing`), then the finish contour, the profile offset by
+the tool radius away from the material (``offset_profile(r_t)``), cut with
+tangent leads on the free side, then the optional spring pass.  Face
+grooves: a tool as wide as the groove (diameter = 2 · roller radius) cuts it
+in one centre pass along the pitch curve (a stated slot); a narrower one
+cuts a centre pass, rough offsets no more than the stepover apart, then each
+flank at ``offset_flank(i, r_t)`` (:mod:`camcam.nc.tools`); every groove pass
+is ramped down along its contour at no more than the ramp angle.  With
+``[machining] bore = true`` the bore is cut as a helical bore
+(:mod:`camcam.nc.bore`).  Cylindrical cams: :mod:`camcam.nc.rotary`.
+
+The printed program is read back and checked against the blank, 2.5-D
+(:mod:`camcam.nc.removal`); its figures are checks of the job.
 
 Every contour is fitted at the spec's tolerance with the post's printed
 rounding (:attr:`Post.quantizer`) and arc sweep; its deviation is measured on
@@ -15,15 +23,23 @@ the path the post prints.
 
 from __future__ import annotations
 
+import math
+from dataclasses import replace
+
 import numpy as np
 
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
+from camcam.nc.bore import bore_circle_radius, bore_curve, bore_passes
+from camcam.nc.passes import finish_moves, ramp_loop_passes, spiral_moves, with_markers
+from camcam.nc.removal import check_program
 from camcam.nc.result import MachiningResult, deviation_checks
-from camcam.nc.tools import check_profile_tool, groove_passes, job_title
+from camcam.nc.roughing import RING_STEP_FRACTION, disc_spiral
 from camcam.nc.settings import MachiningSpec
+from camcam.nc.stock import DEFAULT_STOCK, StockSpec, blank_for
+from camcam.nc.tools import check_profile_tool, groove_passes, job_title
 from camcam.toolpath.contours import CutContour, fit_printed
-from camcam.toolpath.path import contour_toolpath, join_toolpaths, slot_toolpath
+from camcam.toolpath.path import Pass, Rapid, Toolpath, depth_levels
 
 __all__ = ["machine"]
 
@@ -34,7 +50,7 @@ def _stock_side(curve, free_dir: np.ndarray) -> str:
     return "right" if float(n @ free_dir) > 0 else "left"
 
 
-def _disc_plan(built: BuiltCam, r_t: float):
+def _disc_plan(built: BuiltCam, r_t: float, stepover_mm: float):
     """[(label, tool-centre curve, offset, free direction at t=0 or None for a groove pass, pass kind)]."""
     cam, kind = built.cam, built.spec.kind
     away = cam.normal(np.array([0.0]))[0]  # away from the material of the profile / inner flank
@@ -44,12 +60,17 @@ def _disc_plan(built: BuiltCam, r_t: float):
     r_r = cam.roller_radius
     if groove_passes(r_t, r_r) == "centre":
         return [("groove centre", cam.pitch, r_r, None, "slot")]
-    return [("groove centre (rough)", cam.pitch, r_r, None, "slot"),
+    step = RING_STEP_FRACTION * stepover_mm
+    span = r_r - r_t  # from the centre line to a flank pass
+    n = max(0, math.ceil(span / step - 1e-9) - 1)  # rough offsets between them, no more than the step apart
+    rough = [(f"groove rough {side} {j}", cam.offset_flank(i, r_r - span * j / (n + 1)), r_t, None, "rough")
+             for i, side in ((0, "inner"), (1, "outer")) for j in range(1, n + 1)]
+    return [("groove centre (rough)", cam.pitch, r_r, None, "slot"), *rough,
             ("inner flank", cam.offset_flank(0, r_t), r_t, None, "finish"),
             ("outer flank", cam.offset_flank(1, r_t), r_t, None, "finish")]
 
 
-def machine(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
+def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK) -> MachiningResult:
     """Tool-centre curves, fitted contours, passes and program for ``built`` (no I/O).
 
     Parameters
@@ -60,6 +81,8 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
         The validated ``[machining]`` table.
     name : str
         The job name (program title and file names).
+    stock : StockSpec
+        The blank (``[stock]``; default: round, 2 mm over the cam's largest radius).
 
     Returns
     -------
@@ -70,6 +93,9 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
     GeometryError
         A tool too large for a concave part of the profile, wider than a
         groove, or too small to clear it.
+    SpecError
+        A blank smaller than the cam, a bore larger than the base circle minus
+        the roller, a helical bore the tool does not fit.
     FitError, PostError
         Faults of the fitter or the writer on valid input.
     """
@@ -79,21 +105,59 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
         return machine_cylindrical(built, m, name)
     post, r_t = m.post, m.tool_diameter_mm / 2
     title = job_title(name, built.spec.kind, built.cam.kind, m.tool_diameter_mm, m.mode, m.tolerance_mm, post.name)
-    contours, paths = [], []
-    for k, (label, curve, offset, free, kind) in enumerate(_disc_plan(built, r_t)):
+    blank = blank_for(built, stock, m.tool_diameter_mm, m.bore)
+    z_clear = blank.top_z_mm + m.clearance_z_mm
+    levels = depth_levels(m.cut_settings())
+    plan = _disc_plan(built, r_t, m.stepover_mm)
+    if m.bore:
+        plan.append(("bore", bore_curve(bore_circle_radius(blank, r_t)), r_t, None, "bore"))
+    contours, passes = [], []
+    for k, (label, curve, offset, free, kind) in enumerate(plan):
         fit, printed, dev, segs = fit_printed(curve, m.tolerance_mm, m.mode, post.quantizer, post.max_arc_sweep_deg,
                                               post.quantizer.printed_elements, f"{name} {label}")
-        if free is not None:
-            side = _stock_side(curve, free)
-            paths.append(contour_toolpath(fit.elements, m.cut_settings(side), title, contour=k))
+        side = _stock_side(curve, free) if free is not None else "both"
+        cs = replace(m.cut_settings(side if free is not None else "right"), clearance_z_mm=z_clear,
+                     safe_z_mm=max(m.safe_z_mm, z_clear))
+        if kind == "bore":
+            passes += bore_passes(k, fit.elements, blank, r_t, m, z_clear, levels[-1], built.spec.thickness)
+        elif free is not None:
+            passes += _profile_passes(k, fit.elements, blank, m, cs, side, levels)
         else:
-            side = "both"
-            paths.append(slot_toolpath(fit.elements, m.cut_settings(), title, contour=k, kind=kind))
+            passes += ramp_loop_passes(k, kind, fit.elements, levels, blank.top_z_mm, m.ramp_angle_deg, cs,
+                                       m.spring_pass)
         contours.append(CutContour(label, curve, fit, printed, dev, offset, free is not None, segs, side))
-    toolpath = join_toolpaths(title, paths)
+    safe = (Rapid(None, None, max(m.safe_z_mm, z_clear)),)
+    counts: dict[str, int] = {}
+    for p in passes:
+        counts[p.kind] = counts.get(p.kind, 0) + 1
+    summary = ", ".join(f"{n} {kind}" for kind, n in counts.items())
+    toolpath = Toolpath(title, with_markers(passes, [c.label for c in contours]), m.spindle_rpm, m.tool_number,
+                        m.tool_diameter_mm, False,
+                        (f"{len(passes)} passes [{summary}] in {len(levels)} depth levels to {levels[-1]:g} mm",),
+                        safe, safe)
     program = post.write_program(toolpath, name)
     notes = ()
     if m.finish_allowance_mm > 0 and built.spec.kind != "disc":
         notes = ("finish_allowance does not apply to groove passes (the flanks have their own passes)",)
+    removal = check_program(program.text, post, blank, m, built)
     return MachiningResult(name, built.spec.kind, built.cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, m.mode,
-                           tuple(contours), toolpath, program, None, notes, deviation_checks(contours, m.tolerance_mm))
+                           tuple(contours), toolpath, program, None, notes,
+                           deviation_checks(contours, m.tolerance_mm) + removal.checks(), blank=blank,
+                           removal=removal)
+
+
+def _profile_passes(k: int, elements, blank, m: MachiningSpec, cs, side: str, levels) -> list[Pass]:
+    """A disc profile: a roughing spiral at each level, then finish (each level without an allowance) and spring."""
+    spiral = disc_spiral(blank.part, blank.region, m.tool_diameter_mm / 2, m.finish_allowance_mm, m.stepover_mm,
+                         clockwise=(side == "right"), max_sweep_deg=m.post.max_arc_sweep_deg)
+    a, passes = m.finish_allowance_mm, []
+    for z in levels:
+        if spiral is not None:
+            passes.append(Pass(k, "rough", z, spiral_moves(spiral, z, cs)))
+        if a == 0:
+            passes.append(Pass(k, "finish", z, finish_moves(elements, z, cs)))
+    if a > 0:
+        passes.append(Pass(k, "finish", levels[-1], finish_moves(elements, levels[-1], cs)))
+    if m.spring_pass:
+        passes.append(Pass(k, "spring", levels[-1], finish_moves(elements, levels[-1], cs)))
+    return passes

@@ -5,7 +5,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from camcam.nc.removal import RemovalReport
 from camcam.nc.settings import PostDialect
+from camcam.nc.stock import Blank
 from camcam.toolpath.contours import CutContour
 from camcam.toolpath.path import Pass, Toolpath
 from camcam.verdict import Check
@@ -42,7 +44,9 @@ class MachiningResult:
     ``toolpath.passes`` are the pass records (:class:`~camcam.toolpath.path.Pass`):
     which contour each pass follows, its kind and depth, in the order the
     program cuts them.  ``checks`` are the job's figures held to their limits
-    (:mod:`camcam.verdict`).
+    (:mod:`camcam.verdict`).  ``blank`` and ``removal`` (disc and face-groove
+    jobs): the blank the job starts from and the material-removal check of
+    the printed program (:mod:`camcam.nc.removal`).
     """
 
     name: str
@@ -60,6 +64,8 @@ class MachiningResult:
     checks: tuple[Check, ...] = ()
     groove: GrooveMeasurement | None = None
     smallest_tool_mm: float | None = None
+    blank: Blank | None = None
+    removal: RemovalReport | None = None
 
     @property
     def rotary(self) -> bool:
@@ -116,6 +122,7 @@ class MachiningResult:
             "program_blocks": {"line": self.program.line_blocks, "arc": self.program.arc_blocks,
                                "rapid": self.program.rapid_blocks},
             "reference_radius_mm": self.reference_radius_mm, "contours": contours, "notes": list(self.notes),
+            **({"material": self.material_figures()} if self.removal is not None else {}),
         }
         if self.groove is not None:
             g = self.groove.as_dict()
@@ -124,3 +131,14 @@ class MachiningResult:
             if self.smallest_tool_mm is not None:
                 out["smallest_tool_diameter_mm"] = self.smallest_tool_mm
         return out
+
+    def material_figures(self) -> dict:
+        """The blank, the passes and the material-removal figures (disc and face-groove jobs)."""
+        b = self.blank
+        passes = [{"kind": p.kind, "z_mm": p.z, "contour": self.contours[p.contour].label} for p in self.passes]
+        return {
+            "blank": {"kind": b.kind, "diameter_mm": b.diameter_mm, "allowance_mm": b.allowance_mm,
+                      "top_allowance_mm": b.top_z_mm, "stated": b.stated, "description": b.describe(),
+                      "cam_largest_radius_mm": b.cam_radius_mm, "top": b.top_note(), "bore": b.bore_note()},
+            "passes": passes, **self.removal.as_dict(),
+        }

@@ -39,13 +39,13 @@ import math
 
 import numpy as np
 
-from camcam.errors import GeometryError, InputError
+from camcam.errors import GeometryError, InputError, PostError
 from camcam.geometry.build import BuiltCam
 from camcam.nc.flank import DisplacedCurve, plan_flank, smallest_tool_radius
 from camcam.nc.groove3d import A_AXIS_SENSE, CylinderTool, GrooveMeasurement, measure_groove, poses_from_program
 from camcam.nc.result import MachiningResult, deviation_checks
 from camcam.nc.settings import MachiningSpec
-from camcam.nc.tools import SAME_TOOL_MM, groove_passes, job_title
+from camcam.nc.tools import SAME_TOOL_MM, groove_passes
 from camcam.toolpath.contours import CutContour, OffsetCurve, fit_printed
 from camcam.toolpath.elements import Line
 from camcam.toolpath.path import join_toolpaths, rotary_toolpath
@@ -131,7 +131,9 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> Machini
     rho_d = cam.base_radius
     turn = A_AXIS_SENSE[m.a_axis] * cam.sigma  # printed A = turn · θ
     r_t = m.tool_diameter_mm / 2
-    title = job_title(name, built.spec.kind, cam.kind, m.tool_diameter_mm, "lines", m.tolerance_mm, post.name)
+    # the title names the tolerance as a target; whether the cut holds it is the 3-D check's line below it
+    title = (f"{name}: {built.spec.kind} cam, {cam.kind} follower, tool D{m.tool_diameter_mm:g} mm, lines, "
+             f"tolerance {m.tolerance_mm:g} mm, post {post.name}")
     cs0 = m.cut_settings()
     corner = _corner_depth_mm(cam, r_t) if m.depth_mm >= cam.groove_depth - 1e-9 else 0.0
     scale = (m.depth_mm + corner) / m.depth_mm
@@ -159,12 +161,21 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> Machini
     if corner > 0:
         comments += (f"last pass {corner:.3f} mm below the groove bottom: the tool end clears the wall corner",)
     toolpath = dataclasses.replace(join_toolpaths(title, paths), comments=comments)
-    program = post.write_program(toolpath, name)
-    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses_from_program(program.text, m.a_axis))
+    measured = post.write_program(toolpath, name)
+    poses = poses_from_program(measured.text, m.a_axis)
+    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses)
     smallest = None
     if cam.kind == "translating-roller" and r_t < cam.roller_radius - SAME_TOOL_MM:
         smallest = 2 * smallest_tool_radius(cam, 0.5 * m.tolerance_mm, rho_d)
     check = groove_check(cam, m, groove, smallest)
+    # the same moves, with the check's result in the header
+    verdict = "within" if check.ok else "OUT OF TOLERANCE"
+    toolpath = dataclasses.replace(toolpath, comments=toolpath.comments + (
+        f"3-D groove check of this program: {groove.max_deviation_mm:.4f} mm, {verdict} {m.tolerance_mm:g} mm",))
+    program = post.write_program(toolpath, name)
+    again = poses_from_program(program.text, m.a_axis)
+    if not (np.array_equal(again.tip_mm, poses.tip_mm) and np.array_equal(again.a_deg, poses.a_deg)):
+        raise PostError("the program's moves changed with its header comment")
     notes = (f"4-axis: X along the cam axis, A = {'+' if turn > 0 else '-'}cam angle (deg), developed at R{rho_d:g} mm",)
     if m.mode == "arcs":
         notes += ("mode arcs: a 4-axis G1 X A program has lines only",)

@@ -58,6 +58,14 @@ class MachiningSpec:
     accept_out_of_tolerance: bool = False
     flute_length_mm: float = 0.0  # the tool's cutting length (barrel cams' 3-D check)
     a_axis: str = "right-hand"  # barrel cams: a positive A turns the part by the right-hand rule about +X
+    stepover: float = 0.4
+    ramp_angle_deg: float = 3.0
+    bore: bool = False
+
+    @property
+    def stepover_mm(self) -> float:
+        """The largest radial engagement of a roughing pass (mm): ``stepover`` × the tool diameter."""
+        return self.stepover * self.tool_diameter_mm
 
     def cut_settings(self, stock_side: str = "right") -> CutSettings:
         """Settings for :func:`camcam.toolpath.path.contour_toolpath`."""

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 from camcam.errors import InputError, PostError
 from camcam.nc.result import Program
-from camcam.toolpath.path import ArcMove, Feed, Rapid, Toolpath
+from camcam.toolpath.path import ArcMove, Comment, Feed, Rapid, Toolpath
 
 if TYPE_CHECKING:  # annotations only: post.post imports this module to print its programs
     from camcam.post.post import Post
@@ -85,6 +85,9 @@ class _Writer:
 
     def gcode_move(self, m, rotary: bool):
         d = self.post.decimals
+        if isinstance(m, Comment):
+            self.emit(self.comment(m.text))
+            return
         if isinstance(m, Rapid):
             w = self.axes(m.x, m.y, m.z)
             if w:
@@ -148,9 +151,15 @@ class _Writer:
 
     # -- Heidenhain --------------------------------------------------------------------
     def hh_move(self, m, first: bool):
+        if isinstance(m, Comment):
+            self.emit(self.comment(m.text))
+            return
         if isinstance(m, Feed) and m.a_deg is not None:
             raise InputError(f"post {self.post.name}: 4-axis programs are not supported by this dialect")
         if isinstance(m, ArcMove):
+            if self.pos[2] is not None and self.count(m.z) != self.pos[2]:
+                raise InputError(f"post {self.post.name}: helical arcs (ramped groove entries) are not supported by "
+                                 f"this dialect")
             sx, sy = self.pos[0], self.pos[1]
             ex, ey, cx, cy = (self.count(v) for v in (m.x, m.y, m.cx, m.cy))
             self.check_arc(sx, sy, ex, ey, cx, cy, m.ccw)
@@ -197,8 +206,10 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam") -> Progr
     for c in toolpath.comments:
         body.append(w.comment(c))
     if post.dialect == "heidenhain":
-        for i, m in enumerate(toolpath.moves):
-            w.hh_move(m, i == 0)
+        first = True  # M3 goes on the first move (comments are not moves)
+        for m in toolpath.moves:
+            w.hh_move(m, first)
+            first = first and isinstance(m, Comment)
     else:
         if toolpath.rotary:
             w.emit("G93")

@@ -22,6 +22,7 @@ from camcam.report.fitted_motion import fitted_motion
 from camcam.report.html import Code, DataTable, Figure, KeyValues, Paragraph, Section, VerdictBlock, render_html
 from camcam.verdict import Verdict
 from camcam.report.inspection import inspection_table
+from camcam.report.material import material_section
 from camcam.nc.result import MachiningResult
 
 __all__ = ["JobReport", "job_report"]
@@ -126,6 +127,9 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes | PendingPNG
         excerpt = m.program.text.splitlines()[:24]
         blocks.append(Code("\n".join(excerpt), f"The first {len(excerpt)} lines of {m.program_filename}."))
         sections.append(Section("Tolerance", tuple(blocks)))
+        material = material_section(m)
+        if material is not None:
+            sections.append(material)
         if isinstance(disc, DiscCam):
             c0 = m.contours[0]
             fm = fitted_motion(disc, c0.printed, c0.offset_mm, np.arange(0.0, 360.0, 0.5))

@@ -13,6 +13,9 @@ stepdown = 4.0             # mm
 flute_length = 32.0        # mm, the tool's cutting length (default: twice its diameter)
 a_axis = "right-hand"      # barrel cams: a positive A turns the part by the right-hand rule about +X
 accept_out_of_tolerance = false  # true: a FAIL verdict only warns (exit 0)
+stepover = 0.4             # roughing: radial step, a fraction of the tool diameter
+ramp_angle = 3.0           # deg, steepest descent into material (grooves: ramped entries)
+bore = false               # true: cut the bore as a helical bore
 ```
 """
 
@@ -56,6 +59,10 @@ def read_machining(t: Table, base: Path) -> MachiningSpec:
     accept = t.boolean("accept_out_of_tolerance", False)
     flute = t.number("flute_length", 2.0 * tool, minimum=0.0, inclusive=False, unit="mm")
     a_axis = t.string("a_axis", "right-hand", choices=("right-hand", "left-hand"))
+    stepover = t.number("stepover", 0.4, minimum=0.0, maximum=1.0, inclusive=False)
+    ramp = t.number("ramp_angle", 3.0, minimum=0.0, maximum=45.0, inclusive=False, unit="deg")
+    bore = t.boolean("bore", False)
     t.done()
     return MachiningSpec(post, tool, tol, mode, feed, spindle, depth, stepdown, plunge, safe, clearance, lead,
-                         allowance, spring, tool_number, accept, flute_length_mm=flute, a_axis=a_axis)
+                         allowance, spring, tool_number, accept, flute_length_mm=flute, a_axis=a_axis,
+                         stepover=stepover, ramp_angle_deg=ramp, bore=bore)

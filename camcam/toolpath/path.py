@@ -17,8 +17,9 @@ import numpy as np
 from camcam.errors import InputError
 from camcam.toolpath.elements import Arc, Line, element_tangent
 
-__all__ = ["Rapid", "Feed", "ArcMove", "Pass", "PASS_KINDS", "Toolpath", "CutSettings", "contour_toolpath",
-           "offset_elements", "rotary_toolpath", "slot_toolpath", "depth_levels", "join_toolpaths"]
+__all__ = ["Rapid", "Feed", "ArcMove", "Comment", "Pass", "PASS_KINDS", "Toolpath", "CutSettings", "contour_toolpath",
+           "offset_elements", "rotary_toolpath", "slot_toolpath", "depth_levels", "join_toolpaths",
+           "lead_pass_moves", "contour_moves"]
 
 
 @dataclass(frozen=True)
@@ -58,7 +59,8 @@ class ArcMove:
 #: What a pass does: ``rough`` runs at a finishing allowance off the contour; ``finish`` cuts the
 #: contour (at one depth level); ``spring`` repeats the final finish pass; ``slot`` runs inside a
 #: groove where the tool's full width may engage (a groove's centre pass).
-PASS_KINDS = ("rough", "finish", "spring", "slot")
+#: ``bore`` is the helical bore (from solid, so it may engage the full width too).
+PASS_KINDS = ("rough", "finish", "spring", "slot", "bore")
 
 
 @dataclass(frozen=True)
@@ -91,6 +93,13 @@ class Pass:
     def finishes(self) -> bool:
         """Whether the pass cuts the contour itself (not at a finishing allowance)."""
         return self.kind != "rough"
+
+
+@dataclass(frozen=True)
+class Comment:
+    """A comment line between moves (a pass's name)."""
+
+    text: str
 
 
 @dataclass(frozen=True)
@@ -219,6 +228,18 @@ def _pass_moves(elements, z, feed, plunge, lead, away_left, cs):
     moves.append(ArcMove(float(finish[0]), float(finish[1]), float(c_out[0]), float(c_out[1]), away_left, z, feed))
     moves.append(Rapid(None, None, cs.clearance_z_mm))
     return moves
+
+
+def lead_pass_moves(elements, z: float, cs: CutSettings) -> tuple:
+    """One finish pass over ``elements`` at ``z`` with tangent lead arcs on the free side (``cs.stock_side``)."""
+    plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
+    return tuple(_pass_moves(tuple(elements), z, cs.feed_mm_min, plunge, cs.lead_radius_mm,
+                             cs.stock_side == "right", cs))
+
+
+def contour_moves(elements, z: float, feed_mm_min: float) -> list:
+    """Feed moves along ``elements`` at height ``z`` (lines G1, arcs G2/G3)."""
+    return _contour_moves(elements, z, feed_mm_min)
 
 
 def depth_levels(cs: CutSettings, top_mm: float | None = None) -> list[float]:

@@ -24,7 +24,7 @@ from camcam.toolpath.elements import Arc, Line
 
 __all__ = ["CanonMove", "rs274_available", "run_rs274", "feed_passes", "print_margin_mm"]
 
-_MOVE = re.compile(r"\b(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED|SELECT_PLANE)\((.*)\)\s*$")
+_MOVE = re.compile(r"\b(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED|SELECT_PLANE|COMMENT)\((.*)\)\s*$")
 
 
 @dataclass(frozen=True)
@@ -50,8 +50,12 @@ def print_margin_mm(decimals: int) -> float:
     return 0.0 if decimals <= 4 else 3 * 0.5 * 2**0.5 * 1e-4
 
 
-def run_rs274(path: str | Path, timeout_s: float = 60.0) -> list[CanonMove]:
-    """Interpret ``path``; raise ``RuntimeError`` with rs274's message if it rejects the program."""
+def run_rs274(path: str | Path, timeout_s: float = 60.0, comments: bool = False) -> list:
+    """Interpret ``path``; raise ``RuntimeError`` with rs274's message if it rejects the program.
+
+    With ``comments`` the program's comments (``COMMENT("…")``, without rs274's
+    own ``interpreter: …`` notes) come back as strings between the moves.
+    """
     proc = subprocess.run(["rs274", "-g", str(path)], stdin=subprocess.DEVNULL, capture_output=True,
                           text=True, timeout=timeout_s)
     if proc.returncode != 0:
@@ -64,6 +68,11 @@ def run_rs274(path: str | Path, timeout_s: float = 60.0) -> list[CanonMove]:
         if not m:
             continue
         kind, args = m.group(1), m.group(2)
+        if kind == "COMMENT":
+            text = args.strip().strip('"')
+            if comments and not text.startswith("interpreter:"):
+                moves.append(text)
+            continue
         if kind == "SELECT_PLANE":
             plane = args.strip()
             continue

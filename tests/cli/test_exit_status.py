@@ -125,4 +125,5 @@ def test_pass_verdict_in_report(tmp_path):
     assert report["verdict"]["status"] == "PASS"
     check = report["verdict"]["checks"][0]
     assert check["name"] == "NC deviation (profile)" and check["value"] == report["max_deviation_mm"]
-    assert out.splitlines()[-1] == "PASS: 1 check within its limit"
+    # the deviation and the six material-removal checks (engagement, plunges, rapids, left, overcut, rough stock)
+    assert out.splitlines()[-1] == "PASS: 7 checks within their limits"

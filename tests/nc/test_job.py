@@ -33,7 +33,7 @@ def _path(sample: str) -> Path:
 def built_and_result(sample: str):
     spec = load_spec(_path(sample))
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
-    return spec, built, machine(built, spec.machining, spec.name)
+    return spec, built, machine(built, spec.machining, spec.name, spec.stock)
 
 
 def _interpreted_disc(result, moves):

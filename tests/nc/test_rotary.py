@@ -42,6 +42,9 @@ def test_roller_sized_tool_is_exact_at_every_radius():
     assert any("developed at R50 mm" in line for line in head)
     assert any("machine frame: cam axis = X, Y = Z = 0 on it" in line for line in head)
     assert any("right-hand rule" in line for line in head)
+    stated = f"3-D groove check of this program: {g.max_deviation_mm:.4f} mm, within {m.tolerance_mm:g} mm"
+    assert any(stated in line for line in head)
+    assert "within" not in head[0]  # the title names the tolerance, the check line says whether it holds
 
 
 def _a_words(r):
@@ -98,7 +101,7 @@ def test_smaller_tool_balanced_flanks_and_the_verdict():
     assert g.max_deviation_mm < 0.09
     for w in g.walls:  # balanced: both ends of the depth are used, overcut at the top, material left low
         assert w.overcut_mm > 0.05 and w.material_left_mm > 0.05
-    (check,) = r.checks
+    (check,) = [c for c in r.checks if c.name == "3-D groove deviation"]
     assert not check.ok and check.severity == "fail"
     assert "roller's diameter, D16 mm" in check.advice and "accept a tolerance of at least" in check.advice
     assert 15.0 < r.smallest_tool_mm < 16.0
@@ -107,9 +110,18 @@ def test_smaller_tool_balanced_flanks_and_the_verdict():
 
 def test_oscillating_on_four_axes_fails_with_advice():
     built, m, r = job("cylindrical-oscillating")
-    (check,) = r.checks
+    (check,) = [c for c in r.checks if c.name == "3-D groove deviation"]
     assert not check.ok
     assert "axes = 5" in check.advice
     # 4 axes leave about 2 mm at R75 (issue 11) and more toward the bottom
     assert r.groove.max_deviation_mm > 2.0
     assert math.isclose(check.value, r.groove.max_deviation_mm)
+
+
+def test_the_smallest_tool_reported_holds_in_3d():
+    """The advice's tool size, rounded up to 0.01 mm, cut and measured: within the tolerance in 3-D."""
+    _, m, small = job("cylindrical-translating", tool_mm=12.0)
+    size = math.ceil(small.smallest_tool_mm * 100) / 100
+    _, _, r = job("cylindrical-translating", tool_mm=size)
+    assert r.groove.max_deviation_mm <= m.tolerance_mm
+    assert all(c.ok for c in r.checks)

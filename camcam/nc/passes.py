@@ -1,0 +1,108 @@
+"""Passes of a disc or face-groove job: what each one cuts, at which depth, with which moves.
+
+Every pass opens with a :class:`~camcam.toolpath.path.Comment` that names it
+(``pass 3/9: rough, Z-6``); the material-removal check reads these names back
+from the printed program (and rs274's ``COMMENT`` lines) to know which passes
+may slot.
+
+* ``rough``: a spiral from the blank to the finish allowance at one depth
+  level (:func:`spiral_moves`), entered outside the material (its contour
+  is the profile it roughs to); a narrower tool's rough offsets in a groove;
+* ``finish``, ``spring``: the fitted contour with tangent lead arcs on the
+  free side, exactly as before roughing existed;
+* ``slot``: a groove's centre pass with a tool as wide as the groove: full
+  engagement allowed, ramped down along the contour;
+* ``bore``: the helical bore (:mod:`camcam.nc.bore`), a slot too.
+
+Groove passes (slot, rough offsets, flanks) are ramped down along their contour.
+"""
+
+from __future__ import annotations
+
+import math
+import numpy as np
+
+from camcam.nc.roughing import Spiral, cut_cyclic
+from camcam.toolpath.elements import Line
+from camcam.toolpath.path import (ArcMove, Comment, CutSettings, Feed, Pass, Rapid, contour_moves,
+                                  lead_pass_moves)
+
+__all__ = ["SLOT_KINDS", "spiral_moves", "finish_moves", "ramp_loop_passes", "with_markers",
+           "MARKER_PREFIX"]
+
+#: Pass kinds whose tool may engage its full diameter.
+SLOT_KINDS = ("slot", "bore")
+
+#: How a pass's comment starts; the removal check parses ``pass i/n: kind``.
+MARKER_PREFIX = "pass "
+
+
+def spiral_moves(sp: Spiral, z: float, cs: CutSettings) -> tuple:
+    """Rapid over the entry (outside the blank), plunge there, feed onto the spiral, spiral, retract."""
+    plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
+    s = sp.elements[0].start
+    moves = [Rapid(sp.entry[0], sp.entry[1], None), Rapid(None, None, cs.clearance_z_mm), Feed(None, None, z, plunge),
+             Feed(float(s[0]), float(s[1]), z, cs.feed_mm_min)]
+    moves += contour_moves(sp.elements, z, cs.feed_mm_min)
+    moves.append(Rapid(None, None, cs.clearance_z_mm))
+    return tuple(moves)
+
+
+def finish_moves(elements, z: float, cs: CutSettings) -> tuple:
+    """The fitted contour at ``z`` with tangent lead arcs on the free side (``cs.stock_side``)."""
+    return lead_pass_moves(elements, z, cs)
+
+
+def _ramp(elements, z0: float, z1: float, feed: float) -> list:
+    """Moves along ``elements`` descending linearly in arc length from z0 to z1 (helical arcs)."""
+    lengths = np.array([e.length for e in elements])
+    ends = z0 + (z1 - z0) * np.cumsum(lengths) / lengths.sum()
+    out = []
+    for e, z in zip(elements, ends):
+        z = float(z)
+        if isinstance(e, Line):
+            out.append(Feed(e.end[0], e.end[1], z, feed))
+        else:
+            out.append(ArcMove(e.end[0], e.end[1], e.centre[0], e.centre[1], e.ccw, z, feed))
+    return out
+
+
+def ramp_loop_passes(contour: int, kind: str, elements, levels, z_top: float, ramp_angle_deg: float,
+                     cs: CutSettings, spring: bool) -> list[Pass]:
+    """A closed contour cut down to each level: ramp along it (≤ ``ramp_angle_deg``), then one full lap.
+
+    The ramp of the next level starts where the lap ended, so the tool winds
+    down without leaving the groove; ``spring`` repeats the last lap.
+    """
+    plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
+    total = float(sum(e.length for e in elements))
+    slope = math.tan(math.radians(ramp_angle_deg))
+    p0 = elements[0].start
+    head = [Rapid(float(p0[0]), float(p0[1]), None), Rapid(None, None, cs.clearance_z_mm),
+            Feed(None, None, z_top, plunge)]
+    passes, s, z_prev = [], 0.0, z_top
+    for i, z in enumerate(levels):
+        run = (z_prev - z) / slope * (1 + 1e-9)  # a hair longer: the printed slope stays under the limit
+        moves = list(head) if i == 0 else []
+        moves += _ramp(cut_cyclic(elements, s, s + run), z_prev, z, cs.feed_mm_min)
+        s = (s + run) % total
+        moves += contour_moves(cut_cyclic(elements, s, s + total), z, cs.feed_mm_min)
+        passes.append(Pass(contour, kind, z, tuple(moves)))
+        z_prev = z
+    passes[-1] = Pass(contour, kind, levels[-1], passes[-1].moves + (Rapid(None, None, cs.clearance_z_mm),))
+    if spring:
+        q = cut_cyclic(elements, s, s + total)
+        start = q[0].start
+        moves = [Rapid(float(start[0]), float(start[1]), None), Rapid(None, None, cs.clearance_z_mm),
+                 Feed(None, None, levels[-1], plunge)] + contour_moves(q, levels[-1], cs.feed_mm_min)
+        moves.append(Rapid(None, None, cs.clearance_z_mm))
+        passes.append(Pass(contour, "spring", levels[-1], tuple(moves)))
+    return passes
+
+
+def with_markers(passes, labels) -> tuple:
+    """``passes``, each opened by a comment naming it: ``pass i/n: kind, contour label, Z…``."""
+    n = len(passes)
+    return tuple(Pass(p.contour, p.kind, p.z,
+                      (Comment(f"{MARKER_PREFIX}{i + 1}/{n}: {p.kind}, {labels[p.contour]}, Z{p.z:g}"),) + p.moves)
+                 for i, p in enumerate(passes))

@@ -1,0 +1,247 @@
+"""Roughing geometry: spirals from the blank to the finish allowance, ramps along closed contours.
+
+A disc cam is roughed at each depth level by one spiral that starts on a
+ring clear of the blank and winds inward to the ring at the finish allowance,
+then closes on that ring.  The rings are the part (shapely polygon) offset by
+``allowance + r_t + k·step`` (tool-centre paths: the tool's edge at
+``allowance + k·step`` from the part); the spiral blends ring k+1 into ring k
+over one revolution, in polar form about the cam axis, so each revolution
+cuts a band at most ``step`` wide and the tool never slots.  The spiral is
+fitted with lines and arcs (:func:`polyline_elements`) within
+:data:`ROUGH_FIT_MM`; the last ring keeps :data:`ROUGH_MARGIN_MM` more than
+the finish allowance so the fitted path stays at least the allowance off the
+part.
+
+Closed contours that have no way in from outside the material (a face
+groove) are entered down a ramp along the contour itself
+(:func:`ramp_elements`), no steeper than the ramp angle.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from shapely.geometry import Polygon
+
+from camcam.errors import GeometryError
+from camcam.toolpath.elements import Arc, Line
+
+__all__ = ["Spiral", "disc_spiral", "polyline_elements", "polar_radii", "cut_cyclic", "ROUGH_FIT_MM",
+           "ROUGH_MARGIN_MM", "RING_STEP_FRACTION"]
+
+#: Fit tolerance of roughing paths (mm): they need not meet the finish tolerance, only stay off the part.
+ROUGH_FIT_MM = 0.02
+#: Extra stock the last roughing ring keeps over the finish allowance (mm); covers the fit, the polygons and rounding.
+ROUGH_MARGIN_MM = 0.05
+#: Ring spacing as a fraction of the stepover: the spiral's drift across a revolution adds to the band it cuts.
+RING_STEP_FRACTION = 0.9
+#: Samples per revolution of a spiral before fitting.
+SPIRAL_SAMPLES = 1440
+#: Distance the entry point sits outside the first ring, radially (mm).
+ENTRY_CLEARANCE_MM = 1.0
+
+
+def polar_radii(ring: np.ndarray, thetas: np.ndarray, what: str) -> np.ndarray:
+    """Radii of a closed ring (n, 2) about the origin at polar angles ``thetas`` (linear between vertices).
+
+    Raises :class:`GeometryError` if the ring is not star-shaped about the origin.
+    """
+    phi = np.unwrap(np.arctan2(ring[:, 1], ring[:, 0]))
+    rho = np.hypot(ring[:, 0], ring[:, 1])
+    steps = np.diff(phi)
+    if np.all(steps < 0):
+        phi, rho = phi[::-1], rho[::-1]
+        steps = -steps[::-1]
+    if not np.all(steps > 0) or abs(phi[-1] - phi[0] - 2 * math.pi) > 1e-6:
+        raise GeometryError(f"roughing: the {what} is not star-shaped about the cam axis; cannot spiral to it")
+    base = phi[0]
+    return np.interp(np.mod(thetas - base, 2 * math.pi) + base, phi, rho)
+
+
+def _ring(poly: Polygon) -> np.ndarray:
+    if poly.geom_type != "Polygon":
+        raise GeometryError("roughing: an offset of the part falls apart; cannot spiral to it")
+    return np.asarray(poly.exterior.coords)
+
+
+@dataclass(frozen=True)
+class Spiral:
+    """One level's roughing path: ``entry`` (clear of the blank) then ``elements`` (tool centre, direction of cut).
+
+    ``revolutions`` spiral turns plus one closing ring; ``step_mm`` the ring
+    spacing; ``clearance_mm`` the tool edge's intended distance from the part on
+    the last ring.
+    """
+
+    entry: tuple[float, float]
+    elements: tuple
+    revolutions: int
+    step_mm: float
+    clearance_mm: float
+
+
+def disc_spiral(part: Polygon, blank: Polygon, tool_radius_mm: float, allowance_mm: float, stepover_mm: float,
+                clockwise: bool, max_sweep_deg: float) -> Spiral | None:
+    """The roughing spiral from ``blank`` to ``allowance_mm`` (+ margin) around ``part``; ``None`` if nothing to rough.
+
+    ``clockwise``: the direction of travel about the cam axis (the finish pass's).
+    """
+    r_t = tool_radius_mm
+    step = RING_STEP_FRACTION * stepover_mm
+    keep = allowance_mm + ROUGH_MARGIN_MM
+    edge = np.asarray(blank.exterior.coords)
+    far = float(shapely.distance(part, shapely.points(edge)).max())  # blank reaches this far from the part
+    k_air = int(math.ceil((far - keep) / step - 1e-9))
+    if k_air <= 0:
+        return None
+    s = -1.0 if clockwise else 1.0
+    th = np.linspace(0.0, 2 * math.pi, SPIRAL_SAMPLES, endpoint=False)
+    radii = [polar_radii(_ring(part.buffer(keep + r_t + k * step, quad_segs=64)), th, f"ring {k}")
+             for k in range(k_air + 1)]
+    # start where the air ring is farthest outside the blank
+    air = np.column_stack([radii[k_air] * np.cos(th), radii[k_air] * np.sin(th)])
+    j0 = int(np.argmax(shapely.distance(blank, shapely.points(air))))
+    order = (j0 + s * np.arange(SPIRAL_SAMPLES)).astype(int) % SPIRAL_SAMPLES
+    th_o = th[order]
+    f = np.arange(SPIRAL_SAMPLES) / SPIRAL_SAMPLES
+    ang, rad = [], []
+    for rev in range(k_air):
+        outer, inner = radii[k_air - rev][order], radii[k_air - rev - 1][order]
+        ang.append(th_o)
+        rad.append((1 - f) * outer + f * inner)
+    ang.append(th_o)
+    rad.append(radii[0][order])
+    ang.append(th_o[:1])
+    rad.append(radii[0][order][:1])
+    ang, rad = np.concatenate(ang), np.concatenate(rad)
+    pts = np.column_stack([rad * np.cos(ang), rad * np.sin(ang)])
+    u = pts[0] / np.hypot(*pts[0])
+    entry = pts[0] + ENTRY_CLEARANCE_MM * u
+    return Spiral((float(entry[0]), float(entry[1])), polyline_elements(pts, ROUGH_FIT_MM, max_sweep_deg),
+                  k_air, step, keep)
+
+
+# -- fitting a dense polyline with lines and arcs ------------------------------------------------------------
+
+
+def _circle(p, q, r):
+    """Centre and radius of the circle through three points, or None when (nearly) collinear."""
+    ax, ay = q[0] - p[0], q[1] - p[1]
+    bx, by = r[0] - p[0], r[1] - p[1]
+    d = 2 * (ax * by - ay * bx)
+    if abs(d) < 1e-12:
+        return None
+    a2, b2 = ax * ax + ay * ay, bx * bx + by * by
+    cx = p[0] + (by * a2 - ay * b2) / d
+    cy = p[1] + (ax * b2 - bx * a2) / d
+    return (cx, cy), math.hypot(cx - p[0], cy - p[1]), d > 0
+
+
+def _try(pts: np.ndarray, i: int, j: int, tol: float, max_sweep: float):
+    """An element from pts[i] to pts[j] within ``tol`` of every point between, or None."""
+    seg = pts[i:j + 1]
+    a, b = seg[0], seg[-1]
+    d = b - a
+    L = math.hypot(*d)
+    if L == 0:
+        return None
+    off = np.abs((seg[:, 0] - a[0]) * d[1] - (seg[:, 1] - a[1]) * d[0]) / L
+    if off.max() <= tol:
+        return Line((float(a[0]), float(a[1])), (float(b[0]), float(b[1])))
+    circ = _circle(a, seg[len(seg) // 2], b)
+    if circ is None:
+        return None
+    c, radius, ccw = circ
+    if radius > 1e5:
+        return None
+    dist = np.hypot(seg[:, 0] - c[0], seg[:, 1] - c[1])
+    if np.abs(dist - radius).max() > tol:
+        return None
+    arc = Arc((float(a[0]), float(a[1])), (float(b[0]), float(b[1])), (float(c[0]), float(c[1])), bool(ccw))
+    if arc.sweep > max_sweep:
+        return None
+    # the points must run along the arc in order (no fold-back)
+    ang = np.unwrap(np.arctan2(seg[:, 1] - c[1], seg[:, 0] - c[0]))
+    steps = np.diff(ang) * (1 if ccw else -1)
+    return arc if np.all(steps >= -1e-12) else None
+
+
+def polyline_elements(points: np.ndarray, tol_mm: float, max_sweep_deg: float) -> tuple:
+    """Greedy lines and arcs through a dense polyline, each within ``tol_mm`` of the points it replaces.
+
+    Examples
+    --------
+    >>> a = np.linspace(0, np.pi, 181)
+    >>> els = polyline_elements(np.column_stack([10 * np.cos(a), 10 * np.sin(a)]), 0.01, 120.0)
+    >>> [type(e).__name__ for e in els], round(els[0].radius, 6)
+    (['Arc', 'Arc'], 10.0)
+    """
+    pts = np.asarray(points, float)
+    max_sweep = math.radians(min(max_sweep_deg, 179.0))
+    out, i, n = [], 0, len(pts)
+    while i < n - 1:
+        best, good = _try(pts, i, i + 1, tol_mm, max_sweep), i + 1
+        step, bad = 1, None
+        while good + step <= n - 1:  # gallop, then bisect between the last fit and the first miss
+            e = _try(pts, i, good + step, tol_mm, max_sweep)
+            if e is None:
+                bad = good + step
+                break
+            best, good = e, good + step
+            step *= 2
+        if bad is None:
+            bad = n
+        while bad - good > 1:
+            mid = (good + bad) // 2
+            e = _try(pts, i, mid, tol_mm, max_sweep)
+            if e is None:
+                bad = mid
+            else:
+                best, good = e, mid
+        out.append(best)
+        i = good
+    return tuple(out)
+
+
+# -- ramps along a closed contour ---------------------------------------------------------------------------
+
+
+def _split(e, u: float):
+    """Element ``e`` cut at fraction ``u`` of its length: (first, second)."""
+    if isinstance(e, Line):
+        p = tuple(float(v) for v in np.add(e.start, np.multiply(u, np.subtract(e.end, e.start))))
+        return Line(e.start, p), Line(p, e.end)
+    a = e.start_angle + (1.0 if e.ccw else -1.0) * e.sweep * u
+    c = e.centre
+    p = (float(c[0] + e.radius * math.cos(a)), float(c[1] + e.radius * math.sin(a)))
+    return Arc(e.start, p, c, e.ccw), Arc(p, e.end, c, e.ccw)
+
+
+def cut_cyclic(elements, s_from: float, s_to: float) -> tuple:
+    """The piece of a closed contour between arc lengths ``s_from`` and ``s_to`` (may wrap, ``s_to`` > ``s_from``)."""
+    lengths = np.array([e.length for e in elements])
+    total = float(lengths.sum())
+    out, pos = [], 0.0
+    k = 0
+    run = max(s_to - s_from, 0.0)
+    s_from = s_from % total
+    s_to = s_from + run
+    # walk whole laps of the contour until s_to is reached
+    while pos < s_to - 1e-12:
+        e = elements[k % len(elements)]
+        L = lengths[k % len(elements)]
+        a, b = pos, pos + L
+        lo, hi = max(a, s_from), min(b, s_to)
+        if hi - lo > 1e-9:
+            piece = e
+            if hi < b - 1e-12:
+                piece = _split(piece, (hi - a) / L)[0]
+            if lo > a + 1e-12:
+                piece = _split(piece, (lo - a) / (hi - a) if hi < b - 1e-12 else (lo - a) / L)[1]
+            out.append(piece)
+        pos = b
+        k += 1
+    return tuple(out)

@@ -1,0 +1,118 @@
+"""The 2.5-D material-removal check on closed cases, and on today's program that plunged into the blank."""
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from camcam.geometry.build import build_cam
+from camcam.nc.stock import blank_for
+from camcam.post.gcode import write_program
+from camcam.spec import load_spec
+from camcam.toolpath.contours import fit_printed
+from camcam.toolpath.path import contour_toolpath
+from camcam.nc.removal import check_moves, check_program
+from camcam.verify.rs274 import CanonMove
+
+ROOT = Path(__file__).resolve().parents[2]
+R_T = 5.0  # tool radius of the closed cases (Ø10)
+RECT = shapely.box(0.0, 0.0, 100.0, 50.0)  # the blank of the closed cases, top at Z0
+
+
+def _check(events, keep_top: float, ramp_deg: float = 3.0, stepover: float = 4.0):
+    """Check ``events`` on RECT; the part to keep is RECT below y = keep_top, its machined edge that line."""
+    keep = shapely.box(0.0, 0.0, 100.0, keep_top)
+    xs = np.linspace(20.0, 80.0, 3001)  # away from the cut's ends, where the tool's round end leaves its arc
+    boundary = np.column_stack([xs, np.full_like(xs, keep_top)])
+    return check_moves(events, RECT, 0.0, keep, boundary, R_T, stepover, ramp_deg, 0.01, 0.0, 4)
+
+
+def _line(x, y, z):
+    return CanonMove("line", x, y, z, 0.0)
+
+
+def _rapid(x, y, z):
+    return CanonMove("rapid", x, y, z, 0.0)
+
+
+@pytest.mark.parametrize("ae", [0.5, 1.0, 2.5, 4.0, 7.5])
+def test_straight_cut_engagement_is_the_step(ae):
+    y = 50.0 + R_T - ae  # the tool's lower edge at 50 − ae
+    events = ["pass 1/1: rough, test", _rapid(-10.0, y, 5.0), _line(-10.0, y, -1.0), _line(110.0, y, -1.0)]
+    r = _check(events, 50.0 - ae)
+    # the width across travel of the material met is the step: probes bisected to 1/64 of 10/96 mm, and the
+    # swept polygons are within 2.4e-3 mm of their circles
+    assert r.max_engagement_mm == pytest.approx(ae, abs=0.01)
+    assert r.plunges == 0 and r.rapid_touches == 0  # entered outside the rectangle (10 mm off, radius 5)
+    # the straight cut leaves the edge exactly at the line: the dense-sample distance error is < 1e-5 mm
+    assert r.material_left_mm == pytest.approx(0.0, abs=1e-4)
+    assert r.overcut_mm == pytest.approx(0.0, abs=1e-4)
+    checks = {c.name: c for c in r.checks()}
+    assert checks["radial engagement"].ok == (ae <= 4.0)
+
+
+def test_slot_is_full_diameter_and_allowed_only_in_slot_passes():
+    events = [_rapid(-10.0, 25.0, 5.0), _line(-10.0, 25.0, -1.0), _line(110.0, 25.0, -1.0)]
+    r = _check(["pass 1/1: rough, test"] + events, 0.0)
+    assert r.max_engagement_mm == pytest.approx(2 * R_T, abs=0.01)  # a slot meets the whole diameter
+    assert not {c.name: c for c in r.checks()}["radial engagement"].ok
+    s = _check(["pass 1/1: slot, test"] + events, 0.0)
+    assert s.max_engagement_mm == 0.0 and s.max_slot_engagement_mm == pytest.approx(2 * R_T, abs=0.01)
+
+
+@pytest.mark.parametrize("angle_deg, plunges", [(90.0, 1), (5.0, 1), (2.5, 0)])
+def test_descent_steeper_than_the_ramp_is_a_plunge(angle_deg, plunges):
+    run = 2.0 / math.tan(math.radians(angle_deg)) if angle_deg < 90 else 0.0
+    events = ["pass 1/1: rough, test", _rapid(30.0, 25.0, 5.0), _line(30.0, 25.0, 0.0),
+              _line(30.0 + run, 25.0, -2.0), _line(70.0, 25.0, -2.0)]
+    r = _check(events, 0.0, ramp_deg=3.0)
+    assert r.plunges == plunges
+
+
+def test_rapid_through_material_is_caught():
+    events = ["pass 1/1: rough, test", _rapid(-10.0, 25.0, 5.0), _rapid(-10.0, 25.0, -1.0),
+              _line(-10.0, 25.0, -2.0), _line(-12.0, 25.0, -2.0), _rapid(110.0, 25.0, -2.0)]
+    r = _check(events, 0.0)
+    assert r.rapid_touches == 1 and "X110.000" in r.rapid_where
+    above = _check(["pass 1/1: rough, test", _rapid(-10.0, 25.0, 5.0), _rapid(110.0, 25.0, 5.0)], 0.0)
+    assert above.rapid_touches == 0
+
+
+@settings(max_examples=15, deadline=None)
+@given(st.floats(0.3, 9.5), st.floats(-30.0, 30.0))
+def test_engagement_of_an_oblique_cut(ae, angle_deg):
+    """A cut at any direction along a wall: the width across travel is the step (rotation invariance)."""
+    a = math.radians(angle_deg)
+    t, n = np.array([math.cos(a), math.sin(a)]), np.array([-math.sin(a), math.cos(a)])
+    rot = shapely.affinity.rotate(shapely.box(-100.0, 0.0, 100.0, 60.0), angle_deg, origin=(0, 0))
+    c0, c1 = -80 * t + (R_T - ae) * -n, 80 * t + (R_T - ae) * -n  # wall along t through the origin, material on +n
+    events = ["pass 1/1: rough, test", _rapid(*(c0 - 40 * t), 5.0), _line(*(c0 - 40 * t), -1.0), _line(*c1, -1.0)]
+    keep = shapely.affinity.rotate(shapely.box(-100.0, ae, 100.0, 60.0), angle_deg, origin=(0, 0))
+    r = check_moves(events, rot, 0.0, keep, np.array([ae * n]), R_T, 4.0, 3.0, 0.01, 0.0, 4)
+    assert r.max_engagement_mm == pytest.approx(ae, abs=0.01)  # probe bisection and polygon error, as above
+
+
+def test_todays_program_plunges_into_the_blank():
+    """The issue's figure: the first pass came down G1 Z-6 at r = 56.87 mm with a Ø16 tool (48.9–64.9 mm)."""
+    spec = load_spec(ROOT / "samples" / "disc-translating-roller.toml")
+    built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
+    m = spec.machining
+    post = m.post
+    curve = built.cam.offset_profile(m.tool_diameter_mm / 2)
+    fit, *_ = fit_printed(curve, m.tolerance_mm, m.mode, post.quantizer, post.max_arc_sweep_deg,
+                          post.quantizer.printed_elements, "today")
+    from camcam.nc.job import _stock_side
+
+    side = _stock_side(curve, built.cam.normal(np.array([0.0]))[0])
+    # the program as it was before roughing: depth passes over the (allowance-offset) contour, no blank
+    text = write_program(contour_toolpath(fit.elements, m.cut_settings(side), "today"), post, "today").text
+    assert "G0 X-2.3299 Y56.8178\nG0 Z2\nG1 Z-6 F200" in text
+    blank = blank_for(built, spec.stock, m.tool_diameter_mm)
+    r = check_program(text, post, blank, m, built)
+    assert r.plunges >= 1
+    assert r.plunge_where.endswith("X-2.330 Y56.818 Z-6.000")  # r = 56.87 mm, where the old first pass plunged
+    assert not {c.name: c for c in r.checks()}["plunges into material"].ok

@@ -1,0 +1,131 @@
+"""Every disc sample, interpreted by rs274 and checked 2.5-D against its blank: from the stated stock to the
+design profile within tolerance, no plunge into material, no engagement over the stepover."""
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from camcam.errors import SpecError
+from camcam.nc.job import machine
+from camcam.nc.roughing import ROUGH_FIT_MM, cut_cyclic, polyline_elements
+from camcam.spec.stock import StockSpec
+from camcam.toolpath.elements import Arc, element_distance
+from camcam.nc.removal import check_moves, design_keep
+from camcam.verify.rs274 import print_margin_mm, rs274_available, run_rs274
+
+from tests.nc.test_job import built_and_result
+
+DISC_SAMPLES = ["disc-translating-roller", "disc-translating-flat", "disc-oscillating-flat", "disc-oscillating-roller",
+                "disc-groove", "post-linuxcnc", "post-fanuc", "post-haas", "post-grbl"]
+needs_rs274 = pytest.mark.skipif(not rs274_available(), reason="rs274 (Debian linuxcnc-uspace) is not installed")
+
+
+@needs_rs274
+@pytest.mark.parametrize("sample", DISC_SAMPLES)
+def test_sample_cuts_the_profile_from_the_stock(tmp_path, sample):
+    spec, built, result = built_and_result(sample)
+    f = tmp_path / result.program_filename
+    f.write_text(result.program.text)
+    events = run_rs274(f, comments=True)
+    m, blank = spec.machining, result.blank
+    if spec.stock.stated:  # the blank is the one the spec states
+        assert blank.diameter_mm == spec.stock.diameter_mm and blank.allowance_mm == spec.stock.allowance_mm
+    keep, boundary = design_keep(blank, built)
+    allowance = 0.0 if blank.groove else m.finish_allowance_mm
+    r = check_moves(events, blank.region, blank.top_z_mm, keep, boundary, m.tool_diameter_mm / 2, m.stepover_mm,
+                    m.ramp_angle_deg, m.tolerance_mm, allowance, m.post.decimals)
+    margin = print_margin_mm(m.post.decimals)  # 0 for ≤ 4 decimals: rs274 prints the program's own numbers
+    assert r.plunges == 0 and r.rapid_touches == 0
+    assert r.max_engagement_mm <= m.stepover_mm
+    assert r.material_left_mm <= m.tolerance_mm + margin
+    assert r.overcut_mm <= m.tolerance_mm + margin
+    if not blank.groove:
+        assert r.rough_clearance_mm >= allowance  # the roughing stays the allowance off the part
+        assert r.max_engagement_mm > 0.5 * m.stepover_mm  # the spiral really cuts the stock, at about the step
+    else:
+        assert r.max_slot_engagement_mm == pytest.approx(m.tool_diameter_mm, abs=0.02)  # the stated slot
+    # the in-process reading of the printed program gives the same figures (same numbers, second reader)
+    own = result.removal
+    for a, b in [(r.max_engagement_mm, own.max_engagement_mm), (r.material_left_mm, own.material_left_mm),
+                 (r.overcut_mm, own.overcut_mm)]:
+        assert a == pytest.approx(b, abs=1e-9 + margin)
+    assert all(c.ok for c in result.checks)
+
+
+def test_default_blank_is_two_mm_over_the_cam():
+    spec, built, result = built_and_result("post-linuxcnc")  # no [stock] table
+    assert not spec.stock.stated
+    # the largest radius from the roots of d|p|²/dθ: 59.928 mm at the end of the rise (120°)
+    assert result.blank.cam_radius_mm == pytest.approx(59.928, abs=5e-4)
+    assert result.blank.diameter_mm == pytest.approx(2 * (result.blank.cam_radius_mm + 2.0), abs=1e-12)
+    assert "default" in result.blank.describe()
+
+
+def _variant(sample, **machining):
+    spec, built, _ = built_and_result(sample)
+    return spec, built, replace(spec.machining, **machining)
+
+
+def test_blank_smaller_than_the_cam_is_refused():
+    spec, built, m = _variant("disc-translating-roller")
+    with pytest.raises(SpecError, match=r"^stock.diameter: 110 mm is smaller than the cam: its largest radius is 59.928"):
+        machine(built, m, "small", StockSpec("round", 110.0, None, 0.0, True))
+
+
+def test_bore_larger_than_base_minus_roller_is_refused():
+    spec, built, m = _variant("disc-translating-roller")
+    big = replace(built, spec=replace(built.spec, bore=62.0))  # radius 31 > 40 − 10
+    with pytest.raises(SpecError, match=r"^cam.bore: Ø62 mm is larger than the base circle minus the roller"):
+        machine(big, m, "bore", spec.stock)
+
+
+def test_helical_bore_tool_must_fit():
+    spec, built, m = _variant("disc-translating-roller", bore=True)
+    with pytest.raises(SpecError, match=r"^machining.bore: the tool Ø16 mm does not fit the bore Ø12 mm"):
+        machine(built, m, "bore", spec.stock)
+
+
+def test_offset_blank_face_stock_and_helical_bore():
+    """A pre-profiled blank with face stock and a Ø30 bore cut by the Ø16 tool: all checks hold, the bore too."""
+    spec, built, m = _variant("disc-translating-roller", bore=True)
+    bored = replace(built, spec=replace(built.spec, bore=30.0))
+    r = machine(bored, m, "offset", StockSpec("offset", None, 6.0, 0.5, True))
+    rem = r.removal
+    assert [p.kind for p in r.passes] == ["rough", "rough", "finish", "spring", "bore"]
+    assert rem.plunges == 0 and rem.rapid_touches == 0
+    assert rem.max_engagement_mm <= m.stepover_mm
+    # the bore's circle is exact in the program (centre 0/0, ends rounded to 1e-4): within the tolerance both ways
+    assert rem.material_left_mm <= m.tolerance_mm and rem.overcut_mm <= m.tolerance_mm
+    assert rem.max_slot_engagement_mm > 0.9 * m.tool_diameter_mm  # the helix into solid: a stated slot
+    assert r.program.text.count("pass ") == 5
+    assert "G0 Z2.5" in r.program.text  # clearance above the face stock (top at Z0.5)
+    assert all(c.ok for c in r.checks)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.floats(5.0, 200.0), st.floats(0.2, 3.0), st.floats(0.0, 0.3), st.integers(50, 400))
+def test_polyline_fit_stays_within_tolerance(radius, sweep, wobble, n):
+    """Lines and arcs through a wobbly arc stay within the fit tolerance of every point they replace."""
+    a = np.linspace(0.0, sweep, n)
+    r = radius * (1 + wobble * 0.05 * np.sin(7 * a))
+    pts = np.column_stack([r * np.cos(a), r * np.sin(a)])
+    els = polyline_elements(pts, ROUGH_FIT_MM, 120.0)
+    assert els[0].start == tuple(pts[0]) and els[-1].end == tuple(pts[-1])
+    d = np.min([element_distance(e, pts) for e in els], axis=0)
+    assert d.max() <= ROUGH_FIT_MM + 1e-9  # the fit's own bound (float rounding only)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.floats(0.0, 200.0), st.floats(0.1, 400.0))
+def test_cut_cyclic_length(s0, run):
+    """A piece of a closed contour is as long as asked, and starts where asked (circle of radius 10)."""
+    c = (Arc((10.0, 0.0), (-10.0, 0.0), (0.0, 0.0), True), Arc((-10.0, 0.0), (10.0, 0.0), (0.0, 0.0), True))
+    piece = cut_cyclic(c, s0, s0 + run)
+    assert sum(e.length for e in piece) == pytest.approx(run, rel=1e-9)
+    a = (s0 % (20 * math.pi)) / 10.0
+    assert piece[0].start == pytest.approx((10 * math.cos(a), 10 * math.sin(a)), abs=1e-9)
