@@ -19,7 +19,7 @@ from camcam.cli.output import add_output_arguments, output_set, publish, to_json
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
 
-__all__ = ["register", "nc_step", "job_verdict", "DEFAULT_SPEC"]
+__all__ = ["register", "nc_step", "job_verdict", "job", "DEFAULT_SPEC"]
 
 #: The bundled job `camcam run` runs without a spec.
 DEFAULT_SPEC = "default.toml"
@@ -70,16 +70,17 @@ def _load(spec_arg):
         return load_spec(path)
 
 
-def run(args) -> int:
-    progress = Progress.from_args(args)
-    from camcam.cli.motion import motion_outputs, motion_summary, print_summary
+def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
+    """The whole flow for a loaded ``spec``: add every file to ``out`` (not committed); (summary, verdict).
 
-    spec = _load(args.spec)
+    `camcam run` and each spec of `camcam batch` go through here.
+    """
+    from camcam.cli.motion import motion_outputs, motion_summary
+
     verdict = Verdict(())
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
-    out = output_set(args, "run")
     with progress.step("motion table and plot"):
         svaj = motion_outputs(out, spec.name, program, 0.5)
     summary = {"name": spec.name, "motion": motion_summary(program)}
@@ -113,6 +114,16 @@ def run(args) -> int:
             out.add(f"{spec.name}-report.html", page.html)
             out.add(f"{spec.name}-report.json", to_json(report) + "\n")
         summary["cam"] = report
+    return summary, verdict
+
+
+def run(args) -> int:
+    progress = Progress.from_args(args)
+    from camcam.cli.motion import print_summary
+
+    spec = _load(args.spec)
+    out = output_set(args, "run")
+    summary, verdict = job(spec, out, progress)
 
     def show(summary: dict) -> None:
         print_summary(summary["motion"])

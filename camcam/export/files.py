@@ -90,6 +90,12 @@ def _plain_name(name: str) -> bool:
     return bool(name) and name not in (".", "..") and "/" not in name and "\0" not in name
 
 
+def _output_name(name: str) -> bool:
+    """A plain file name, or ``folder/file`` of two plain names (one level of sub-folders: a batch's specs)."""
+    parts = name.split("/")
+    return len(parts) <= 2 and all(_plain_name(p) for p in parts)
+
+
 def read_manifest(folder: str | Path) -> list[str] | None:
     """The file names an earlier run's manifest in ``folder`` lists, or ``None`` when it has none
     (or one camcam cannot read: then the folder counts as not camcam's)."""
@@ -246,14 +252,21 @@ class OutputSet:
 
     def add(self, name: str, data: bytes | str | PendingPNG) -> None:
         """Add a file; a plot still being drawn (:class:`PendingPNG`) is collected at :meth:`commit`."""
-        if not _plain_name(name) or name == MANIFEST:
-            raise ValueError(f"output name must be a plain file name other than {MANIFEST}, got {name!r}")
+        if not _output_name(name) or name.split("/")[0] == MANIFEST:
+            raise ValueError(f"output name must be a plain file name (or folder/file) other than {MANIFEST}, "
+                             f"got {name!r}")
         self._files[name] = data.encode("utf-8") if isinstance(data, str) else data if isinstance(data, PendingPNG) \
             else bytes(data)
 
     @property
     def names(self) -> list[str]:
         return list(self._files)
+
+    def contents(self) -> dict[str, bytes]:
+        """The files added so far as bytes, by name (plots still being drawn are collected first),
+        e.g. to send them to another process to be written."""
+        self._files = {name: resolve(data) for name, data in self._files.items()}
+        return dict(self._files)
 
     @property
     def _target(self) -> Path:
@@ -291,7 +304,7 @@ class OutputSet:
         if earlier is None:
             raise OutputError(f"{shown}: holds files camcam did not write ({_few(entries)}); "
                               "choose a new or empty folder")
-        foreign = [e for e in entries if e not in set(earlier) | {MANIFEST}]
+        foreign = [e for e in entries if e not in {n.split("/")[0] for n in earlier} | {MANIFEST}]
         if foreign:
             raise OutputError(f"{shown}: holds files its {MANIFEST} does not list ({_few(foreign)}); "
                               "camcam replaces a folder only when it holds nothing but an earlier run's files")
@@ -366,6 +379,8 @@ class OutputSet:
             if earlier is not None:
                 os.chmod(tmp, os.stat(target).st_mode & 0o7777)
             for n, data in self._files.items():
+                if "/" in n:
+                    (tmp / n).parent.mkdir(exist_ok=True)
                 _write_file(tmp / n, data)
             _write_file(tmp / MANIFEST, self.manifest())
             _fsync_dir(tmp)

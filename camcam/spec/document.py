@@ -20,6 +20,7 @@ from camcam.errors import SpecError
 from camcam.inputs import os_reason, read_limited
 from camcam.spec.reader import Table, fmt
 from camcam.spec.report import DEFAULT_REPORT, ReportSpec, read_report
+from camcam.spec.size import SizeSpec, read_size
 from camcam.spec.stock import DEFAULT_STOCK, StockSpec, read_stock
 
 if TYPE_CHECKING:
@@ -50,6 +51,7 @@ class Spec:
     machining: MachiningSpec | None = None
     report: ReportSpec = DEFAULT_REPORT
     stock: StockSpec = DEFAULT_STOCK
+    size: SizeSpec | None = None  # `camcam size` sweeps it; `camcam run` runs the design as written
 
     @property
     def unit(self) -> str:
@@ -105,8 +107,10 @@ def parse_spec(data: dict, source: Path) -> Spec:
     report_spec = read_report(report_t) if report_t is not None else DEFAULT_REPORT
     stock_t = root.table("stock", None)
     stock = read_stock(stock_t, cam) if stock_t is not None else DEFAULT_STOCK
+    size_t = root.table("size", None)
+    size_spec = read_size(size_t, cam, follower, motion_spec, machining_spec) if size_t is not None else None
     root.done()
-    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec, stock)
+    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec, stock, size_spec)
 
 
 def _check_depth(m: MachiningSpec, cam: CamSpec) -> None:
