@@ -128,7 +128,6 @@ def _index(rows: list[dict], files: list[dict[str, bytes]]) -> str:
 
 
 def run(args) -> int:
-
     specs = list(args.specs)
     folders = _folders(specs)
     with executor_from_args(args) as executor:
