@@ -8,7 +8,6 @@ and after), ``DIR/roughness.png`` (difference quotients before and after) and
 
 from __future__ import annotations
 
-from pathlib import Path
 
 from camcam.cli.commands import help_of
 from camcam.cli.output import add_output_arguments, output_set, publish, to_json

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 
 from camcam.cli.commands import help_of
 from camcam.cli.output import add_output_arguments, output_set, publish, warn

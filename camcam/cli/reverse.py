@@ -10,7 +10,6 @@ design) and ``DIR/summary.json``; ``--json`` prints the summary.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 

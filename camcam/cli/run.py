@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import sys
 from importlib import resources
-from pathlib import Path
 
 from camcam.cli.commands import help_of
 from camcam.cli.output import add_output_arguments, output_set, publish, to_json, warn

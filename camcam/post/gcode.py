@@ -3,7 +3,10 @@
 Coordinates are printed from integers on the 10^−d grid, so the same input
 gives the same bytes.  Arcs print X/Y and I/J (incremental or absolute) or R,
 or Heidenhain's CC/C pair.  A 4-axis path (``rotary``) is printed in inverse
-time (G93): every feed move carries F = feed / move length (1/min).
+time (G93): every feed move carries F = feed / move length (1/min).  A 5-axis
+path (``five_axis``: X Y Z = tool tip, A, B) sits between the post's
+``tcp_on`` and ``tcp_off`` blocks; Heidenhain prints it with M128 and the
+tool tip's feed in mm/min (Klartext has no inverse time).
 """
 
 from __future__ import annotations
@@ -58,7 +61,7 @@ class _Writer:
         self.post = post
         self.lines: list[str] = []
         self.pos = [None, None, None]  # printed grid integers
-        self.a = None
+        self.rot = {"A": None, "B": None}
         self.feed = None
         self.counts = {"line": 0, "arc": 0, "rapid": 0}
         self.count = post.quantizer.count
@@ -93,24 +96,31 @@ class _Writer:
             self.pos[i] = g
         return words
 
+    def rotary_words(self, m) -> list[str]:
+        """A and B words of a move that changes them (degrees, on the post's grid)."""
+        words = []
+        for name, v in (("A", m.a_deg), ("B", m.b_deg)):
+            if v is None:
+                continue
+            g = self.count(v)
+            if g != self.rot[name]:
+                words.append(f"{name}{self.n(g, self.post.dialect == 'heidenhain')}")
+            self.rot[name] = g
+        return words
+
     def gcode_move(self, m, rotary: bool):
         d = self.post.decimals
         if isinstance(m, Comment):
             self.emit(self.comment(m.text))
             return
         if isinstance(m, Rapid):
-            w = self.axes(m.x, m.y, m.z)
+            w = self.axes(m.x, m.y, m.z) + self.rotary_words(m)
             if w:
                 self.emit("G0 " + " ".join(w))
                 self.counts["rapid"] += 1
             return
         if isinstance(m, Feed):
-            w = self.axes(m.x, m.y, m.z)
-            if m.a_deg is not None:
-                g = self.count(m.a_deg)
-                if g != self.a:
-                    w.append(f"A{self.n(g)}")
-                self.a = g
+            w = self.axes(m.x, m.y, m.z) + self.rotary_words(m)
             if not w:
                 return
             if rotary:
@@ -160,11 +170,11 @@ class _Writer:
                                 f"max_arc_sweep_deg {self.post.max_arc_sweep_deg:g}")
 
     # -- Heidenhain --------------------------------------------------------------------
-    def hh_move(self, m, first: bool):
+    def hh_move(self, m, first: bool, five_axis: bool = False):
         if isinstance(m, Comment):
             self.emit(self.comment(m.text))
             return
-        if isinstance(m, Feed) and m.a_deg is not None:
+        if isinstance(m, Feed) and m.a_deg is not None and not five_axis:
             raise InputError(f"post {self.post.name}: 4-axis programs are not supported by this dialect")
         if isinstance(m, ArcMove):
             if self.pos[2] is not None and self.count(m.z) != self.pos[2]:
@@ -186,6 +196,8 @@ class _Writer:
             if g != self.pos[i]:
                 words.append(f"{name}{self.n(g, True)}")
             self.pos[i] = g
+        if five_axis:
+            words += self.rotary_words(m)
         if not words:
             return
         rapid = isinstance(m, Rapid)
@@ -204,8 +216,13 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam") -> Progr
     >>> print(write_program(tp, load_post("linuxcnc")).text.splitlines()[-3])
     G1 X10 F300
     """
-    if toolpath.rotary and not post.inverse_time:
+    if toolpath.five_axis and not post.five_axis:
+        raise InputError(f"post {post.name}: has no 5-axis mode (tool-centre-point control); use axes = 4 "
+                         f"or a post with one")
+    if toolpath.rotary and not toolpath.five_axis and not post.inverse_time:
         raise InputError(f"post {post.name}: has no inverse-time feed (G93) for a 4-axis program")
+    if toolpath.five_axis and post.dialect != "heidenhain" and not post.inverse_time:
+        raise InputError(f"post {post.name}: has no inverse-time feed (G93) for a 5-axis program")
     fields = {"title": toolpath.title, "name": name, "units": post.units,
               "tool": toolpath.tool_number, "spindle": int(round(toolpath.spindle_rpm)),
               "program_number": post.program_number}
@@ -221,18 +238,25 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam") -> Progr
     body += lines(post.header)
     for c in toolpath.comments:
         body.append(w.comment(c))
+    tcp_on = lines(post.tcp_on) if toolpath.five_axis else []
+    tcp_off = lines(post.tcp_off) if toolpath.five_axis else []
     if post.dialect == "heidenhain":
+        # Klartext has no inverse time: with M128 the programmed F is the tool tip's feed (mm/min)
+        w.lines += tcp_on
         first = True  # M3 goes on the first move (comments are not moves)
         for m in toolpath.moves:
-            w.hh_move(m, first)
+            w.hh_move(m, first, toolpath.five_axis)
             first = first and isinstance(m, Comment)
+        w.lines += tcp_off
     else:
+        w.lines += tcp_on
         if toolpath.rotary:
             w.emit("G93")
         for m in toolpath.moves:
             w.gcode_move(m, toolpath.rotary)
         if toolpath.rotary:
             w.emit("G94")
+        w.lines += tcp_off
     body += w.lines
     body += lines(post.footer)
     out = []

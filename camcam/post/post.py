@@ -28,6 +28,11 @@ Keys (all required unless a default is given):
                               whole at load time: :mod:`camcam.post.template`)
 ``program_number``            default 1 (Fanuc O-number); 1 up to the width the header
                               prints it with (``{program_number:04d}``: 9999)
+``five_axis``                 the controller has tool-centre-point control for 5-axis
+                              programs (X Y Z = tool tip; default false)
+``tcp_on``, ``tcp_off``       blocks that switch it on before and off after a 5-axis
+                              path (lists, may be empty: LinuxCNC's TCP lives in its
+                              kinematics); ``{tool}`` is filled in, checked like the header
 ============================  =====================================================
 
 Text that reaches the program goes through the post's comment encoder
@@ -94,6 +99,9 @@ class Post:
     tool_change: bool = True
     inverse_time: bool = True
     program_number: int = 1
+    five_axis: bool = False
+    tcp_on: tuple[str, ...] = ()
+    tcp_off: tuple[str, ...] = ()
 
     @property
     def quantizer(self) -> Quantizer:
@@ -123,7 +131,8 @@ def parse_post(data: dict, name: str) -> Post:
              "arc_format": str, "max_arc_sweep_deg": (int, float), "max_radius_error_mm": (int, float),
              "decimal_point_always": bool, "line_numbers": bool, "line_number_start": int,
              "line_number_step": int, "max_line_number": int, "comment": str, "tool_change": bool, "inverse_time": bool,
-             "header": list, "footer": list, "program_number": int}
+             "header": list, "footer": list, "program_number": int, "five_axis": bool, "tcp_on": list,
+             "tcp_off": list}
     required = {"description", "extension", "units", "decimals", "arc_format", "max_arc_sweep_deg", "header", "footer"}
     for key in data:
         if key not in types:
@@ -151,12 +160,18 @@ def parse_post(data: dict, name: str) -> Post:
         fail("comment", f'expected "parentheses" or "semicolon", got {data["comment"]!r}')
     if not data["extension"].isalnum():
         fail("extension", f"expected letters/digits without a dot, got {data['extension']!r}")
+    if data.get("five_axis", False) and "tcp_on" not in data:
+        fail("tcp_on", "missing: a five_axis post names the blocks that switch tool-centre-point control on "
+                       "(an empty list when the machine's kinematics do it)")
+    for key in ("tcp_on", "tcp_off"):
+        if key in data and not data.get("five_axis", False):
+            fail(key, "only applies with five_axis = true")
     if not data["extension"].isascii():
         fail("extension", f"expected ASCII letters/digits, got {data['extension']!r}")
     comment = data.get("comment", "parentheses")
     templates = {}
-    for key in ("header", "footer"):
-        for i, line in enumerate(data[key]):
+    for key in ("header", "footer", "tcp_on", "tcp_off"):
+        for i, line in enumerate(data.get(key, ())):
             try:
                 templates[(key, i)] = parse_template(line, comment)
             except TemplateError as err:

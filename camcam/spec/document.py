@@ -94,7 +94,9 @@ def parse_spec(data: dict, source: Path) -> Spec:
     if optimize is not None:
         optimize.done()
     machining = root.table("machining", None)
-    machining_spec = _reader("machining", "read_machining")(machining, base) if machining is not None else None
+    machining_spec = (_reader("machining", "read_machining")(machining, base, cam.kind if cam else None,
+                                                             follower.kind if follower else None)
+                      if machining is not None else None)
     if machining_spec is not None and cam is not None:
         _check_depth(machining_spec, cam)
     if machining_spec is not None:

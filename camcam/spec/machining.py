@@ -12,10 +12,13 @@ depth = 12.0               # mm
 stepdown = 4.0             # mm
 flute_length = 32.0        # mm, the tool's cutting length (default: twice its diameter)
 a_axis = "right-hand"      # barrel cams: a positive A turns the part by the right-hand rule about +X
+                           # ("left-hand": the machine's positive A turns the part the other way)
 accept_out_of_tolerance = false  # true: a FAIL verdict only warns (exit 0)
 stepover = 0.4             # roughing: radial step, a fraction of the tool diameter
 ramp_angle = 3.0           # deg, steepest descent into material (grooves: ramped entries)
 bore = false               # true: cut the bore as a helical bore
+axes = 5                   # cylindrical cams: 4 (X A) or 5 (X Y Z A B, tool axis on the roller axis);
+                           # default 5 for an oscillating roller, 4 otherwise
 ```
 """
 
@@ -31,7 +34,8 @@ from camcam.spec.reader import Table
 from camcam.toolpath.budget import DEFAULT_BUDGET
 
 __all__ = ["MachiningSpec", "read_machining", "FEED_RANGE_MM_MIN", "SPINDLE_RANGE_RPM", "MAX_PASSES",
-           "MIN_SIZE_MM", "BREAK_THROUGH_MM", "check_passes"]
+           "MIN_SIZE_MM", "BREAK_THROUGH_MM", "check_passes",
+           "default_axes"]
 
 #: Feeds a milling machine runs (mm/min): below 1 nothing is cut, above 100 m/min no machine feeds.
 FEED_RANGE_MM_MIN = (1.0, 100_000.0)
@@ -56,8 +60,17 @@ def check_passes(m: MachiningSpec) -> None:
                         f"passes for depth = {m.depth_mm:g} mm; at most {MAX_PASSES} are allowed")
 
 
-def read_machining(t: Table, base: Path) -> MachiningSpec:
-    """Validate ``[machining]``; ``base`` anchors a relative post path."""
+def default_axes(cam_kind: str | None, follower_kind: str | None) -> int:
+    """Axes a job uses when ``[machining] axes`` is not given: 5 for an oscillating roller on a
+    cylindrical cam (its roller axis tilts with the arm), 4 for other cylindrical cams, 3 for discs."""
+    if cam_kind != "cylindrical":
+        return 3
+    return 5 if follower_kind == "oscillating-roller" else 4
+
+
+def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_kind: str | None = None) -> MachiningSpec:
+    """Validate ``[machining]``; ``base`` anchors a relative post path; the cam and follower kinds
+    decide which ``axes`` values apply (:func:`default_axes`)."""
     name = t.string("post", "linuxcnc")
     try:
         post = load_post(name, base)
@@ -84,10 +97,21 @@ def read_machining(t: Table, base: Path) -> MachiningSpec:
     accept = t.boolean("accept_out_of_tolerance", False)
     flute = t.number("flute_length", 2.0 * tool, minimum=0.0, inclusive=False, unit="mm")
     a_axis = t.string("a_axis", "right-hand", choices=("right-hand", "left-hand"))
+    axes = default_axes(cam_kind, follower_kind)
+    if t.has("axes"):
+        if cam_kind != "cylindrical":
+            raise t.error("axes", "applies to cylindrical cams only (a disc cam is cut with 3 axes)")
+        allowed = (4, 5) if follower_kind == "oscillating-roller" else (4,)
+        axes = t.integer("axes", minimum=4, maximum=5)
+        t.check("axes", axes in allowed, f"expected 4 for a {follower_kind} follower (its roller axis stays radial, "
+                f"so B would stay 0), got {axes}")
+    if axes == 5:
+        t.check("post", post.five_axis, f"post {post.name} has no 5-axis mode (tool-centre-point control); "
+                f"use a post with one (linuxcnc, fanuc, haas, sinumerik, heidenhain) or axes = 4")
     stepover = t.number("stepover", 0.4, minimum=0.0, maximum=1.0, inclusive=False)
     ramp = t.number("ramp_angle", 3.0, minimum=0.0, maximum=45.0, inclusive=False, unit="deg")
     bore = t.boolean("bore", False)
     t.done()
     return MachiningSpec(post, tool, tol, mode, feed, spindle, depth, stepdown, plunge, safe, clearance, lead,
                          allowance, spring, tool_number, accept, flute_length_mm=flute, a_axis=a_axis,
-                         stepover=stepover, ramp_angle_deg=ramp, bore=bore)
+                         stepover=stepover, ramp_angle_deg=ramp, bore=bore, axes=axes)
