@@ -14,7 +14,7 @@ Keys (all required unless a default is given):
 ``decimals``                  digits after the point, 3–6 (coordinates are rounded to them)
 ``arc_format``                ``"ij_incremental"``, ``"ij_absolute"``, ``"r"`` (G-code) or
                               ``"cc_absolute"`` (Heidenhain CC + C)
-``max_arc_sweep_deg``         largest arc per block, (0, 180]
+``max_arc_sweep_deg``         largest arc per block, [90, 180] (lead arcs are quarter circles)
 ``max_radius_error_mm``       start/end radius mismatch allowed (default 0.002)
 ``decimal_point_always``      print ``X10.`` instead of ``X10`` (Fanuc)
 ``line_numbers``              number the blocks (``N10``); start/step default 10/10
@@ -150,8 +150,9 @@ def parse_post(data: dict, name: str) -> Post:
         fail("arc_format", f"expected one of {', '.join(_ARC_FORMATS[dialect])} for dialect {dialect}, got {data['arc_format']!r}")
     if not 3 <= data["decimals"] <= 6:
         fail("decimals", f"expected 3–6, got {data['decimals']}")
-    if not 0 < data["max_arc_sweep_deg"] <= 180:
-        fail("max_arc_sweep_deg", f"expected in (0, 180], got {data['max_arc_sweep_deg']}")
+    if not 90 <= data["max_arc_sweep_deg"] <= 180:
+        # the tangent lead-in/out arcs are quarter circles: a post that cannot hold 90° cannot print them
+        fail("max_arc_sweep_deg", f"expected 90 to 180 (lead arcs are quarter circles), got {data['max_arc_sweep_deg']}")
     if data["arc_format"] == "r" and data["max_arc_sweep_deg"] >= 180:
         fail("max_arc_sweep_deg", "must be below 180 with arc_format r (R is ambiguous at a half circle)")
     if not 0 < data.get("max_radius_error_mm", 0.002) <= 0.1:
