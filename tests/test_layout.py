@@ -24,7 +24,7 @@ RANK = {
     "reverse": 3, "toolpath": 3,
     "nc": 4,
     "post": 5, "export": 5, "plots": 5, "report": 5, "verify": 5,
-    "spec": 6,
+    "spec": 6, "size": 6, "scale": 6,
     "cli": 7, "__main__": 7,
 }
 

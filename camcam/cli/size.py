@@ -39,7 +39,7 @@ def run(args) -> int:
 
     from camcam.errors import SpecError
     from camcam.export.files import OutputSet
-    from camcam.export.size_files import parquet_available, sizing_files
+    from camcam.size.files import parquet_available, sizing_files
     from camcam.size.sweep import run_sweep
     from camcam.spec import load_spec
 

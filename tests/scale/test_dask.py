@@ -40,7 +40,7 @@ def test_size_same_bytes_in_process_one_worker_and_cluster(scheduler, tmp_path):
         assert code == 0, (label, err)
         trees[label] = tree(tmp_path / label)
         assert json.loads(out)["designs"] == 65 * 21 * 2
-    assert len(trees["in-process"]) == 6
+    assert len(trees["in-process"]) == 7  # six outputs and the manifest of the output folder
     assert trees["one worker"] == trees["in-process"]
     assert trees["cluster"] == trees["in-process"]
 

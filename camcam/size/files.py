@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from camcam.cli.output import to_json
+from camcam.export.jsontext import to_json
 from camcam.export.spec_toml import dumps, sized_spec_data
 from camcam.plots.sizing import sizing_png
 from camcam.report.html import DataTable, Figure, KeyValues, Paragraph, Section, render_html
