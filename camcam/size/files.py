@@ -87,6 +87,8 @@ def _constraints(result: SizingResult) -> list[tuple[str, str]]:
     else:
         rows.append(("min radius of curvature (convex profile)", f"≥ {lim.min_curvature_radius_mm:g} mm"))
     rows.append(("undercut / cusp", "none"))
+    if lim.bore_mm > 0:
+        rows.append(("bore fits", f"Ø{lim.bore_mm:g} mm within the base circle minus the roller"))
     if lim.tool_radius_mm is not None:
         rows.append(("tool fits every concave part", f"concave radius ≥ tool radius {lim.tool_radius_mm:g} mm"))
     else:
@@ -132,7 +134,8 @@ def sizing_files(result: SizingResult, spec_data: dict, name: str, table_format:
         "law_choices": {f"segment {k}": sorted({c[i] for c in result.grid.combos}) for i, k in enumerate(result.grid.segments)},
         "grid": {"samples_per_rev": result.samples_per_rev, "step_deg": step_deg,
                  "pressure_angle_bound_deg": pa_b, "curvature_radius_bound_mm": rho_b},
-        "exact_checks": [{"design": d, "failures": result.limits.failures(ex, result.params(d).get("roller_radius", 0.0))}
+        "exact_checks": [{"design": d, "failures": result.limits.failures(ex, result.params(d).get("roller_radius", 0.0),
+                                                                          result.params(d)["base_radius"])}
                          for d, ex in result.checked],
         "best": None,
     }

@@ -88,20 +88,26 @@ class Limits:
     min_curvature_radius_mm: float
     min_curvature_radius_rollers: float | None
     tool_radius_mm: float | None
+    bore_mm: float = 0.0  # the bore must fit inside the base circle minus the roller (as `camcam run` requires)
 
     @classmethod
-    def of(cls, size: SizeSpec) -> "Limits":
-        return cls(size.max_pressure_angle_deg, size.min_curvature_radius_mm, size.min_curvature_radius_rollers, size.tool_radius_mm)
+    def of(cls, size: SizeSpec, bore_mm: float = 0.0) -> "Limits":
+        return cls(size.max_pressure_angle_deg, size.min_curvature_radius_mm, size.min_curvature_radius_rollers, size.tool_radius_mm,
+                   bore_mm)
+
+    def bore_fits(self, base_radius, roller_radius):
+        return np.asarray(base_radius) - np.asarray(roller_radius) >= self.bore_mm / 2 - LIMIT_ATOL
 
     def curvature_limit(self, roller_radius):
         if self.min_curvature_radius_rollers is not None:
             return self.min_curvature_radius_rollers * np.asarray(roller_radius, float)
         return self.min_curvature_radius_mm
 
-    def feasible(self, valid, undercut, pa, rho, concave, roller_radius) -> np.ndarray:
+    def feasible(self, valid, undercut, pa, rho, concave, roller_radius, base_radius) -> np.ndarray:
         """Element-wise: every constraint met (NaN figures never are)."""
         with np.errstate(invalid="ignore"):
             ok = np.asarray(valid, bool) & ~np.asarray(undercut, bool) & (np.asarray(rho) > 0)
+            ok &= self.bore_fits(base_radius, roller_radius)
             if self.max_pressure_angle_deg is not None:
                 ok &= np.asarray(pa) <= self.max_pressure_angle_deg + LIMIT_ATOL
             ok &= np.asarray(rho) >= self.curvature_limit(roller_radius) - LIMIT_ATOL
@@ -109,10 +115,12 @@ class Limits:
                 ok &= np.asarray(concave) >= self.tool_radius_mm - LIMIT_ATOL
         return ok
 
-    def failures(self, ex: ExactFigures, roller_radius: float) -> list[str]:
+    def failures(self, ex: ExactFigures, roller_radius: float, base_radius: float = math.inf) -> list[str]:
         """The constraints an exactly evaluated design misses, in words (empty: it meets them all)."""
         if not ex.valid:
             return [ex.problem]
+        if not self.bore_fits(base_radius, roller_radius):
+            return [f"the bore Ø{self.bore_mm:g} mm does not fit inside the base circle minus the roller"]
         if ex.undercut:
             return ["undercut (or a cusp)"]
         out = []
@@ -197,12 +205,12 @@ def run_sweep(spec, executor: Executor) -> SizingResult:
     ctx = SweepContext(kind, SIGMA[rotation], grid, samples)
     chunks = grid.chunks()
     blocks = executor.map(evaluate_chunk, chunks, what=f"{len(grid):,} designs", ctx=ctx)
-    limits = Limits.of(size)
+    limits = Limits.of(size, spec.cam.bore)
 
     def feasible(c):
         rr = c["roller_radius_mm"] if "roller_radius_mm" in c else np.zeros(len(c["design"]))
         return limits.feasible(c["valid"], c["undercut"], c["max_pressure_angle_deg"], c["min_curvature_radius_mm"],
-                               c["min_concave_radius_mm"], rr)
+                               c["min_concave_radius_mm"], rr, c["base_radius_mm"])
 
     table = _table(grid, blocks, chunks, feasible)
     obj_col = "outer_radius_mm" if size.objective == "outer-radius" else "max_pressure_angle_deg"
@@ -222,7 +230,7 @@ def run_sweep(spec, executor: Executor) -> SizingResult:
         combo = int(number) // grid.per_combo
         ex = exact_figures(kind, programs[combo], params, rotation)
         checked.append((int(number), ex))
-        if limits.failures(ex, params.get("roller_radius", 0.0)):
+        if limits.failures(ex, params.get("roller_radius", 0.0), params["base_radius"]):
             continue
         value = ex.outer_radius_mm if size.objective == "outer-radius" else ex.max_pressure_angle_deg
         key = (round(value / TIE) * TIE, round(ex.max_pressure_angle_deg / TIE) * TIE, int(number))
