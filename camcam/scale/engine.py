@@ -11,6 +11,7 @@ of the tasks, so what is written never depends on where a task ran.
 from __future__ import annotations
 
 import logging
+from abc import ABC, abstractmethod
 import os
 import sys
 from contextlib import contextmanager
@@ -49,7 +50,7 @@ class _Bar:
             self.stream.flush()
 
 
-class Executor:
+class Executor(ABC):
     """Runs ``fn(item, **shared)`` for every item and returns the results in item order."""
 
     label = "executor"
@@ -58,8 +59,9 @@ class Executor:
     #: Draw a progress bar on stderr (the commands set it: a terminal, or ``--progress``).
     progress = False
 
+    @abstractmethod
     def map(self, fn: Callable, items: Sequence, what: str = "tasks", **shared: Any) -> list:
-        raise NotImplementedError
+        """``[fn(item, **shared) for item in items]``, in the order of ``items``."""
 
 
 class InProcess(Executor):
