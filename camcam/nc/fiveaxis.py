@@ -283,7 +283,7 @@ def _lower_bound(pose: ToolPose, tolerance_mm: float, cut_length: float, lo: flo
     """Chords the error model needs at least: ∫ √(max(|n·T″|, |n·(T″ + L·a″)|) / 8δ) dθ on [lo, hi]."""
     th = np.linspace(lo, hi, 4001)
     x, z, f = pose.jets(th, 2)
-    b, b1, b2 = f.d[0], f.d[1], f.d[2]
+    b, b2 = f.d[0], f.d[2]
     n = (-np.cos(b), np.sin(b))
     k0 = n[0] * x.d[2] + n[1] * z.d[2]
     # a″ = (cos B·B″ − sin B·B′², 0, −sin B·B″ − cos B·B′²); n·a″ = −B″

@@ -256,7 +256,7 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
 
     for m in moves:
         z0, z1 = m.p0[2], m.p1[2]
-        zlo, zhi = min(z0, z1), max(z0, z1)
+        zlo = min(z0, z1)
         if m.kind == "rapid":
             geom = LineString([m.p0[:2], m.p1[:2]]) if m.p0[:2] != m.p1[:2] else Point(m.p1[:2])
             for i in range(len(slabs)):

@@ -218,9 +218,7 @@ def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",
     if mode == "arcs":
         return _fit_arcs(curve, tolerance_mm, band, quantizer, math.radians(max_sweep_deg), a, b, exact, printed,
                          budget)
-    targets = tuple(budget.targets(band, quantizer))
-    sag = budget.sag_mm(targets[0], quantizer)  # arcs flatter than this print as lines
-    max_sweep = math.radians(max_sweep_deg)
+    targets = tuple(budget.targets(band, quantizer))  # lines: the sag and sweep limits concern arcs only
     margin = budget.margin_mm(tolerance_mm)
     all_elems, blocks, lbs = [], [], []
     worst = None
