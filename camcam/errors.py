@@ -17,7 +17,7 @@ A run whose files were written but whose verdict is FAIL exits with status 3
 
 from __future__ import annotations
 
-__all__ = ["CamcamError", "SpecError", "InputError", "MotionError", "GeometryError", "CamcamFault", "FitError", "PostError"]
+__all__ = ["CamcamError", "SpecError", "InputError", "MotionError", "GeometryError", "CamcamFault", "FitError", "PostError", "OutputError"]
 
 
 class CamcamError(Exception):
@@ -51,6 +51,11 @@ class MotionError(CamcamError, ValueError):
 
 class GeometryError(CamcamError, ValueError):
     """The cam cannot be built as specified (undercut, cusp, follower cannot reach)."""
+
+
+class OutputError(CamcamError, OSError):
+    """An input or output path cannot be used: the message names the path and the reason
+    (no space left, read-only, not a folder, exists, held by another run)."""
 
 
 class CamcamFault(RuntimeError):

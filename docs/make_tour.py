@@ -6,7 +6,8 @@ Runs `camcam run` on samples/disc-translating-roller.toml,
 samples/cylindrical-translating.toml and samples/cylindrical-translating-small-tool.toml
 (its 3-D groove deviation map), copies their plots into docs/tour/, takes
 a headless-Chromium screenshot of the report (top part) and writes the first
-lines of the NC program to docs/tour/program-head.ngc.
+lines of the NC program to docs/tour/program-head.ngc; the sizing chart of
+samples/size/translating-roller.toml goes to docs/tour/sizing.png.
 """
 
 from __future__ import annotations
@@ -57,6 +58,9 @@ def run() -> None:
         head = (disc / "disc-translating-roller.ngc").read_text().splitlines()[:16]
         (TOUR / "program-head.ngc").write_text("\n".join(head) + "\n")
         shoot(disc / "disc-translating-roller-report.html", TOUR / "report.png", work)
+        sized = work / "size"
+        assert main(["size", str(ROOT / "samples" / "size" / "translating-roller.toml"), "-o", str(sized), "--in-process"]) == 0
+        shutil.copy(sized / "size-translating-roller-sizing.png", TOUR / "sizing.png")
 
 
 if __name__ == "__main__":

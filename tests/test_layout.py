@@ -18,13 +18,13 @@ PACKAGE = Path(__file__).resolve().parents[1] / "camcam"
 
 #: Rank of each top-level package or module of camcam: an import may only go to the same or a lower rank.
 RANK = {
-    "__init__": 0, "errors": 0, "inputs": 0, "verdict": 0, "lazy": 0, "data": 0,
+    "__init__": 0, "errors": 0, "inputs": 0, "verdict": 0, "lazy": 0, "interrupts": 0, "data": 0,
     "motion": 1,
     "geometry": 2, "optimize": 2, "lifttable": 2,
     "reverse": 3, "toolpath": 3,
     "nc": 4,
     "post": 5, "export": 5, "plots": 5, "report": 5, "verify": 5,
-    "spec": 6,
+    "spec": 6, "size": 6, "scale": 6,
     "cli": 7, "__main__": 7,
 }
 

@@ -101,3 +101,17 @@ def test_report_renders_in_chromium(sample, tmp_path):
     img = np.asarray(Image.open(shot).convert("L"), dtype=float)
     # a rendered report: headings, tables and plots make many dark pixels on the first screen
     assert (img < 128).mean() > 0.005
+
+
+def test_outputs_as_recorded():
+    # every byte of every output of these samples as recorded in tests/data/sample_checksums.json, in a fresh
+    # process (nothing this test process set up can leak in); tests/make_sample_checksums.py says when to re-record
+    import os
+    import subprocess
+    import sys
+
+    names = ["samples/disc-translating-roller.toml", "samples/disc-groove.toml", "samples/demo.toml"]
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    r = subprocess.run([sys.executable, str(ROOT / "tests" / "make_sample_checksums.py"), "--check", *names],
+                       capture_output=True, text=True, env=env, cwd=ROOT)
+    assert r.returncode == 0, r.stdout + r.stderr

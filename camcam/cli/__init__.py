@@ -28,6 +28,8 @@ from pathlib import Path
 from camcam import __version__
 from camcam.cli.commands import COMMANDS
 from camcam.errors import CamcamError
+from camcam.export.files import DiskLog
+from camcam.interrupts import Interrupted, Watch, exit_status, import_guard, signal_name
 
 __all__ = ["main", "main_exit", "USAGE_ERROR", "INTERNAL_ERROR"]
 
@@ -93,26 +95,34 @@ def fault_report(err: BaseException, argv: list[str] | None, output: str | None)
 def main(argv: list[str] | None = None) -> int:
     """Run the command line; returns the exit status (see the module notes)."""
     words = sys.argv[1:] if argv is None else list(argv)
-    parser = build_parser(words)
+    with import_guard():  # Ctrl-C while the command's modules load: one line and 130, never a traceback
+        parser = build_parser(words)
     args = parser.parse_args(words)
     if not getattr(args, "func", None):
         parser.print_help()
         return USAGE_ERROR
-    try:
-        return int(args.func(args) or 0)
-    except CamcamError as err:
-        print("camcam: error: " + _one_line(err), file=sys.stderr)
-        return USAGE_ERROR
-    except KeyboardInterrupt:
-        print("camcam: interrupted; no output was written", file=sys.stderr)
-        return 130
-    except Exception as err:  # a fault of ours, never dressed up as the user's mistake
+    disk = DiskLog()
+    with Watch() as watch:
+        args.watch, args.disk_log = watch, disk
         try:
-            where = f"details in {fault_report(err, argv, getattr(args, 'output', None))}"
-        except OSError:
-            where = "no file could be written for the details"
-        print(f"camcam: internal error: {type(err).__name__}: {_one_line(err)}; {where}", file=sys.stderr)
-        return INTERNAL_ERROR
+            status = int(args.func(args) or 0)
+            watch.checkpoint()  # an interrupt a library swallowed still ends the run as one
+            return status
+        except CamcamError as err:
+            print("camcam: error: " + _one_line(err), file=sys.stderr)
+            return USAGE_ERROR
+        except KeyboardInterrupt as err:  # Ctrl-C, SIGTERM, SIGHUP: say what is on disk
+            signum = err.signum if isinstance(err, Interrupted) else 2
+            what = "interrupted" if signum == 2 else f"terminated by {signal_name(signum)}"
+            print(f"camcam: {what}; {disk.describe()}", file=sys.stderr)
+            return exit_status(signum)
+        except Exception as err:  # a fault of ours, never dressed up as the user's mistake
+            try:
+                where = f"details in {fault_report(err, argv, getattr(args, 'output', None))}"
+            except OSError:
+                where = "no file could be written for the details"
+            print(f"camcam: internal error: {type(err).__name__}: {_one_line(err)}; {where}", file=sys.stderr)
+            return INTERNAL_ERROR
 
 
 def main_exit() -> None:

@@ -8,13 +8,11 @@ and after), ``DIR/roughness.png`` (difference quotients before and after) and
 
 from __future__ import annotations
 
-from pathlib import Path
 
 from camcam.cli.commands import help_of
-from camcam.cli.output import publish, to_json
+from camcam.cli.output import add_output_arguments, output_set, publish, to_json
 from camcam.errors import SpecError
 from camcam.export.faired_table import faired_csv
-from camcam.export.files import OutputSet
 from camcam.lifttable.fairing import DEFAULT_METHOD, DEFAULT_XI, METHODS
 from camcam.lifttable.interpolate import FITS, default_fit
 from camcam.lifttable.process import FairingOptions, FittedTable, fit_table
@@ -26,7 +24,7 @@ __all__ = ["register", "fit_summary"]
 def register(sub) -> None:
     p = sub.add_parser("fit", help=help_of("fit"))
     p.add_argument("table", help="lift table: angle_deg, lift_mm (CSV or whitespace)")
-    p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
+    add_output_arguments(p)
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.add_argument("--step", type=float, default=0.5, help="faired.csv step in degrees (default 0.5)")
     p.add_argument("--xi", type=float, default=DEFAULT_XI, help=f"mid-point stop: largest correction per round, mm (default {DEFAULT_XI:g})")
@@ -64,8 +62,9 @@ def fit_summary(ft: FittedTable) -> dict:
 def run(args) -> int:
     from camcam.plots.comb import lift_comb_png  # plotting is loaded only when a plot is drawn
     from camcam.plots.roughness import roughness_png  # plotting is loaded only when a plot is drawn
-    if not (args.step > 0 and args.step <= 360):
-        raise SpecError("--step", f"expected a number of degrees > 0 and <= 360, got {args.step:g}")
+    from camcam.cli.motion import check_step
+
+    check_step(args.step)
     if not args.xi > 0:
         raise SpecError("--xi", f"expected a number > 0 mm, got {args.xi:g}")
     if not args.threshold > 0:
@@ -73,6 +72,7 @@ def run(args) -> int:
     if not args.min_size >= 0:
         raise SpecError("--min-size", f"expected a number >= 0 mm, got {args.min_size:g}")
     raw = load_lift_table(args.table)
+    out = output_set(args, "fit")
     fit = args.fit or default_fit(raw.full_revolution)
     if fit == "periodic" and not raw.full_revolution:
         raise SpecError("--fit", f'"periodic" needs a full revolution; {raw.source} covers {raw.angles_deg[0]:g}–{raw.angles_deg[-1]:g}°')
@@ -81,7 +81,6 @@ def run(args) -> int:
     summary = fit_summary(ft)
     before, after = ft.interpolant("raw"), ft.interpolant("final")
     x0, x1 = raw.angles_deg[0], raw.angles_deg[-1]
-    out = OutputSet(Path(args.output))
     out.add("faired.csv", faired_csv(after, x0, x1, args.step))
     out.add("curvature-comb.png", lift_comb_png(before, after, x0, x1, title=f"{raw.source}: lift-curve curvature comb ({ft.fit} fit)"))
     out.add("roughness.png", roughness_png(ft.roughness_before, ft.roughness_after, summary["bad_points_deg"]))

@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 
 from camcam.cli.commands import help_of
-from camcam.cli.output import publish, warn
+from camcam.cli.output import add_output_arguments, output_set, publish, warn
 from camcam.export.files import OutputSet
 from camcam.export.motion_table import motion_csv
 from camcam.motion.program import MotionProgram
@@ -17,7 +16,7 @@ __all__ = ["register", "motion_summary", "motion_outputs"]
 def register(sub) -> None:
     p = sub.add_parser("motion", help=help_of("motion"))
     p.add_argument("spec", help="spec file (TOML)")
-    p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
+    add_output_arguments(p)
     p.add_argument("--step", type=float, default=0.5, help="table step in degrees (default 0.5)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.set_defaults(func=run)
@@ -55,16 +54,26 @@ def print_summary(summary: dict) -> None:
         print(f"{n:13s} min {e['min']:+12.6g} {u:7s} at {e['min_at_deg']:7.2f}°   max {e['max']:+12.6g} {u:7s} at {e['max_at_deg']:7.2f}°")
 
 
-def run(args) -> int:
+#: Finest table step (degrees): 36 000 rows per revolution at most.
+MIN_STEP_DEG = 0.01
+
+
+def check_step(step_deg: float) -> None:
+    """``--step`` of a table command: from :data:`MIN_STEP_DEG` to 360 degrees."""
     from camcam.errors import SpecError
 
-    if not args.step > 0 or args.step > 360:
-        raise SpecError("--step", f"expected a number of degrees > 0 and <= 360, got {args.step:g}")
+    if not MIN_STEP_DEG <= step_deg <= 360:
+        raise SpecError("--step", f"expected degrees from {MIN_STEP_DEG:g} (at most {round(360 / MIN_STEP_DEG)} rows) "
+                                  f"to 360, got {step_deg:g}")
+
+
+def run(args) -> int:
+    check_step(args.step)
     spec = load_spec(args.spec)
     program = spec.need("motion", "motion").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
-    out = OutputSet(Path(args.output))
+    out = output_set(args, "motion")
     motion_outputs(out, spec.name, program, args.step)
     publish(out, motion_summary(program), args.json, print_summary)
     return 0

@@ -25,7 +25,7 @@ __all__ = ["register", "optimize"]
 def register(sub) -> None:
     p = sub.add_parser("optimize", help=help_of("optimize"))
     p.add_argument("spec", help="spec file (TOML) with an [optimize] table")
-    p.add_argument("-o", "--output", help="write the law as JSON to this file")
+    p.add_argument("-o", "--output", help="write the law as JSON to this file (replaced in one step if it exists)")
     p.add_argument("--json", action="store_true", help="print the law as one JSON object")
     add_progress_flag(p)
     p.set_defaults(func=run)
@@ -80,7 +80,7 @@ def run(args) -> int:
         law, solver = optimize(opt)
     doc = law_document(law, problem=opt.as_dict(), solver=solver)
     if args.output:
-        atomic_write(Path(args.output), to_json(doc) + "\n")
+        atomic_write(Path(args.output), to_json(doc) + "\n", getattr(args, "disk_log", None))
     if args.json:
         print_json(doc)
     else:

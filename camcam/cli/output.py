@@ -2,31 +2,13 @@
 
 from __future__ import annotations
 
-import json
-import math
 import sys
 from pathlib import Path
 from typing import Any, Callable, Sequence
 
-__all__ = ["to_json", "print_json", "warn", "publish"]
+from camcam.export.jsontext import to_json
 
-
-def _clean(value: Any) -> Any:
-    """Replace ±inf and NaN (not JSON) by the strings "inf", "-inf", "nan"."""
-    if isinstance(value, float) and not math.isfinite(value):
-        return "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")
-    if isinstance(value, dict):
-        return {k: _clean(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_clean(v) for v in value]
-    if hasattr(value, "item") and callable(value.item):  # numpy scalars
-        return _clean(value.item())
-    return value
-
-
-def to_json(obj: Any, indent: int | None = 2) -> str:
-    """Strict JSON (no NaN/Infinity tokens): infinite values become "inf"/"-inf"."""
-    return json.dumps(_clean(obj), indent=indent, allow_nan=False, ensure_ascii=False)
+__all__ = ["to_json", "print_json", "warn", "publish", "output_set", "add_output_arguments"]
 
 
 def print_json(obj: Any) -> None:
@@ -35,6 +17,27 @@ def print_json(obj: Any) -> None:
 
 def warn(message: str) -> None:
     print(f"camcam: warning: {message}", file=sys.stderr)
+
+
+def add_output_arguments(p) -> None:
+    """``-o DIR`` and ``--force`` for a command that writes an output folder."""
+    p.add_argument("-o", "--output", default="camcam-out", help="output folder (default ./camcam-out); "
+                   "it must be new, empty, or hold an earlier run's files (with --force)")
+    p.add_argument("--force", action="store_true", help="replace the files an earlier run left in the output folder")
+
+
+def output_set(args, command: str):
+    """The command's :class:`~camcam.export.files.OutputSet` for ``args.output``, checked now
+    (a target it cannot use fails before any work is done)."""
+    from pathlib import Path
+
+    from camcam.export.files import OutputSet
+
+    watch = getattr(args, "watch", None)
+    out = OutputSet(Path(args.output), force=getattr(args, "force", False), log=getattr(args, "disk_log", None),
+                    command=command, checkpoint=watch.checkpoint if watch is not None else None)
+    out.check()
+    return out
 
 
 def publish(out, summary: dict, as_json: bool, show: Callable[[dict], None],

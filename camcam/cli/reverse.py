@@ -10,14 +10,12 @@ design) and ``DIR/summary.json``; ``--json`` prints the summary.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 
 from camcam.cli.commands import help_of
-from camcam.cli.output import publish, to_json
+from camcam.cli.output import add_output_arguments, output_set, publish, to_json
 from camcam.errors import SpecError
-from camcam.export.files import OutputSet
 from camcam.export.recovered_motion import motion_csv
 from camcam.reverse.design import ReverseOptions, design_motion, reverse_design
 from camcam.reverse.fit import DEFAULT_MAX_GAP_DEG, FITS
@@ -31,7 +29,7 @@ def register(sub) -> None:
     p = sub.add_parser("reverse", help=help_of("reverse"))
     p.add_argument("points", help="points: x, y (disc profile) or x, y, z (cylindrical flank), mm")
     p.add_argument("--spec", required=True, help="spec with [cam], [follower] and optionally the design [motion]")
-    p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
+    add_output_arguments(p)
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     p.add_argument("--points", dest="n_points", type=int, default=360, help="output cam angles per revolution (default 360)")
     p.add_argument("--fit", choices=FITS, default=None, help="motion fit (default: bspline, seed 002, for cylindrical cams; periodic for discs)")
@@ -74,6 +72,7 @@ def run(args) -> int:
     cam = spec.need("cam", "reverse")
     follower = spec.need("follower", "reverse")
     points = load_points(args.points)
+    out = output_set(args, "reverse")
     opts = ReverseOptions(args.fit, not args.no_smoothing, args.slopes, args.flank, args.max_gap)
     res = reverse_design(points, cam, follower, opts)
     angles, cols = res.motion.table(args.n_points)
@@ -98,7 +97,6 @@ def run(args) -> int:
         design, errors = compare(angles[:-1], cols[:-1], program, cam.kind)
         design = np.vstack([design, design[:1]])
         summary.update(errors)
-    out = OutputSet(Path(args.output))
     out.add("motion.csv", motion_csv(angles, cols))
     title = f"{points.source}: {cam.kind} cam, {follower.kind} follower ({len(points)} points)"
     out.add("reverse.png", reverse_png(angles, cols, unit, res.point_angles_deg, res.point_lift, design, title))

@@ -13,14 +13,13 @@ from __future__ import annotations
 
 import sys
 from importlib import resources
-from pathlib import Path
 
 from camcam.cli.commands import help_of
-from camcam.cli.output import publish, to_json, warn
+from camcam.cli.output import add_output_arguments, output_set, publish, to_json, warn
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
 
-__all__ = ["register", "nc_step", "job_verdict", "design_and_drawing_checks", "DEFAULT_SPEC"]
+__all__ = ["register", "nc_step", "job_verdict", "design_and_drawing_checks", "job", "DEFAULT_SPEC"]
 
 #: The bundled job `camcam run` runs without a spec.
 DEFAULT_SPEC = "default.toml"
@@ -72,7 +71,7 @@ def design_and_drawing_checks(built, machining, machining_spec, strict: bool, pa
 def register(sub) -> None:
     p = sub.add_parser("run", help=help_of("run"))
     p.add_argument("spec", nargs="?", help="spec file (TOML); omitted: the bundled default job")
-    p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
+    add_output_arguments(p)
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     add_progress_flag(p)
     p.set_defaults(func=run)
@@ -87,17 +86,17 @@ def _load(spec_arg):
         return load_spec(path)
 
 
-def run(args) -> int:
-    progress = Progress.from_args(args)
-    from camcam.cli.motion import motion_outputs, motion_summary, print_summary
-    from camcam.export.files import OutputSet
+def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
+    """The whole flow for a loaded ``spec``: add every file to ``out`` (not committed); (summary, verdict).
 
-    spec = _load(args.spec)
+    `camcam run` and each spec of `camcam batch` go through here.
+    """
+    from camcam.cli.motion import motion_outputs, motion_summary
+
     verdict = Verdict(())
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
-    out = OutputSet(Path(args.output))
     with progress.step("motion table and plot"):
         svaj = motion_outputs(out, spec.name, program, 0.5)
     summary = {"name": spec.name, "motion": motion_summary(program)}
@@ -134,6 +133,16 @@ def run(args) -> int:
             out.add(f"{spec.name}-report.html", page.html)
             out.add(f"{spec.name}-report.json", to_json(report) + "\n")
         summary["cam"] = report
+    return summary, verdict
+
+
+def run(args) -> int:
+    progress = Progress.from_args(args)
+    from camcam.cli.motion import print_summary
+
+    spec = _load(args.spec)
+    out = output_set(args, "run")
+    summary, verdict = job(spec, out, progress)
 
     def show(summary: dict) -> None:
         print_summary(summary["motion"])
@@ -146,8 +155,12 @@ def run(args) -> int:
                 where = (" (both walls, every radius)" if "flank_deviation" in c["machining"] else "")
                 print(f"NC: {c['line_blocks']} line + {c['arc_blocks']} arc blocks (lower bound {c['lower_bound_blocks']:.1f}), "
                       f"{what} {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm{where} on the printed program")
-                print(f"cycle time {machining.program.cycle_time.describe()}, rapids at "
-                      f"{machining.post.rapid_mm_min:g} mm/min, acceleration not counted")
+                if "cycle_time" in c["machining"]:
+                    from camcam.nc.timing import CycleTime
+
+                    ct = {k: v for k, v in c["machining"]["cycle_time"].items() if k != "total_s"}
+                    print(f"cycle time {CycleTime(**ct).describe()}, rapids at "
+                          f"{spec.machining.post.rapid_mm_min:g} mm/min, acceleration not counted")
             if "material" in c:
                 mt = c["material"]
                 print(f"material: {mt['blank']['description']}; {len(mt['passes'])} passes, largest engagement "

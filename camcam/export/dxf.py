@@ -13,6 +13,7 @@ circles, angle-zero mark, title block).  Every layer gets its own colour
 from __future__ import annotations
 
 import io
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import ezdxf
@@ -141,6 +142,14 @@ class _Layers:
         return name
 
 
+def _pin_classes(doc) -> None:
+    """Fix the CLASSES section's order.  ``doc.write`` adds a CLASS for each entity type in use by
+    iterating a set, whose order follows ``PYTHONHASHSEED``; adding them here first, sorted by name,
+    leaves ``write`` nothing to add, so the bytes no longer depend on the seed."""
+    doc.classes.add_required_classes(doc.dxfversion)
+    doc.classes.classes = OrderedDict(sorted(doc.classes.classes.items()))
+
+
 def _build(elements, curve, extras, spline_deviation_mm, title, contour_layer="CONTOUR") -> DxfDrawing:
     doc = ezdxf.new("R2010", setup=False)
     for key, value in _FIXED_HEADER.items():
@@ -191,6 +200,7 @@ def _build(elements, curve, extras, spline_deviation_mm, title, contour_layer="C
     if box.has_data:  # ezdxf copies the model space's extents to $EXTMIN/$EXTMAX when it writes
         msp.dxf.extmin = tuple(float(v) for v in box.extmin)
         msp.dxf.extmax = tuple(float(v) for v in box.extmax)
+    _pin_classes(doc)
     buf = io.StringIO()
     doc.write(buf)
     return DxfDrawing(buf.getvalue().encode("utf-8"), worst, count)

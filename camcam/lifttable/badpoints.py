@@ -20,7 +20,8 @@ The rule (leave-one-out against the neighbours' cubic, robust noise scale):
    worth removing).
 4. The worst bad point is removed and steps 1–3 are repeated on the rest (a
    spike also disturbs its neighbours' r, by 2/3 and 1/6 of its size, so
-   points are removed one at a time), at most ``max_fraction`` of the table.
+   points are removed one at a time), at most ``max_fraction`` of the table
+   and at most :data:`MAX_BAD_POINTS`.
 5. Each removed point's lift is re-interpolated from the cubic through its
    four nearest kept neighbours; the angles stay.
 """
@@ -76,30 +77,36 @@ def _predict(xs: np.ndarray, ys: np.ndarray, xi: float) -> tuple[float, float]:
     return float(w @ ys), float(w @ w)
 
 
-def _neighbour_sets(kx: np.ndarray, periodic: bool):
-    """For position p among m kept points: (indices into kept, angle shifts) of its 4 neighbours."""
+def _neighbour_sets(kx: np.ndarray, periodic: bool) -> tuple[np.ndarray, np.ndarray]:
+    """For every position p among m kept points: (m, 4) indices into kept and angle shifts of its 4 neighbours."""
     m = len(kx)
-    out = []
-    for p in range(m):
-        if periodic:
-            idx = [(p + d) % m for d in (-2, -1, 1, 2)]
-            shift = [-360.0 * (p + d < 0) + 360.0 * (p + d >= m) for d in (-2, -1, 1, 2)]
-        else:
-            lo = min(max(p - 2, 0), m - 5)
-            idx = [q for q in range(lo, lo + 5) if q != p]
-            shift = [0.0] * 4
-        out.append((np.array(idx), np.array(shift)))
-    return out
+    p = np.arange(m)[:, None]
+    if periodic:
+        q = p + np.array([-2, -1, 1, 2])[None, :]
+        return q % m, -360.0 * (q < 0) + 360.0 * (q >= m)
+    lo = np.clip(p - 2, 0, m - 5)
+    q = lo + np.arange(4)[None, :]
+    q = q + (q >= p)  # the five from lo without p itself
+    return q, np.zeros(q.shape)
 
 
 def _residuals(kx, ky, periodic):
-    r = np.empty(len(kx))
-    g = np.empty(len(kx))
-    for p, (idx, shift) in enumerate(_neighbour_sets(kx, periodic)):
-        pred, w2 = _predict(kx[idx] + shift, ky[idx], kx[p])
-        r[p] = ky[p] - pred
-        g[p] = math.sqrt(1.0 + w2)
-    return r, g
+    """r = lift − the neighbours' cubic, and g = √(1 + Σw²), for every kept point (vectorised
+    :func:`_predict`, the same products in the same order)."""
+    idx, shift = _neighbour_sets(kx, periodic)
+    xs, ys, xi = kx[idx] + shift, ky[idx], kx
+    w = np.ones(idx.shape)
+    for j in range(4):
+        for m in range(4):
+            if m != j:
+                w[:, j] *= (xi - xs[:, m]) / (xs[:, j] - xs[:, m])
+    pred = w[:, 0] * ys[:, 0] + w[:, 1] * ys[:, 1] + w[:, 2] * ys[:, 2] + w[:, 3] * ys[:, 3]
+    w2 = w[:, 0] * w[:, 0] + w[:, 1] * w[:, 1] + w[:, 2] * w[:, 2] + w[:, 3] * w[:, 3]
+    return ky - pred, np.sqrt(1.0 + w2)
+
+
+#: Most bad points removed from one table (each removal re-scores the table).
+MAX_BAD_POINTS = 1000
 
 
 def find_bad_points(
@@ -127,7 +134,7 @@ def find_bad_points(
     floor = table.resolution / math.sqrt(12.0)
     found: list[BadPoint] = []
     sigma = floor
-    max_remove = max(1, int(max_fraction * n_unique))
+    max_remove = min(max(1, int(max_fraction * n_unique)), MAX_BAD_POINTS)
     while keep.sum() > 5:
         kidx = np.flatnonzero(keep)
         kx, ky = x[kidx], y[kidx]

@@ -19,12 +19,14 @@ chosen fit through it.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.interpolate import make_smoothing_spline
 
 from camcam.lifttable.interpolate import interpolate
+from camcam.lifttable.smoothing import GCV_MAX_POINTS, GCV_SUBSAMPLE, gcv_lambda, reinsch
 from camcam.lifttable.table import LiftTable
 
 __all__ = ["FairingResult", "METHODS", "DEFAULT_METHOD", "DEFAULT_XI", "midpoint_fairing", "smoothing_fairing", "fair"]
@@ -119,14 +121,26 @@ def smoothing_fairing(table: LiftTable, lam: float | None = None) -> FairingResu
     True
     """
     x, y = table.x, table.y
-    if table.full_revolution:
-        xu, yu = x[:-1], y[:-1]
-        xs = np.concatenate([xu - 360.0, xu, xu + 360.0, [x[-1] + 360.0]])
-        ys = np.concatenate([yu, yu, yu, [y[0]]])
-        spl = make_smoothing_spline(xs, ys, lam=lam)
-    else:
-        spl = make_smoothing_spline(x, y, lam=lam)
-    h = spl(x)
+    periodic = table.full_revolution
+
+    def padded(xx, yy):
+        if not periodic:
+            return xx, yy
+        xu, yu = xx[:-1], yy[:-1]
+        return np.concatenate([xu - 360.0, xu, xu + 360.0, [xx[-1] + 360.0]]), np.concatenate([yu, yu, yu, [yy[0]]])
+
+    xs, ys = padded(x, y)
+    if len(xs) <= GCV_MAX_POINTS:
+        h = make_smoothing_spline(xs, ys, lam=lam)(x)
+    else:  # a large table: Reinsch's banded solve, λ by GCV on every k-th point (camcam.lifttable.smoothing)
+        if lam is None:
+            n = len(x) - 1 if periodic else len(x)
+            k = math.ceil(n / GCV_SUBSAMPLE)
+            sub = np.arange(0, n, k)
+            xk, yk = (np.append(x[sub], x[-1]), np.append(y[sub], y[-1])) if periodic else (x[sub], y[sub])
+            lam = gcv_lambda(*padded(xk, yk)) * k ** 0.2
+        g = reinsch(xs, ys, lam)
+        h = g[len(x) - 1: 2 * len(x) - 1] if periodic else g
     faired = table.with_lift(h)
     return FairingResult("smoothing", faired, 1, float(np.max(np.abs(faired.y - y))), True, lam)
 

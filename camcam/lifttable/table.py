@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from camcam.errors import InputError
-from camcam.inputs import data_rows, parse_number, read_text
+from camcam.inputs import data_rows, looks_numeric, parse_number, read_text
 
 __all__ = ["LiftTable", "parse_lift_table", "load_lift_table", "CLOSE_ATOL", "MIN_ROWS"]
 
@@ -130,9 +130,7 @@ def parse_lift_table(text: str, source: str = "table") -> LiftTable:
         first_content = not seen_content
         seen_content = True
         if first_content and fields:
-            try:
-                float(fields[0])
-            except ValueError:
+            if not looks_numeric(fields[0]):
                 if len(fields) < 2:
                     raise InputError(f"{where}: a header needs 2 column names (angle_deg, lift_mm), got {len(fields)}") from None
                 ncol = len(fields)

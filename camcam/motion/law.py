@@ -176,7 +176,10 @@ class PiecewiseLaw(MotionLaw):
         b = np.asarray(self.breaks, dtype=float)
         if len(b) != len(self.pieces) + 1 or b[0] != 0.0 or b[-1] != 1.0 or np.any(np.diff(b) <= 0):
             raise ValueError(f"breaks must rise from 0 to 1 with one more entry than pieces, got {self.breaks!r}")
-        derivs = tuple(tuple(p.derivative(k) for p in self.pieces) for k in range(5))
+        derivs = [tuple(self.pieces)]
+        for _ in range(4):  # each order from the previous one (the same steps as p.derivative(k))
+            derivs.append(tuple(p.derivative() for p in derivs[-1]))
+        derivs = tuple(derivs)
         object.__setattr__(self, "_derivs", derivs)
         object.__setattr__(self, "_tables", tuple(_coefficient_table(fs) for fs in derivs))
 

@@ -21,12 +21,16 @@ from numpy.polynomial import polynomial as P
 __all__ = ["TrigPoly"]
 
 
-def _trim(coef: np.ndarray) -> tuple[float, ...]:
-    coef = np.atleast_1d(np.asarray(coef, dtype=float))
-    nz = np.flatnonzero(coef)
-    if nz.size == 0:
-        return (0.0,)
-    return tuple(float(c) for c in coef[: nz[-1] + 1])
+def _trim(coef) -> tuple[float, ...]:
+    """The coefficients as floats without trailing zeros (plain Python: a lift table makes 10⁵ pieces)."""
+    if isinstance(coef, (tuple, list)):
+        vals = [float(c) for c in coef]
+    else:
+        vals = [float(c) for c in np.atleast_1d(np.asarray(coef, dtype=float))]
+    k = len(vals)
+    while k > 0 and vals[k - 1] == 0.0:
+        k -= 1
+    return tuple(vals[:k]) if k else (0.0,)
 
 
 @dataclass(frozen=True)
@@ -79,7 +83,8 @@ class TrigPoly:
     def derivative(self, order: int = 1) -> TrigPoly:
         f = self
         for _ in range(order):
-            poly = P.polyder(f.poly) if len(f.poly) > 1 else (0.0,)
+            c = f.poly  # d/du Σ c_j u^j = Σ j·c_j u^(j−1): the same products as numpy's polyder
+            poly = tuple(j * c[j] for j in range(1, len(c))) if len(c) > 1 else (0.0,)
             f = TrigPoly(poly, -f.b * f.omega, f.a * f.omega, f.omega)
         return f
 

@@ -42,15 +42,18 @@ def bore_passes(contour: int, elements, blank: Blank, tool_radius_mm: float, m, 
                 thickness_mm: float) -> list[Pass]:
     """One ``bore`` pass: helix from the top to ``min(z_depth, −thickness)``, the fitted circle there, retract.
 
-    ``elements`` are the fitted circle (:func:`bore_curve`), starting at (ρ, 0).
+    ``elements`` are the fitted circle (:func:`bore_curve`); the arc fitter may start a closed
+    contour anywhere, so the helix turns about the axis from the circle's first printed point.
     """
     rho = bore_circle_radius(blank, tool_radius_mm)
     z_top, z_end = blank.top_z_mm, min(z_depth, -thickness_mm)
     quarter = math.pi / 2 * rho
     per_quarter = quarter * math.tan(math.radians(m.ramp_angle_deg))
     n = 4 * max(1, math.ceil((z_top - z_end) / per_quarter / 4 * (1 + 1e-9)))  # whole turns: ends at (ρ, 0)
-    pts = [(rho, 0.0), (0.0, rho), (-rho, 0.0), (0.0, -rho)]
-    moves = [Rapid(rho, 0.0, None), Rapid(None, None, z_clear), Feed(None, None, z_top, m.plunge_feed_mm_min)]
+    start = tuple(map(float, elements[0].start))
+    phi0 = math.atan2(start[1], start[0])
+    pts = [start] + [(rho * math.cos(phi0 + k * math.pi / 2), rho * math.sin(phi0 + k * math.pi / 2)) for k in (1, 2, 3)]
+    moves = [Rapid(start[0], start[1], None), Rapid(None, None, z_clear), Feed(None, None, z_top, m.plunge_feed_mm_min)]
     for i in range(n):
         x, y = pts[(i + 1) % 4]
         moves.append(ArcMove(x, y, 0.0, 0.0, True, z_top + (z_end - z_top) * (i + 1) / n, m.feed_mm_min))

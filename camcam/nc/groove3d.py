@@ -57,8 +57,9 @@ negative = material left (the designed wall not reached).
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -309,7 +310,7 @@ def _side(X, Y, Z, a, B, r, L, rho, gamma, side):
     return np.where(np.isnan(v), -np.inf, v)
 
 
-class _Motion:
+class _Motion(ABC):
     """A continuous motion p ↦ pose (X, Y, Z, a, B) of a cylinder (r, L)."""
 
     r: float
@@ -318,11 +319,13 @@ class _Motion:
     p_lo: float
     p_hi: float
 
+    @abstractmethod
     def pose(self, p):
-        raise NotImplementedError
+        """The cylinder's pose (X, Y, Z, a, B) at motion parameter ``p``."""
 
+    @abstractmethod
     def samples(self, pose_step_mm: float, rho_max: float) -> np.ndarray:
-        raise NotImplementedError
+        """Motion parameters no farther apart than ``pose_step_mm`` at radius ``rho_max``."""
 
     def clamp(self, p):
         return p if self.periodic else np.clip(p, self.p_lo, self.p_hi)

@@ -11,7 +11,8 @@ cuts a centre pass, rough offsets no more than the stepover apart, then each
 flank at ``offset_flank(i, r_t)`` (:mod:`camcam.nc.tools`); every groove pass
 is ramped down along its contour at no more than the ramp angle.  With
 ``[machining] bore = true`` the bore is cut as a helical bore
-(:mod:`camcam.nc.bore`).  Cylindrical cams: :mod:`camcam.nc.rotary`.
+(:mod:`camcam.nc.bore`).  Cylindrical cams: :mod:`camcam.nc.rotary` (4 axes) and, for an
+oscillating roller, :mod:`camcam.nc.fiveaxis` (5 axes, ``[machining] axes``).
 
 The printed program is read back and checked against the blank, 2.5-D
 (:mod:`camcam.nc.removal`); its figures are checks of the job.
@@ -100,6 +101,10 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEF
         Faults of the fitter or the writer on valid input.
     """
     if built.spec.kind == "cylindrical":
+        if m.axes == 5:
+            from camcam.nc.fiveaxis import machine_five_axis
+
+            return machine_five_axis(built, m, name)
         from camcam.nc.rotary import machine_cylindrical
 
         return machine_cylindrical(built, m, name)

@@ -256,7 +256,7 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
 
     for m in moves:
         z0, z1 = m.p0[2], m.p1[2]
-        zlo, zhi = min(z0, z1), max(z0, z1)
+        zlo = min(z0, z1)
         if m.kind == "rapid":
             geom = LineString([m.p0[:2], m.p1[:2]]) if m.p0[:2] != m.p1[:2] else Point(m.p1[:2])
             for i in range(len(slabs)):
@@ -359,7 +359,11 @@ def _finish_figures(moves, levels, top_z, keep, boundary, r_t):
         if np.isfinite(sd[k]) and r_t - sd[k] > over:
             over, over_at = float(r_t - sd[k]), _where(m.pass_label, q[k])
         if m.pass_kind == "rough":
-            c = float(sd[k] - r_t) if np.isfinite(sd[k]) else 1.0
+            if not np.isfinite(sd[k]):  # everything beyond the near band: its true distance
+                d, _ = tree.query(q[:, :2])
+                sd = np.where(inside, -d, d)
+                k = int(np.argmin(sd))
+            c = float(sd[k] - r_t)
             if clear is None or c < clear:
                 clear, clear_at = c, _where(m.pass_label, q[k])
     return max(left, 0.0), left_at, max(over, 0.0), over_at, clear, clear_at

@@ -59,6 +59,9 @@ class PostDialect(Protocol):
     name: str
     max_arc_sweep_deg: float
     inverse_time: bool
+    dialect: str  # "gcode" or "heidenhain" (5-axis: Klartext prints the tip feed, not inverse time)
+    five_axis: bool  # has tool-centre-point control (5-axis programs)
+    tcp_on: tuple[str, ...]  # the blocks that switch it on (header comment of a 5-axis program)
 
     @property
     def quantizer(self) -> Quantizer:
@@ -95,6 +98,7 @@ class MachiningSpec:
     setup: ProgramSetup = ProgramSetup()
     flute_length_mm: float = 0.0  # the tool's cutting length (barrel cams' 3-D check)
     a_axis: str = "right-hand"  # barrel cams: a positive A turns the part by the right-hand rule about +X
+    axes: int = 3  # 3 (disc), 4 (barrel: X A) or 5 (barrel, oscillating roller: X Y Z A B, tool on the roller axis)
     stepover: float = 0.4
     ramp_angle_deg: float = 3.0
     bore: bool = False

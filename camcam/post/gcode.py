@@ -7,7 +7,10 @@ tool length offset and coolant on (:class:`~camcam.nc.settings.ProgramSetup`);
 coolant off precedes the footer.  The writer times every move it prints
 (:mod:`camcam.nc.timing`).  Arcs print X/Y and I/J (incremental or absolute) or R,
 or Heidenhain's CC/C pair.  A 4-axis path (``rotary``) is printed in inverse
-time (G93): every feed move carries F = feed / move length (1/min).
+time (G93): every feed move carries F = feed / move length (1/min).  A 5-axis
+path (``five_axis``: X Y Z = tool tip, A, B) sits between the post's
+``tcp_on`` and ``tcp_off`` blocks; Heidenhain prints it with M128 and the
+tool tip's feed in mm/min (Klartext has no inverse time).
 """
 
 from __future__ import annotations
@@ -21,6 +24,8 @@ from camcam.nc.result import Program
 from camcam import __version__
 from camcam.nc.settings import ProgramSetup
 from camcam.nc.timing import MoveTimer
+from camcam.post.template import parse_template
+from camcam.post.text import encode_comment
 from camcam.toolpath.path import ArcMove, Comment, Feed, Rapid, Toolpath
 
 if TYPE_CHECKING:  # annotations only: post.post imports this module to print its programs
@@ -63,7 +68,7 @@ class _Writer:
         self.post = post
         self.lines: list[str] = []
         self.pos = [None, None, None]  # printed grid integers
-        self.a = None
+        self.rot = {"A": None, "B": None}
         self.feed = None
         self.counts = {"line": 0, "arc": 0, "rapid": 0}
         self.count = post.quantizer.count
@@ -83,8 +88,16 @@ class _Writer:
     def emit(self, text: str):
         self.lines.append(text)
 
+    def f_word(self, value: float) -> str:
+        """``F…`` for a feed (mm/min, or 1/min in inverse time); never ``F0``."""
+        g = self.count(value)
+        if g <= 0:
+            raise InputError(f"machining.feed: {value:g} would print as F0 with post {self.post.name}'s "
+                             f"{self.post.decimals} decimals")
+        return f"F{self.n(g)}"
+
     def comment(self, text: str) -> str:
-        text = text.replace("(", "[").replace(")", "]")
+        text = encode_comment(text, self.post.comment)
         return f"({text})" if self.post.comment == "parentheses" else f"; {text}"
 
     # -- G-code ---------------------------------------------------------------------
@@ -99,6 +112,18 @@ class _Writer:
             self.pos[i] = g
         return words
 
+    def rotary_words(self, m) -> list[str]:
+        """A and B words of a move that changes them (degrees, on the post's grid)."""
+        words = []
+        for name, v in (("A", m.a_deg), ("B", m.b_deg)):
+            if v is None:
+                continue
+            g = self.count(v)
+            if g != self.rot[name]:
+                words.append(f"{name}{self.n(g, self.post.dialect == 'heidenhain')}")
+            self.rot[name] = g
+        return words
+
     def gcode_move(self, m, rotary: bool):
         d = self.post.decimals
         if isinstance(m, Comment):
@@ -106,28 +131,23 @@ class _Writer:
             return
         before = self.where()
         if isinstance(m, Rapid):
-            w = self.axes(m.x, m.y, m.z)
+            w = self.axes(m.x, m.y, m.z) + self.rotary_words(m)
             if w:
                 self.emit("G0 " + " ".join(w))
                 self.counts["rapid"] += 1
                 self.timer.rapid(before, self.where())
             return
         if isinstance(m, Feed):
-            w = self.axes(m.x, m.y, m.z)
-            if m.a_deg is not None:
-                g = self.count(m.a_deg)
-                if g != self.a:
-                    w.append(f"A{self.n(g)}")
-                self.a = g
+            w = self.axes(m.x, m.y, m.z) + self.rotary_words(m)
             if not w:
                 return
             if rotary:
                 inv = m.feed_mm_min / max(m.length_mm, 10.0**-d)
-                w.append(f"F{self.n(self.count(inv))}")
+                w.append(self.f_word(inv))
                 self.timer.inverse_time(before, self.where(), self.per_mm(self.count(inv)))
             else:
                 if m.feed_mm_min != self.feed:
-                    w.append(f"F{self.n(self.count(m.feed_mm_min))}")
+                    w.append(self.f_word(m.feed_mm_min))
                     self.feed = m.feed_mm_min
                 self.timer.line(before, self.where(), self.per_mm(self.count(m.feed_mm_min)))
             self.emit("G1 " + " ".join(w))
@@ -147,7 +167,7 @@ class _Writer:
         else:
             w += [f"R{self.n(round(math.hypot(cx - sx, cy - sy)))}"]
         if m.feed_mm_min != self.feed:
-            w.append(f"F{self.n(self.count(m.feed_mm_min))}")
+            w.append(self.f_word(m.feed_mm_min))
             self.feed = m.feed_mm_min
         self.timer.arc(before, self.where(), (self.per_mm(cx), self.per_mm(cy)), m.ccw,
                        self.per_mm(self.count(m.feed_mm_min)))
@@ -173,13 +193,13 @@ class _Writer:
                                 f"max_arc_sweep_deg {self.post.max_arc_sweep_deg:g}")
 
     # -- Heidenhain --------------------------------------------------------------------
-    def hh_move(self, m, first_words: str):
+    def hh_move(self, m, first_words: str, five_axis: bool = False) -> bool:
         """One move; ``first_words`` (spindle and coolant on) go on it if it prints an L block (then True)."""
         if isinstance(m, Comment):
             self.emit(self.comment(m.text))
             return False
         before = self.where()
-        if isinstance(m, Feed) and m.a_deg is not None:
+        if isinstance(m, Feed) and m.a_deg is not None and not five_axis:
             raise InputError(f"post {self.post.name}: 4-axis programs are not supported by this dialect")
         if isinstance(m, ArcMove):
             if self.pos[2] is not None and self.count(m.z) != self.pos[2]:
@@ -190,7 +210,7 @@ class _Writer:
             self.check_arc(sx, sy, ex, ey, cx, cy, m.ccw)
             self.emit(f"CC X{self.n(cx, True)} Y{self.n(cy, True)}")
             self.pos[0], self.pos[1] = ex, ey
-            self.emit(f"C X{self.n(ex, True)} Y{self.n(ey, True)} DR{'+' if m.ccw else '-'} R0 F{self.n(self.count(m.feed_mm_min))}")
+            self.emit(f"C X{self.n(ex, True)} Y{self.n(ey, True)} DR{'+' if m.ccw else '-'} R0 {self.f_word(m.feed_mm_min)}")
             self.counts["arc"] += 1
             self.timer.arc(before, self.where(), (self.per_mm(cx), self.per_mm(cy)), m.ccw,
                            self.per_mm(self.count(m.feed_mm_min)))
@@ -203,10 +223,12 @@ class _Writer:
             if g != self.pos[i]:
                 words.append(f"{name}{self.n(g, True)}")
             self.pos[i] = g
+        if five_axis:
+            words += self.rotary_words(m)
         if not words:
             return False
         rapid = isinstance(m, Rapid)
-        f = "FMAX" if rapid else f"F{self.n(self.count(m.feed_mm_min))}"
+        f = "FMAX" if rapid else self.f_word(m.feed_mm_min)
         self.emit(f"L {' '.join(words)} R0 {f}" + (f" {first_words}" if first_words else ""))
         self.counts["rapid" if rapid else "line"] += 1
         if rapid:
@@ -231,50 +253,71 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: P
     >>> round(p.cycle_time.total_s, 4)  # 10 s tool change + 5 mm rapid at 5 m/min + 10 mm at 300 mm/min
     12.06
     """
-    if toolpath.rotary and not post.inverse_time:
+    if toolpath.five_axis and not post.five_axis:
+        raise InputError(f"post {post.name}: has no 5-axis mode (tool-centre-point control); use axes = 4 "
+                         f"or a post with one")
+    if toolpath.rotary and not toolpath.five_axis and not post.inverse_time:
         raise InputError(f"post {post.name}: has no inverse-time feed (G93) for a 4-axis program")
+    if toolpath.five_axis and post.dialect != "heidenhain" and not post.inverse_time:
+        raise InputError(f"post {post.name}: has no inverse-time feed (G93) for a 5-axis program")
     setup.check(post)
     number = post.program_number if setup.program_number is None else setup.program_number
-    fields = {"title": toolpath.title.replace("(", "[").replace(")", "]"), "name": name,
+    fields = {"title": toolpath.title, "name": name, "units": post.units,
               "tool": toolpath.tool_number, "spindle": int(round(toolpath.spindle_rpm)),
               "program_number": number}
+    for key in ("tool", "spindle"):
+        if fields[key] < 1:
+            raise InputError(f"{key}: {fields[key]} would print as {key[0].upper()}{fields[key]}; expected at least 1")
+
+    def lines(templates):
+        return [parse_template(t, post.comment).render(fields, post.name) for t in templates]
+
     w = _Writer(post)
     body: list[str] = []
-    for line in post.header:
-        body.append(line.format(**fields))
+    body += lines(post.header)
     body.append(w.comment(f"camcam {__version__}" + (f", spec {setup.source}" if setup.source else "")))
     for c in toolpath.comments:
         body.append(w.comment(c))
-    body += post.work_offset_lines(setup.work_offset)
+    body += lines(post.work_offset_lines(setup.work_offset))
     if post.tool_length_offset:
-        body.append(post.tool_length_offset.format(**fields))
+        body += lines((post.tool_length_offset,))
     coolant_on, coolant_off = post.coolant_word(setup.coolant), post.coolant_off
     if post.tool_change:
         w.timer.tool_change(post.tool_change_s)
+    tcp_on = lines(post.tcp_on) if toolpath.five_axis else []
+    tcp_off = lines(post.tcp_off) if toolpath.five_axis else []
     if post.dialect == "heidenhain":
+        # Klartext has no inverse time: with M128 the programmed F is the tool tip's feed (mm/min)
+        w.lines += tcp_on
         first = f"M3 {coolant_on}"  # spindle and coolant on ride on the first L block (comments are not moves)
         for m in toolpath.moves:
-            if w.hh_move(m, first):
+            if w.hh_move(m, first, toolpath.five_axis):
                 first = ""
         last = max(i for i, line in enumerate(w.lines) if line.startswith("L "))
         w.lines[last] += f" {coolant_off}"
+        w.lines += tcp_off
     else:
         body.append(coolant_on)
+        w.lines += tcp_on
         if toolpath.rotary:
             w.emit("G93")
         for m in toolpath.moves:
             w.gcode_move(m, toolpath.rotary)
         if toolpath.rotary:
             w.emit("G94")
+        w.lines += tcp_off
         w.emit(coolant_off)
     body += w.lines
-    body += [line.format(**fields) for line in post.footer]
+    body += lines(post.footer)
     out = []
     k = post.line_number_start
     for line in body:
         numbered = post.line_numbers and not line[:1].isspace() and (
             post.dialect == "heidenhain" or not (line.startswith("%") or line.startswith("O")))
         if numbered:
+            if k > post.max_line_number:
+                raise InputError(f"post {post.name}: the program needs block numbers past max_line_number = "
+                                 f"{post.max_line_number}; set line_numbers = false or a smaller line_number_step")
             out.append(f"{k} {line}" if post.dialect == "heidenhain" else f"N{k} {line}")
             k += post.line_number_step
         else:

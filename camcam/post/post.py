@@ -9,56 +9,85 @@ Keys (all required unless a default is given):
 ``description``               text
 ``dialect``                   ``"gcode"`` (default) or ``"heidenhain"`` (conversational)
 ``extension``                 program file extension, without the dot
-``units``                     units word printed in the header (``G21``, ``G71``, ``MM``)
+``units``                     millimetres: ``G21`` or ``G71`` (G-code), ``MM`` (Heidenhain); the
+                              header must print it (literally or as ``{units}``)
 ``decimals``                  digits after the point, 3–6 (coordinates are rounded to them)
 ``arc_format``                ``"ij_incremental"``, ``"ij_absolute"``, ``"r"`` (G-code) or
                               ``"cc_absolute"`` (Heidenhain CC + C)
-``max_arc_sweep_deg``         largest arc per block, (0, 180]
+``max_arc_sweep_deg``         largest arc per block, [90, 180] (lead arcs are quarter circles)
 ``max_radius_error_mm``       start/end radius mismatch allowed (default 0.002)
 ``decimal_point_always``      print ``X10.`` instead of ``X10`` (Fanuc)
 ``line_numbers``              number the blocks (``N10``); start/step default 10/10
+``max_line_number``           the controller's largest block number (default 99999); a longer
+                              program is refused
 ``comment``                   ``"parentheses"`` or ``"semicolon"``
 ``tool_change``               print the tool change line(s) of the header
 ``inverse_time``              the controller has G93 (needed for 4-axis programs)
-``header``, ``footer``        lists of lines; ``{title}``, ``{name}``, ``{tool}``,
-                              ``{spindle}``, ``{program_number}`` are filled in
-``program_number``            default 1 (Fanuc O-number); a spec's ``[machining]
-                              program_number`` replaces it
-``program_number_max``        largest program number the controller takes (default 9999)
+``header``, ``footer``        lists of lines; ``{title}``, ``{name}``, ``{units}``, ``{tool}``,
+                              ``{spindle}``, ``{program_number}`` are filled in (checked
+                              whole at load time: :mod:`camcam.post.template`)
+``program_number``            default 1 (Fanuc O-number); 1 up to the width the header
+                              prints it with (``{program_number:04d}``: 9999); a spec's
+                              ``[machining] program_number`` replaces it
+``five_axis``                 the controller has tool-centre-point control for 5-axis
+                              programs (X Y Z = tool tip; default false)
+``tcp_on``, ``tcp_off``       blocks that switch it on before and off after a 5-axis
+                              path (lists, may be empty: LinuxCNC's TCP lives in its
+                              kinematics); ``{tool}`` is filled in, checked like the header
 ``tool_length_offset``        line that applies the tool length offset, printed after the
                               header (``"G43 H{tool}"``; default none: the header or the
-                              tool call does it)
+                              tool call does it); a template checked like the header
 ``work_offsets``              six program texts for ``G54`` … ``G59`` (a spec's
                               ``work_offset``), in this dialect's words; a ``\\n`` splits
                               one into lines, an indented line is not numbered (default
-                              ``G54`` … ``G59``)
+                              ``G54`` … ``G59``); each line checked like the header
 ``coolant_flood``,            coolant words (defaults ``M8``, ``M7``, ``M9``); ``""``: the
 ``coolant_mist``,             controller has none, and a spec asking for it is refused
 ``coolant_off``
 ``rapid_mm_min``              rapid traverse rate for the cycle-time estimate (default 5000)
 ``tool_change_s``             seconds per tool change for the estimate (default 10)
 ============================  =====================================================
+
+Text that reaches the program goes through the post's comment encoder
+(:mod:`camcam.post.text`).  A post file is read as UTF-8 (at most
+:data:`MAX_POST_BYTES`).
 """
 
 from __future__ import annotations
 
-import string
+import math
+import re
 import tomllib
 from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 
 from camcam.errors import InputError
+from camcam.inputs import os_reason, read_limited
+from camcam.post.template import TemplateError, parse_template
 from camcam.nc.result import Program
 from camcam.nc.settings import WORK_OFFSETS, ProgramSetup
 from camcam.post.gcode import write_program
 from camcam.toolpath.path import Toolpath
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["Post", "load_post", "known_posts", "parse_post", "WORK_OFFSETS"]
+__all__ = ["Post", "load_post", "known_posts", "parse_post", "MAX_POST_BYTES", "MAX_LINE_NUMBER",
+           "MAX_PROGRAM_NUMBER", "METRIC_UNITS", "WORK_OFFSETS"]
 
 _ARC_FORMATS = {"gcode": ("ij_incremental", "ij_absolute", "r"), "heidenhain": ("cc_absolute",)}
-_FIELDS = {"title", "name", "tool", "spindle", "program_number"}
+
+#: Largest post file read.
+MAX_POST_BYTES = 1 << 20
+
+#: Largest block number any supported controller takes (Fanuc 30i: 8 digits).
+MAX_LINE_NUMBER = 99_999_999
+
+#: Largest program number (Fanuc 30i: O followed by 8 digits).
+MAX_PROGRAM_NUMBER = 99_999_999
+
+#: The units words camcam's millimetre programs may declare, per dialect.
+METRIC_UNITS = {"gcode": ("G21", "G71"), "heidenhain": ("MM",)}
+_INCH = re.compile(r"(?<![A-Za-z0-9.])(G0*20|G0*70|INCH)(?![0-9])", re.IGNORECASE)
 
 
 #: ``work_offsets`` when a post does not give them: G-code's own words; Heidenhain's preset
@@ -86,11 +115,14 @@ class Post:
     line_numbers: bool = False
     line_number_start: int = 10
     line_number_step: int = 10
+    max_line_number: int = 99999
     comment: str = "parentheses"
     tool_change: bool = True
     inverse_time: bool = True
     program_number: int = 1
-    program_number_max: int = 9999
+    five_axis: bool = False
+    tcp_on: tuple[str, ...] = ()
+    tcp_off: tuple[str, ...] = ()
     tool_length_offset: str = ""
     work_offsets: tuple[str, ...] = WORK_OFFSETS
     coolant_flood: str = "M8"
@@ -102,10 +134,16 @@ class Post:
     @property
     def uses_program_number(self) -> bool:
         """Whether the header or footer prints ``{program_number}``."""
-        return any("{program_number" in line for line in self.header + self.footer)
+        return any("program_number" in parse_template(line, self.comment).fields() for line in self.header + self.footer)
+
+    @property
+    def program_number_max(self) -> int:
+        """The largest program number the header prints whole (its zero-padded width; else 8 digits)."""
+        widths = [parse_template(line, self.comment).width("program_number") for line in self.header + self.footer]
+        return min([10**w - 1 for w in widths if w is not None] + [MAX_PROGRAM_NUMBER])
 
     def work_offset_lines(self, work_offset: str) -> tuple[str, ...]:
-        """The program lines selecting ``work_offset`` (``"G54"`` … ``"G59"``)."""
+        """The program lines selecting ``work_offset`` (``"G54"`` … ``"G59"``), as templates."""
         return tuple(self.work_offsets[WORK_OFFSETS.index(work_offset)].split("\n"))
 
     def coolant_word(self, coolant: str) -> str:
@@ -140,10 +178,10 @@ def parse_post(data: dict, name: str) -> Post:
     types = {"description": str, "dialect": str, "extension": str, "units": str, "decimals": int,
              "arc_format": str, "max_arc_sweep_deg": (int, float), "max_radius_error_mm": (int, float),
              "decimal_point_always": bool, "line_numbers": bool, "line_number_start": int,
-             "line_number_step": int, "comment": str, "tool_change": bool, "inverse_time": bool,
-             "header": list, "footer": list, "program_number": int, "program_number_max": int,
-             "tool_length_offset": str, "work_offsets": list, "coolant_flood": str, "coolant_mist": str,
-             "coolant_off": str, "rapid_mm_min": (int, float), "tool_change_s": (int, float)}
+             "line_number_step": int, "max_line_number": int, "comment": str, "tool_change": bool, "inverse_time": bool,
+             "header": list, "footer": list, "program_number": int, "five_axis": bool, "tcp_on": list,
+             "tcp_off": list, "tool_length_offset": str, "work_offsets": list, "coolant_flood": str,
+             "coolant_mist": str, "coolant_off": str, "rapid_mm_min": (int, float), "tool_change_s": (int, float)}
     required = {"description", "extension", "units", "decimals", "arc_format", "max_arc_sweep_deg", "header", "footer"}
     for key in data:
         if key not in types:
@@ -161,8 +199,9 @@ def parse_post(data: dict, name: str) -> Post:
         fail("arc_format", f"expected one of {', '.join(_ARC_FORMATS[dialect])} for dialect {dialect}, got {data['arc_format']!r}")
     if not 3 <= data["decimals"] <= 6:
         fail("decimals", f"expected 3–6, got {data['decimals']}")
-    if not 0 < data["max_arc_sweep_deg"] <= 180:
-        fail("max_arc_sweep_deg", f"expected in (0, 180], got {data['max_arc_sweep_deg']}")
+    if not 90 <= data["max_arc_sweep_deg"] <= 180:
+        # the tangent lead-in/out arcs are quarter circles: a post that cannot hold 90° cannot print them
+        fail("max_arc_sweep_deg", f"expected 90 to 180 (lead arcs are quarter circles), got {data['max_arc_sweep_deg']}")
     if data["arc_format"] == "r" and data["max_arc_sweep_deg"] >= 180:
         fail("max_arc_sweep_deg", "must be below 180 with arc_format r (R is ambiguous at a half circle)")
     if not 0 < data.get("max_radius_error_mm", 0.002) <= 0.1:
@@ -171,14 +210,16 @@ def parse_post(data: dict, name: str) -> Post:
         fail("comment", f'expected "parentheses" or "semicolon", got {data["comment"]!r}')
     if not data["extension"].isalnum():
         fail("extension", f"expected letters/digits without a dot, got {data['extension']!r}")
-    if not 1 <= data.get("program_number_max", 9999) <= 99999999:
-        fail("program_number_max", f"expected 1–99999999, got {data['program_number_max']}")
-    if not 1 <= data.get("program_number", 1) <= data.get("program_number_max", 9999):
-        fail("program_number", f"expected 1–{data.get('program_number_max', 9999)}, got {data['program_number']}")
-    if not data.get("rapid_mm_min", 5000.0) > 0:
-        fail("rapid_mm_min", f"expected > 0, got {data['rapid_mm_min']}")
-    if not data.get("tool_change_s", 10.0) >= 0:
-        fail("tool_change_s", f"expected >= 0, got {data['tool_change_s']}")
+    if data.get("five_axis", False) and "tcp_on" not in data:
+        fail("tcp_on", "missing: a five_axis post names the blocks that switch tool-centre-point control on "
+                       "(an empty list when the machine's kinematics do it)")
+    for key in ("tcp_on", "tcp_off"):
+        if key in data and not data.get("five_axis", False):
+            fail(key, "only applies with five_axis = true")
+    if not data["extension"].isascii():
+        fail("extension", f"expected ASCII letters/digits, got {data['extension']!r}")
+    comment = data.get("comment", "parentheses")
+    templates = {}
     offsets = data.get("work_offsets", list(_DEFAULT_OFFSETS[dialect]))
     if len(offsets) != len(WORK_OFFSETS) or not all(isinstance(o, str) and o.strip() for o in offsets):
         fail("work_offsets", f"expected {len(WORK_OFFSETS)} non-empty strings (the words for {', '.join(WORK_OFFSETS)}), "
@@ -187,19 +228,51 @@ def parse_post(data: dict, name: str) -> Post:
         fail("coolant_flood", "a post needs at least one coolant-on word (coolant_flood or coolant_mist)")
     if not data.get("coolant_off", "M9"):
         fail("coolant_off", "expected the coolant-off word, got an empty string")
-    templated = [(key, i, line) for key in ("header", "footer") for i, line in enumerate(data[key])]
-    templated += [("tool_length_offset", None, data["tool_length_offset"])] if "tool_length_offset" in data else []
-    for key, i, line in templated:
-        where = key if i is None else f"{key}[{i}]"
-        if not isinstance(line, str):
-            fail(where, f"expected a string, got {line!r}")
+    for key, default in (("rapid_mm_min", 5000.0), ("tool_change_s", 10.0)):
+        v = data.get(key, default)
+        low = 0.0 if key == "tool_change_s" else 1.0
+        if not (math.isfinite(v) and low <= v <= 1e6):
+            fail(key, f"expected {low:g} to 1e6, got {v}")
+    lines = {(key, i): line for key in ("header", "footer", "tcp_on", "tcp_off") for i, line in enumerate(data.get(key, ()))}
+    for key in ("tool_length_offset", "coolant_flood", "coolant_mist", "coolant_off"):
+        if data.get(key):
+            lines[(key, None)] = data[key]
+    for k, text in enumerate(offsets):
+        for j, line in enumerate(text.split("\n")):
+            lines[("work_offsets", f"{k}:{j}" if "\n" in text else k)] = line
+    for (key, i), line in lines.items():
         try:
-            names = {f for _, f, _, _ in string.Formatter().parse(line) if f is not None}
-        except ValueError as err:
-            fail(where, f"bad template: {err}")
-        bad = names - _FIELDS
-        if bad:
-            fail(where, f"unknown field {{{sorted(bad)[0]}}}; known: {', '.join(sorted(_FIELDS))}")
+            templates[(key, i)] = parse_template(line, comment)
+        except TemplateError as err:
+            fail(key if i is None else f"{key}[{i}]", str(err))
+    units = data["units"]
+    if units not in METRIC_UNITS[dialect]:
+        fail("units", f"camcam writes millimetres; expected {' or '.join(METRIC_UNITS[dialect])} for dialect {dialect}, "
+                      f"got {units!r}")
+    word = re.compile(rf"(?<![A-Za-z0-9.]){units}(?![0-9])")
+    header_has = any("units" in t.fields() or word.search(t.code_text()) for (k, _), t in templates.items() if k == "header")
+    if not header_has:
+        fail("header", f"must print the units word {units} (or {{units}}) so the controller reads millimetres")
+    for (key, i), t in templates.items():
+        m = _INCH.search(t.code_text())
+        if m:
+            fail(key if i is None else f"{key}[{i}]", f"{m.group(0)} selects inches; camcam writes millimetres")
+    top = data.get("max_line_number", 99999)
+    if not 1 <= top <= MAX_LINE_NUMBER:
+        fail("max_line_number", f"expected 1 to {MAX_LINE_NUMBER}, got {top}")
+    start, step = data.get("line_number_start", 10), data.get("line_number_step", 10)
+    if not 0 <= start <= top:
+        fail("line_number_start", f"expected 0 to max_line_number = {top}, got {start}")
+    if not 1 <= step <= top:
+        fail("line_number_step", f"expected 1 to max_line_number = {top}, got {step}")
+    pn_limit = MAX_PROGRAM_NUMBER
+    for t in templates.values():
+        w = t.width("program_number")
+        if w is not None:
+            pn_limit = min(pn_limit, 10**w - 1)
+    pn = data.get("program_number", 1)
+    if not 1 <= pn <= pn_limit:
+        fail("program_number", f"expected 1 to {pn_limit} (the digits the header prints it with), got {pn}")
     floats = ("max_arc_sweep_deg", "max_radius_error_mm", "rapid_mm_min", "tool_change_s")
     fields = {k: (tuple(v) if isinstance(v, list) else (float(v) if k in floats else v)) for k, v in data.items()}
     fields.setdefault("work_offsets", _DEFAULT_OFFSETS[dialect])
@@ -219,20 +292,28 @@ def load_post(name_or_path: str | Path, base: Path | None = None) -> Post:
     camcam.errors.InputError: unknown post 'nope'; known: fanuc, grbl, haas, heidenhain, linuxcnc, sinumerik (or a path to a .toml file)
     """
     text_name = str(name_or_path)
-    if text_name.endswith(".toml") or "/" in text_name or "\\\\" in text_name:
+    if text_name.endswith(".toml") or "/" in text_name or "\\" in text_name:
         path = Path(text_name)
         if base is not None and not path.is_absolute():
             path = base / path
         try:
-            text = path.read_text(encoding="utf-8")
+            raw = read_limited(path, MAX_POST_BYTES)
         except OSError as err:
-            raise InputError(f"post {text_name}: cannot read: {err.strerror or err}") from None
+            raise InputError(f"post {text_name}: cannot read: {os_reason(err)}") from None
         name = path.stem
+        bad = [ch for ch in name if not ch.isprintable()]
+        if bad or len(name) > 64:
+            raise InputError(f"post {text_name!r}: the file name must be at most 64 printable characters "
+                             "(it is printed in the program's title)")
     else:
         if text_name not in known_posts():
             raise InputError(f"unknown post {text_name!r}; known: {', '.join(known_posts())} (or a path to a .toml file)")
-        text = (_post_dir() / f"{text_name}.toml").read_text(encoding="utf-8")
+        raw = (_post_dir() / f"{text_name}.toml").read_bytes()
         name = text_name
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise InputError(f"post {name}: not UTF-8 text (byte {err.start})") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:

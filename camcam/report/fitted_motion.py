@@ -146,6 +146,9 @@ def fitted_motion(cam: DiscCam, elements, tool_radius: float, angles_deg: np.nda
         line = (qx - a[:, 0]) * nrm[:, 0] + (qy - a[:, 1]) * nrm[:, 1]
         return np.where(kinds, circle, line) - gap
 
+    # converged when the residual is at rounding level for the part's size (1e-12 mm at 100 mm)
+    size = cam.base_radius + getattr(cam, "roller_radius", 0.0) + float(np.max(np.abs(a))) + float(np.max(rad))
+    tol = 1e-12 * max(1.0, size / 100.0)
     for _ in range(60):
         g = residual(s)
         eps = 1e-7
@@ -154,7 +157,7 @@ def fitted_motion(cam: DiscCam, elements, tool_radius: float, angles_deg: np.nda
             raise GeometryError("the follower does not meet the machined contour (flat residual)")
         step = g / dg
         s = s - step
-        if np.max(np.abs(g)) < 1e-12:
+        if np.max(np.abs(g)) < tol:
             break
     else:
         raise GeometryError(f"the as-machined follower motion did not converge (residual {np.max(np.abs(g)):.2e} mm)")

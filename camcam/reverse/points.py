@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from camcam.errors import InputError
-from camcam.inputs import data_rows, parse_number, read_text
+from camcam.inputs import data_rows, looks_numeric, parse_number, read_text
 
 __all__ = ["MeasuredPoints", "parse_points", "load_points", "MIN_POINTS"]
 
@@ -65,9 +65,7 @@ def parse_points(text: str, source: str = "points") -> MeasuredPoints:
     for where, lineno, stripped, fields in data_rows(text, source):
         if not seen:
             seen = True
-            try:
-                float(fields[0])
-            except ValueError:
+            if not looks_numeric(fields[0]):
                 if len(fields) not in (2, 3):
                     raise InputError(f"{where}: a header needs 2 or 3 column names (x, y[, z]), got {len(fields)}") from None
                 ncol = len(fields)

@@ -19,24 +19,28 @@ from __future__ import annotations
 from camcam.geometry.params import CAM_KINDS, CamSpec
 from camcam.spec.reader import Table
 
-__all__ = ["CamSpec", "read_cam", "CAM_KINDS"]
+__all__ = ["CamSpec", "read_cam", "CAM_KINDS", "MIN_PART_MM"]
+
+#: Smallest cam or follower dimension (mm): below it the mesh and the fit work at rounding level.
+MIN_PART_MM = 0.1
 
 def read_cam(t: Table) -> CamSpec:
     kind = t.string("kind", "disc", choices=CAM_KINDS)
-    base = t.number("base_radius", minimum=0, inclusive=False, unit="mm")
+    base = t.number("base_radius", minimum=MIN_PART_MM, unit="mm")
     bore = t.number("bore", 0.0, minimum=0, unit="mm")
     rotation = t.string("rotation", "ccw", choices=("ccw", "cw"))
     thickness = groove = outer = length = None
     if kind in ("disc", "disc-groove"):
-        thickness = t.number("thickness", minimum=0, inclusive=False, unit="mm")
+        thickness = t.number("thickness", minimum=MIN_PART_MM, unit="mm")
     if kind in ("disc-groove", "cylindrical"):
-        groove = t.number("groove_depth", minimum=0, inclusive=False, unit="mm")
+        groove = t.number("groove_depth", minimum=MIN_PART_MM, unit="mm")
     if kind == "disc-groove":
-        outer = t.number("outer_radius", None, minimum=0, inclusive=False, unit="mm")
+        outer = t.number("outer_radius", None, minimum=MIN_PART_MM, unit="mm")
         t.check("groove_depth", groove < thickness, f"{groove:g} must be smaller than thickness = {thickness:g}")
     if kind == "cylindrical":
-        length = t.number("length", minimum=0, inclusive=False, unit="mm")
+        length = t.number("length", minimum=MIN_PART_MM, unit="mm")
         t.check("groove_depth", groove < base, f"{groove:g} must be smaller than base_radius = {base:g}")
+    t.check("bore", bore == 0 or bore >= MIN_PART_MM, f"{bore:g} mm: expected 0 (no bore) or at least {MIN_PART_MM:g} mm")
     if bore:
         t.check("bore", bore / 2 < base - (groove or 0.0), f"{bore:g} mm leaves no material around the bore")
     max_pa = t.number("max_pressure_angle_deg", None, minimum=0.0, maximum=90.0, inclusive=False, unit="degrees")

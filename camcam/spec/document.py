@@ -17,8 +17,10 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from camcam.errors import SpecError
+from camcam.inputs import os_reason, read_limited
 from camcam.spec.reader import Table, fmt
 from camcam.spec.report import DEFAULT_REPORT, ReportSpec, read_report
+from camcam.spec.size import SizeSpec, read_size
 from camcam.spec.stock import DEFAULT_STOCK, StockSpec, read_stock
 
 if TYPE_CHECKING:
@@ -28,9 +30,12 @@ if TYPE_CHECKING:
     from camcam.spec.motion import MotionSpec
     from camcam.spec.optimize import OptimizeSpec
 
-__all__ = ["Spec", "load_spec", "parse_spec"]
+__all__ = ["Spec", "load_spec", "parse_spec", "MAX_SPEC_BYTES"]
 
-_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$")
+_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,63}")  # whole name (fullmatch: "x\n" is refused)
+
+#: Largest spec file read (the samples are 1-2 KiB).
+MAX_SPEC_BYTES = 1 << 20
 
 
 @dataclass(frozen=True)
@@ -46,6 +51,7 @@ class Spec:
     machining: MachiningSpec | None = None
     report: ReportSpec = DEFAULT_REPORT
     stock: StockSpec = DEFAULT_STOCK
+    size: SizeSpec | None = None  # `camcam size` sweeps it; `camcam run` runs the design as written
 
     @property
     def unit(self) -> str:
@@ -69,7 +75,7 @@ def parse_spec(data: dict, source: Path) -> Spec:
     """Validate a parsed TOML document (``source`` names it and anchors relative paths)."""
     root = Table(data, "")
     name = root.string("name", source.stem)
-    root.check("name", bool(_NAME.match(name)), f'{fmt(name)} must be 1–64 letters, digits, "_", "-" or "." (it names the output files)')
+    root.check("name", isinstance(name, str) and bool(_NAME.fullmatch(name)), f'{fmt(name)} must be 1–64 letters, digits, "_", "-" or "." (it names the output files)')
     base = source.parent
     cam_t = root.table("cam", None)
     cam = _reader("cam", "read_cam")(cam_t) if cam_t is not None else None
@@ -90,13 +96,33 @@ def parse_spec(data: dict, source: Path) -> Spec:
     if optimize is not None:
         optimize.done()
     machining = root.table("machining", None)
-    machining_spec = _reader("machining", "read_machining")(machining, base, source.name) if machining is not None else None
+    machining_spec = (_reader("machining", "read_machining")(machining, base, cam.kind if cam else None,
+                                                             follower.kind if follower else None, source.name)
+                      if machining is not None else None)
+    if machining_spec is not None and cam is not None:
+        _check_depth(machining_spec, cam)
+    if machining_spec is not None:
+        _reader("machining", "check_passes")(machining_spec)
     report_t = root.table("report", None)
     report_spec = read_report(report_t) if report_t is not None else DEFAULT_REPORT
     stock_t = root.table("stock", None)
     stock = read_stock(stock_t, cam) if stock_t is not None else DEFAULT_STOCK
+    size_t = root.table("size", None)
+    size_spec = read_size(size_t, cam, follower, motion_spec, machining_spec) if size_t is not None else None
     root.done()
-    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec, stock)
+    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec, stock, size_spec)
+
+
+def _check_depth(m: MachiningSpec, cam: CamSpec) -> None:
+    """A disc is cut at most ``BREAK_THROUGH_MM`` (:mod:`camcam.spec.machining`) below its thickness;
+    a groove no deeper than ``groove_depth``."""
+    if cam.kind == "disc":
+        through = _reader("machining", "BREAK_THROUGH_MM")
+        limit, why = cam.thickness + through, f"cam.thickness = {cam.thickness:g} mm plus {through:g} mm break-through"
+    else:
+        limit, why = cam.groove_depth, f"cam.groove_depth = {cam.groove_depth:g} mm"
+    if m.depth_mm > limit + 1e-9:
+        raise SpecError("machining.depth", f"{m.depth_mm:g} mm is deeper than {why}")
 
 
 def load_spec(path: str | Path) -> Spec:
@@ -126,11 +152,15 @@ def load_spec(path: str | Path) -> Spec:
     """
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        raw = read_limited(path, MAX_SPEC_BYTES)
     except FileNotFoundError:
         raise SpecError(str(path), "no such file") from None
-    except (OSError, UnicodeDecodeError) as err:
-        raise SpecError(str(path), f"cannot read: {err}") from None
+    except OSError as err:
+        raise SpecError(str(path), f"cannot read: {os_reason(err)}") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise SpecError(str(path), f"not UTF-8 text (byte {err.start})") from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as err:

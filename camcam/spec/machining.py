@@ -15,53 +15,104 @@ coolant = "flood"          # "flood", "mist" or "off"
 program_number = 1234      # only for posts that print one (Fanuc, Haas)
 flute_length = 32.0        # mm, the tool's cutting length (default: twice its diameter)
 a_axis = "right-hand"      # barrel cams: a positive A turns the part by the right-hand rule about +X
+                           # ("left-hand": the machine's positive A turns the part the other way)
 accept_out_of_tolerance = false  # true: a FAIL verdict only warns (exit 0)
 stepover = 0.4             # roughing: radial step, a fraction of the tool diameter
 ramp_angle = 3.0           # deg, steepest descent into material (grooves: ramped entries)
 bore = false               # true: cut the bore as a helical bore
+axes = 5                   # cylindrical cams: 4 (X A) or 5 (X Y Z A B, tool axis on the roller axis);
+                           # default 5 for an oscillating roller, 4 otherwise
 ```
 """
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
-from camcam.errors import InputError
+from camcam.errors import InputError, SpecError
 from camcam.nc.settings import COOLANTS, WORK_OFFSETS, MachiningSpec, ProgramSetup
 from camcam.post.post import load_post
 from camcam.spec.reader import Table
 from camcam.toolpath.budget import DEFAULT_BUDGET
 
-__all__ = ["MachiningSpec", "read_machining"]
+__all__ = ["MachiningSpec", "read_machining", "FEED_RANGE_MM_MIN", "SPINDLE_RANGE_RPM", "MAX_PASSES",
+           "MIN_SIZE_MM", "BREAK_THROUGH_MM", "check_passes",
+           "default_axes"]
+
+#: Feeds a milling machine runs (mm/min): below 1 nothing is cut, above 100 m/min no machine feeds.
+FEED_RANGE_MM_MIN = (1.0, 100_000.0)
+
+#: Spindle speeds (rev/min): at least 1 (``S0`` stops the spindle), at most 100 000.
+SPINDLE_RANGE_RPM = (1.0, 100_000.0)
+
+#: Most depth passes a program may have (each pass repeats the whole contour).
+MAX_PASSES = 1000
+
+#: Smallest tool diameter, depth, step, lead radius (mm): ten times the finest post resolution.
+MIN_SIZE_MM = 0.01
+
+#: How far a disc cam's profile may be cut below its thickness (through the part into the fixture plate).
+BREAK_THROUGH_MM = 2.0
 
 
-def read_machining(t: Table, base: Path, source: str = "") -> MachiningSpec:
-    """Validate ``[machining]``; ``base`` anchors a relative post path, ``source`` is the spec's file name."""
+def check_passes(m: MachiningSpec) -> None:
+    """At most :data:`MAX_PASSES` depth passes (checked after ``depth`` itself)."""
+    if m.depth_mm / m.stepdown_mm > MAX_PASSES:
+        raise SpecError("machining.stepdown", f"{m.stepdown_mm:g} mm makes {math.ceil(m.depth_mm / m.stepdown_mm)} "
+                        f"passes for depth = {m.depth_mm:g} mm; at most {MAX_PASSES} are allowed")
+
+
+def default_axes(cam_kind: str | None, follower_kind: str | None) -> int:
+    """Axes a job uses when ``[machining] axes`` is not given: 5 for an oscillating roller on a
+    cylindrical cam (its roller axis tilts with the arm), 4 for other cylindrical cams, 3 for discs."""
+    if cam_kind != "cylindrical":
+        return 3
+    return 5 if follower_kind == "oscillating-roller" else 4
+
+
+def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_kind: str | None = None,
+                   source: str = "") -> MachiningSpec:
+    """Validate ``[machining]``; ``base`` anchors a relative post path; the cam and follower kinds
+    decide which ``axes`` values apply (:func:`default_axes`); ``source`` is the spec's file name
+    (the program's generator line)."""
     name = t.string("post", "linuxcnc")
     try:
         post = load_post(name, base)
     except InputError as err:
         raise t.error("post", str(err)) from None
-    tool = t.number("tool_diameter", minimum=0.0, inclusive=False, unit="mm")
+    tool = t.number("tool_diameter", minimum=MIN_SIZE_MM, unit="mm")
     tol = t.number("tolerance", 0.01, minimum=0.0, inclusive=False, unit="mm")
     need = DEFAULT_BUDGET.floor_mm(post.quantizer)
     t.check("tolerance", tol >= need, f"{tol:g} mm is too fine for post {post.name}'s {post.decimals} decimals; "
             f"expected >= {need:.2g} mm")
     mode = t.string("mode", "arcs", choices=("arcs", "lines"))
-    feed = t.number("feed", minimum=0.0, inclusive=False, unit="mm/min")
-    spindle = t.number("spindle", minimum=0.0, inclusive=False, unit="rev/min")
-    depth = t.number("depth", minimum=0.0, inclusive=False, unit="mm")
-    stepdown = t.number("stepdown", depth, minimum=0.0, inclusive=False, unit="mm")
-    plunge = t.number("plunge_feed", feed / 2, minimum=0.0, inclusive=False, unit="mm/min")
-    clearance = t.number("clearance_z", 2.0, minimum=0.0, inclusive=False, unit="mm")
+    feed = t.number("feed", minimum=FEED_RANGE_MM_MIN[0], maximum=FEED_RANGE_MM_MIN[1], unit="mm/min")
+    spindle = t.number("spindle", minimum=SPINDLE_RANGE_RPM[0], maximum=SPINDLE_RANGE_RPM[1], unit="rev/min")
+    depth = t.number("depth", minimum=MIN_SIZE_MM, unit="mm")
+    stepdown = t.number("stepdown", depth, minimum=MIN_SIZE_MM, unit="mm")
+    plunge = t.number("plunge_feed", max(feed / 2, FEED_RANGE_MM_MIN[0]), minimum=FEED_RANGE_MM_MIN[0],
+                      maximum=FEED_RANGE_MM_MIN[1], unit="mm/min")
+    clearance = t.number("clearance_z", 2.0, minimum=MIN_SIZE_MM, unit="mm")
     safe = t.number("safe_z", 25.0, minimum=clearance, unit="mm")
-    lead = t.number("lead_radius", max(tool / 2, 1.0), minimum=0.0, inclusive=False, unit="mm")
+    lead = t.number("lead_radius", max(tool / 2, 1.0), minimum=MIN_SIZE_MM, unit="mm")
     allowance = t.number("finish_allowance", 0.0, minimum=0.0, unit="mm")
     spring = t.boolean("spring_pass", False)
-    tool_number = t.integer("tool_number", 1, minimum=0, maximum=999)
+    tool_number = t.integer("tool_number", 1, minimum=1, maximum=999)
     accept = t.boolean("accept_out_of_tolerance", False)
     flute = t.number("flute_length", 2.0 * tool, minimum=0.0, inclusive=False, unit="mm")
     a_axis = t.string("a_axis", "right-hand", choices=("right-hand", "left-hand"))
+    axes = default_axes(cam_kind, follower_kind)
+    if t.has("axes"):
+        if cam_kind != "cylindrical":
+            raise t.error("axes", "applies to cylindrical cams only (a disc cam is cut with 3 axes)")
+        allowed = (4, 5) if follower_kind == "oscillating-roller" else (4,)
+        axes = t.integer("axes", minimum=4, maximum=5)
+        t.check("axes", axes in allowed, f"expected 4 for a {follower_kind} follower (its roller axis stays radial, "
+                f"so B would stay 0), got {axes}")
+    if axes == 5:
+        t.check("post", post.five_axis, f"post {post.name} has no 5-axis mode (tool-centre-point control); "
+                f"use a post with one (linuxcnc, fanuc, haas, sinumerik, heidenhain) or axes = 4")
     stepover = t.number("stepover", 0.4, minimum=0.0, maximum=1.0, inclusive=False)
     ramp = t.number("ramp_angle", 3.0, minimum=0.0, maximum=45.0, inclusive=False, unit="deg")
     bore = t.boolean("bore", False)
@@ -76,4 +127,4 @@ def read_machining(t: Table, base: Path, source: str = "") -> MachiningSpec:
     t.done()
     return MachiningSpec(post, tool, tol, mode, feed, spindle, depth, stepdown, plunge, safe, clearance, lead,
                          allowance, spring, tool_number, accept, setup=setup, flute_length_mm=flute, a_axis=a_axis,
-                         stepover=stepover, ramp_angle_deg=ramp, bore=bore)
+                         stepover=stepover, ramp_angle_deg=ramp, bore=bore, axes=axes)

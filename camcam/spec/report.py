@@ -14,7 +14,10 @@ from dataclasses import dataclass
 
 from camcam.spec.reader import Table
 
-__all__ = ["ReportSpec", "read_report", "DEFAULT_REPORT"]
+__all__ = ["ReportSpec", "read_report", "DEFAULT_REPORT", "MIN_INSPECTION_STEP_DEG"]
+
+#: Finest inspection step (degrees): 3600 rows, each solved against the printed path.
+MIN_INSPECTION_STEP_DEG = 0.1
 
 
 @dataclass(frozen=True)
@@ -27,7 +30,7 @@ DEFAULT_REPORT = ReportSpec()
 
 
 def read_report(t: Table) -> ReportSpec:
-    step = t.number("inspection_step", DEFAULT_REPORT.inspection_step_deg, minimum=0.0, maximum=90.0, inclusive=False, unit="degrees")
+    step = t.number("inspection_step", DEFAULT_REPORT.inspection_step_deg, minimum=MIN_INSPECTION_STEP_DEG, maximum=90.0, unit="degrees")
     strict = t.boolean("strict", DEFAULT_REPORT.strict)
     t.done()
     return ReportSpec(step, strict)

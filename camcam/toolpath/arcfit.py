@@ -1,15 +1,13 @@
 """The NC second fitting: arcs (G1-continuous arc spline) or lines, deviation guaranteed.
 
-Arcs.  On each analytic piece of the curve (between its ``breaks``) a G1 arc
-spline is marched from the curve's start point and exact tangent.  Its nodes
-lie on the curve; each arc leaves a node along the spline's tangent and ends
-at the next node.  A plain greedy march (longest arc each time) leaves a
-tangent error that cuts the next arc short; so each candidate next node is
-scored by how far the arc after it can reach (one-step lookahead).  The
-march then settles on the optimal periodic G1 arc spline, whose error
-e(s) = −κ′h³B₃(s/h)/6 equioscillates with |e| ≤ |κ′|h³/124.7, i.e. about
-(192/124.7)^⅓ = 1.155·N_lb arcs.  Each piece ends with a biarc onto the
-curve's exact end tangent, so pieces join tangent-continuously.
+Arcs.  A near-minimal G1 arc spline per G1 section of the curve (the whole
+contour unless it has corners), marched on the printed numbers by
+:mod:`camcam.toolpath.arcspline` (its docstring gives the method, the
+literature and why it was chosen): joints on or near the curve, each arc
+swinging across the whole band two-sided, a beam search over the joint
+sequences, a closing biarc onto the exact (or, for a closed contour, the
+spline's own) start tangent.  About 1.2–1.45·N_lb arcs on the disc samples,
+N_lb = ∫(|κ′|/192δ)^⅓ ds.
 
 Lines.  The seed paper's chordal method (Hu & Guo, eq. 8): a chord of length
 L on curvature radius ρ errs by δ ≈ L²/(8ρ), so the step starts from
@@ -34,11 +32,11 @@ from scipy.integrate import simpson
 
 from camcam.errors import FitError, InputError
 from camcam.geometry.curve import PlanarCurve, curvature, curvature_rate, speed
+from camcam.toolpath.arcspline import fit_arc_spline, g1_sections
 from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.toolpath.deviation import Deviation, measure_deviation
-from camcam.toolpath.elements import Arc, Line, arc_from_tangent
-from camcam.toolpath.fitcore import (Piece, biarc, dev, end_tangent, greedy, pieces, signed_angle, sweep_ok,
-                                      unit)
+from camcam.toolpath.elements import Arc, Line
+from camcam.toolpath.fitcore import Piece, dev, greedy, pieces
 from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["FitResult", "fit_contour", "lower_bound_blocks", "line_estimate_blocks"]
@@ -89,102 +87,6 @@ def line_estimate_blocks(curve: PlanarCurve, tolerance_mm: float, a=None, b=None
                for lo, hi in pieces(curve, a, b))
 
 
-#: Candidate next nodes per step, spread over [0.25, 2.5] × the last step.
-LOOKAHEAD_GRID = 14
-
-
-def _fit_arcs_piece(piece, tol, max_sweep, sag):
-    """March a G1 arc spline over one piece with a one-step lookahead.
-
-    From the current node (on the curve, with the spline's tangent), every
-    candidate end node whose single arc stays within ``tol`` is scored by how
-    far the *following* arc can then reach; the best one is taken.  The
-    tangent error a plain greedy march leaves behind is what makes it short
-    (≈ 2.5 vs 5.0 in units of (δ/κ′)^⅓); the lookahead settles at the
-    periodic optimum's equioscillating arcs (≈ 4.94).  The piece ends with a
-    biarc onto the curve's exact end tangent.
-    """
-    a, b = piece.a, piece.b
-    exact_end = unit(float(piece.phi(b)[0]))
-    cache: dict = {}
-
-    def arc_to(t0, tan, t1):
-        key = (t0, tuple(tan), t1)
-        if key not in cache:
-            e = arc_from_tangent(piece.point(t0)[0], tan, piece.point(t1)[0], sag)
-            ok = sweep_ok([e], max_sweep) and dev(piece, [e], t0, t1) <= tol
-            cache[key] = (e, ok)
-        return cache[key]
-
-    def feasible(t0, tan, h):
-        grid = t0 + h * np.linspace(0.25, 2.5, LOOKAHEAD_GRID)
-        grid = np.unique(np.minimum(grid, b))
-        return [t1 for t1 in grid if t1 > t0 and arc_to(t0, tan, t1)[1]]
-
-    def finish(t0, tan):
-        bi = biarc(piece.point(t0)[0], tan, piece.point(b)[0], exact_end, sag)
-        if bi is not None and sweep_ok(bi, max_sweep) and dev(piece, bi, t0, b) <= tol:
-            return bi
-        return None
-
-    elems = []
-    t = a
-    tan = unit(float(piece.phi(a)[0]))
-    h = (b - a) / 2.5  # first try the whole piece (a dwell circle is one arc)
-    while True:
-        if b - t <= 2.5 * h:
-            e, ok = arc_to(t, tan, b)
-            if ok and abs(signed_angle(end_tangent(e), exact_end)) < 1e-9:
-                elems.append(e)
-                return elems
-            bi = finish(t, tan)
-            if bi is not None:
-                elems.extend(bi)
-                return elems
-        # the end b is only reached through the exact-tangent checks above
-        cands = [c for c in feasible(t, tan, h) if c < b - 1e-12 * (b - a)]
-        if not cands:
-            h *= 0.3
-            if h < (b - a) * 1e-9:
-                raise FitError(f"cannot fit an arc near t = {t:g} within {tol:g} mm")
-            continue
-        t1_max = max(cands)
-        step = h * 2.25 / (LOOKAHEAD_GRID - 1)  # grid spacing
-
-        def score(t1):
-            e, _ = arc_to(t, tan, t1)
-            et = tuple(end_tangent(e))
-            if b - t1 <= 2.5 * (t1 - t) and finish(t1, et) is not None:
-                return b + 1.0  # the piece can be closed from here
-            nxt = feasible(t1, et, t1 - t)
-            if not nxt:
-                return t1
-            lo, hi = max(nxt), min(max(nxt) + step * (t1 - t) / h, b)
-            for _ in range(5):  # sharpen the reach between grid points
-                mid = 0.5 * (lo + hi)
-                if arc_to(t1, et, mid)[1]:
-                    lo = mid
-                else:
-                    hi = mid
-            return lo
-
-        scored = [(score(t1), t1) for t1 in sorted(cands, reverse=True)[:7]]
-        best_reach, best = max(scored)
-        for frac in (-0.5, -0.25, 0.25, 0.5):  # refine around the best grid point
-            t1 = best + frac * step
-            if t < t1 < b - 1e-12 * (b - a) and t1 <= t1_max + step and arc_to(t, tan, t1)[1]:
-                r = score(t1)
-                if r > best_reach:
-                    best_reach, best = r, t1
-        e, _ = arc_to(t, tan, best)
-        elems.append(e)
-        tan = tuple(end_tangent(e))
-        h = best - t
-        t = best
-        if len(cache) > 4096:
-            cache.clear()
-
-
 def _fit_lines_piece(piece, tol):
     a, b = piece.a, piece.b
     k = np.abs(curvature(piece.curve, piece.grid))
@@ -205,6 +107,45 @@ def _fit_lines_piece(piece, tol):
         nodes.append(greedy(t0, b, ok, step_mm / max(v[j], 1e-12)))
     pts = piece.point(np.array(nodes))
     return [Line(tuple(p), tuple(q)) for p, q in zip(pts[:-1], pts[1:])]
+
+
+def _fit_arcs(curve, tolerance_mm, band, quantizer, max_sweep, a, b, exact, printed, budget) -> FitResult:
+    """Arcs: one near-minimal printed G1 arc spline per G1 section (:mod:`camcam.toolpath.arcspline`).
+
+    The march measures its candidates as printed, so its band leaves no
+    rounding share for I/J posts (:meth:`FitBudget.spline_targets`); every
+    section is printed, measured against the exact curve and refitted tighter
+    if it misses (the one retry loop).
+    """
+    targets = tuple(budget.spline_targets(band, quantizer))
+    sag = budget.sag_mm(targets[0], quantizer)  # arcs flatter than this print as lines
+    margin = budget.margin_mm(tolerance_mm)
+    edges = pieces(curve, a, b)
+    sections = g1_sections(curve, edges[0][0], edges[-1][1])
+    whole = bool(curve.closed) and len(sections) == 1 and edges[0][0] == curve.t_start and \
+        edges[-1][1] == curve.t_end
+    elems, starts, worst = [], [], None
+    for lo, hi in sections:
+        for target in targets:
+            spline = fit_arc_spline(curve, lo, hi, target, quantizer=quantizer, max_sweep=max_sweep, sag=sag,
+                                    closed=whole)
+            dev_s = measure_deviation(exact, printed(spline.elements), lo, hi, margin_mm=margin)
+            if dev_s.max_deviation_mm <= tolerance_mm:
+                break
+        else:
+            raise FitError(f"cannot fit the curve on t ∈ [{lo:g}, {hi:g}] within {tolerance_mm:g} mm: the printed "
+                           f"path stays {dev_s.max_deviation_mm:.4g} mm off after {budget.attempts} attempts")
+        elems.extend(spline.elements)
+        starts.extend(spline.starts)
+        if worst is None or dev_s.max_deviation_mm > worst.max_deviation_mm:
+            worst = dev_s
+    starts = np.asarray(starts)
+    last = edges[-1][1]
+    blocks = [int(np.count_nonzero((starts >= lo) & ((starts < hi) | (hi == last))))
+              for lo, hi in edges]  # each arc counts on the piece its start joint lies on
+    lbs = [lower_bound_blocks(exact, tolerance_mm, lo, hi) for lo, hi in edges]
+    return FitResult(tuple(elems), "arcs", tolerance_mm, quantizer.decimals, worst, float(sum(lbs)),
+                     tuple(blocks), tuple(lbs))
 
 
 def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",
@@ -274,17 +215,17 @@ def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",
         raise InputError(f"tolerance {tolerance_mm:g} mm is too fine for {quantizer.decimals} decimals "
                          f"(rounding alone takes {budget.rounding_mm(quantizer):.2g} mm); use at least "
                          f"{budget.floor_mm(quantizer):.2g} mm or more decimals")
-    targets = tuple(budget.targets(band, quantizer))
-    sag = budget.sag_mm(targets[0], quantizer)  # arcs flatter than this print as lines
-    max_sweep = math.radians(max_sweep_deg)
+    if mode == "arcs":
+        return _fit_arcs(curve, tolerance_mm, band, quantizer, math.radians(max_sweep_deg), a, b, exact, printed,
+                         budget)
+    targets = tuple(budget.targets(band, quantizer))  # lines: the sag and sweep limits concern arcs only
     margin = budget.margin_mm(tolerance_mm)
     all_elems, blocks, lbs = [], [], []
     worst = None
     for lo, hi in pieces(curve, a, b):
         piece = Piece(curve, lo, hi)
         for target in targets:
-            raw = (_fit_arcs_piece(piece, target, max_sweep, sag) if mode == "arcs"
-                   else _fit_lines_piece(piece, target))
+            raw = _fit_lines_piece(piece, target)
             elems = quantizer.snap_elements(raw)
             dev = measure_deviation(exact, printed(elems), lo, hi, margin_mm=margin)
             if dev.max_deviation_mm <= tolerance_mm:
@@ -294,8 +235,7 @@ def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",
                            f"path stays {dev.max_deviation_mm:.4g} mm off after {budget.attempts} attempts")
         all_elems.extend(elems)
         blocks.append(len(elems))
-        lbs.append(lower_bound_blocks(exact, tolerance_mm, lo, hi) if mode == "arcs"
-                   else line_estimate_blocks(exact, tolerance_mm, lo, hi))
+        lbs.append(line_estimate_blocks(exact, tolerance_mm, lo, hi))
         if worst is None or dev.max_deviation_mm > worst.max_deviation_mm:
             worst = dev
     return FitResult(tuple(all_elems), mode, tolerance_mm, quantizer.decimals, worst, float(sum(lbs)),

@@ -56,6 +56,15 @@ class FitBudget:
         line (0.5 grid steps, 0.05 of the band).
     retry_factor : float
         A piece that misses is fitted again at this × the previous target (0.8).
+    spline_sampling_share : float
+        The arc spline's march (:mod:`camcam.toolpath.arcspline`) measures its
+        candidates as printed, so its band is δ less this share only: the final
+        measurement's margin (``sampling_share``) and the march's own sampling
+        (at most half of it), and 2 % for the slab check of the material removal, which measures
+        the cut on polygons (0.05).
+    spline_retry_factor : float
+        An arc-spline section that misses is marched again at this × the previous
+        band (0.93: the arc count grows as band^−⅓, so small steps).
     attempts : int
         Fits of one piece at most before :class:`~camcam.errors.FitError` (6).
     """
@@ -66,6 +75,8 @@ class FitBudget:
     sag_fit_share: float = 0.05
     retry_factor: float = 0.8
     attempts: int = 6
+    spline_sampling_share: float = 0.05
+    spline_retry_factor: float = 0.93
 
     def rounding_mm(self, quantizer: Quantizer) -> float:
         """Deviation reserved for printing: one grid step 10^−d.
@@ -95,6 +106,27 @@ class FitBudget:
     def sag_mm(self, fit_mm: float, quantizer: Quantizer) -> float:
         """Arcs flatter than this (mm of sagitta) print as lines."""
         return min(self.sag_step_share * quantizer.step_mm, self.sag_fit_share * fit_mm)
+
+    def spline_targets(self, tolerance_mm: float, quantizer: Quantizer):
+        """The bands of the arc spline's retry loop: δ − sampling shares, then × ``spline_retry_factor``.
+
+        The march puts every joint and centre on the grid and measures the
+        printed arc, so no rounding share is reserved, except with R words
+        (the controller rebuilds the centre from the rounded radius, which the
+        march does not model): there one grid step is.
+
+        Examples
+        --------
+        >>> b = FitBudget()
+        >>> [round(t, 7) for t in list(b.spline_targets(0.01, Quantizer(4)))[:2]]
+        [0.0095, 0.008835]
+        """
+        target = tolerance_mm * (1.0 - self.spline_sampling_share)
+        if quantizer.arc_format == "r":
+            target -= self.rounding_mm(quantizer)
+        for _ in range(self.attempts):
+            yield target
+            target *= self.spline_retry_factor
 
     def targets(self, tolerance_mm: float, quantizer: Quantizer):
         """The fit targets of the retry loop: the first band, then × ``retry_factor`` each attempt."""

@@ -68,13 +68,16 @@ def closest_params(curve: PlanarCurve, q, lo: float, hi: float, seeds_t=None) ->
     _, k = cKDTree(sp).query(q)
     t = seeds_t[k].astype(float)
     step = (hi - lo) / max(len(seeds_t) - 1, 1)
+    # a closed curve taken whole has no ends: Newton may step across its seam (t_end ≡ t_start)
+    seam = bool(getattr(curve, "closed", False)) and lo <= curve.t_start and hi >= curve.t_end
     for _ in range(8):
         p, d1, d2 = (curve.evaluate(t, o) for o in (0, 1, 2))
         r = p - q
         f = np.einsum("ij,ij->i", r, d1)
         fp = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", r, d2)
         dt = np.where(fp > 0, -f / np.where(fp > 0, fp, 1.0), 0.0)
-        t = np.clip(t + np.clip(dt, -step, step), lo, hi)
+        t = t + np.clip(dt, -step, step)
+        t = lo + np.mod(t - lo, hi - lo) if seam else np.clip(t, lo, hi)
     d = np.hypot(*(curve.evaluate(t, 0) - q).T)
     return t, d
 

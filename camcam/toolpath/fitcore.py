@@ -1,14 +1,12 @@
-"""Helpers of the second fitting: one analytic piece of a curve, fitting checks, biarcs."""
+"""Helpers of the lines fitting: one analytic piece of a curve, the fitting check, the greedy step."""
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-from camcam.toolpath.elements import Arc, arc_from_tangent, element_distance, element_tangent
+from camcam.toolpath.elements import element_distance
 
-__all__ = ["pieces", "Piece", "unit", "end_tangent", "dev", "biarc", "sweep_ok", "greedy", "signed_angle"]
+__all__ = ["pieces", "Piece", "dev", "greedy"]
 
 
 def pieces(curve, a=None, b=None):
@@ -52,15 +50,6 @@ class Piece:
         return self.point(np.linspace(t0, t1, n))
 
 
-def unit(angle):
-    return np.array([math.cos(angle), math.sin(angle)])
-
-
-def end_tangent(e) -> np.ndarray:
-    """Unit tangent at the end of ``e`` (:func:`element_tangent`)."""
-    return element_tangent(e, True)
-
-
 def _seg_dist(q, poly):
     """Distance from points q (n,2) to the polyline poly (m,2)."""
     a, b = poly[:-1], poly[1:]
@@ -80,34 +69,6 @@ def dev(piece, elems, t0, t1) -> float:
     dense = piece.samples(t0, t1, 81)
     d2 = _seg_dist(ep, dense).max()
     return float(max(d1, d2))
-
-
-def biarc(p0, t0, p1, t1, sag):
-    """Equal-tangent-length biarc from (p0, t0) to (p1, t1) (unit tangents)."""
-    p0, t0, p1, t1 = (np.asarray(x, float) for x in (p0, t0, p1, t1))
-    v = p1 - p0
-    t = t0 + t1
-    c = 1.0 - float(t0 @ t1)
-    vt = float(v @ t)
-    if c < 1e-12:
-        denom = 4.0 * float(v @ t0)
-        if abs(denom) < 1e-300:
-            return None
-        alpha = float(v @ v) / denom
-    else:
-        alpha = (-vt + math.sqrt(vt * vt + 2.0 * c * float(v @ v))) / (2.0 * c)
-    if not alpha > 0:
-        return None
-    joint = 0.5 * (p0 + alpha * t0 + p1 - alpha * t1)
-    if np.hypot(*(joint - p0)) < 1e-9 or np.hypot(*(p1 - joint)) < 1e-9:
-        return None
-    e1 = arc_from_tangent(p0, t0, joint, sag)
-    e2 = arc_from_tangent(joint, end_tangent(e1), p1, sag)
-    return [e1, e2]
-
-
-def sweep_ok(elems, max_sweep) -> bool:
-    return all(not isinstance(e, Arc) or e.sweep <= max_sweep for e in elems)
 
 
 def greedy(t0, b, ok, guess):
@@ -147,5 +108,3 @@ def greedy(t0, b, ok, guess):
     return lo
 
 
-def signed_angle(u, v) -> float:
-    return math.atan2(u[0] * v[1] - u[1] * v[0], u[0] * v[0] + u[1] * v[1])

@@ -29,24 +29,15 @@ import math
 import numpy as np
 
 from camcam.errors import GeometryError
-from camcam.toolpath.elements import Arc, Line
+from camcam.toolpath.elements import Arc, Line, element_tangent
 
 __all__ = ["part_outline", "offset_element"]
-
-
-def _tangent(e, at_end: bool) -> np.ndarray:
-    if isinstance(e, Line):
-        v = np.subtract(e.end, e.start)
-        return v / np.hypot(*v)
-    r = np.subtract(e.end if at_end else e.start, e.centre)
-    r = r / np.hypot(*r)
-    return np.array([-r[1], r[0]]) if e.ccw else np.array([r[1], -r[0]])
 
 
 def offset_element(e, distance_mm: float):
     """``e`` moved ``distance_mm`` to the left of its direction of travel (negative: right)."""
     if isinstance(e, Line):
-        t = _tangent(e, False)
+        t = element_tangent(e, False)
         n = np.array([-t[1], t[0]]) * distance_mm
         return Line(tuple(map(float, np.add(e.start, n))), tuple(map(float, np.add(e.end, n))))
     r = e.radius - (distance_mm if e.ccw else -distance_mm)
@@ -132,7 +123,7 @@ def part_outline(elements, distance_mm: float, snap_mm: float = 1e-3, near_mm: f
             m = (pa + pb) / 2
             ends[i], starts[(i + 1) % n] = m, m
             continue
-        ta, tb = _tangent(els[i], True), _tangent(els[(i + 1) % n], False)
+        ta, tb = element_tangent(els[i], True), element_tangent(els[(i + 1) % n], False)
         turn = ta[0] * tb[1] - ta[1] * tb[0]  # > 0: the path turns left
         into_material = (turn > 0) == (distance_mm > 0)
         if into_material:
@@ -153,7 +144,7 @@ def part_outline(elements, distance_mm: float, snap_mm: float = 1e-3, near_mm: f
     out = []
     for i in range(n):
         e = _with_ends(off[i], starts[i], ends[i])
-        if isinstance(e, Line) and float(np.dot(_tangent(els[i], False), np.subtract(e.end, e.start))) <= 0:
+        if isinstance(e, Line) and float(np.dot(element_tangent(els[i], False), np.subtract(e.end, e.start))) <= 0:
             raise GeometryError(f"part outline: the line ending at ({els[i].end[0]:.4f}, {els[i].end[1]:.4f}) is "
                                 f"shorter than the tool radius cuts back from it")
         out.append(e)

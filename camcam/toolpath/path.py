@@ -24,23 +24,26 @@ __all__ = ["Rapid", "Feed", "ArcMove", "Comment", "Pass", "PASS_KINDS", "Toolpat
 
 @dataclass(frozen=True)
 class Rapid:
-    """G0 to (x, y, z); ``None`` keeps an axis where it is."""
+    """G0 to (x, y, z) (and rotary ``a_deg``, tilt ``b_deg`` for 5-axis); ``None`` keeps an axis where it is."""
 
     x: float | None
     y: float | None
     z: float | None
+    a_deg: float | None = None
+    b_deg: float | None = None
 
 
 @dataclass(frozen=True)
 class Feed:
-    """G1 to (x, y, z) (and rotary ``a_deg`` for 4-axis) at ``feed_mm_min``."""
+    """G1 to (x, y, z) (and rotary ``a_deg``, tilt ``b_deg`` for 4/5-axis) at ``feed_mm_min``."""
 
     x: float | None
     y: float | None
     z: float | None
     feed_mm_min: float
     a_deg: float | None = None
-    length_mm: float = 0.0  # path length at the reference radius (inverse-time feeds)
+    length_mm: float = 0.0  # inverse-time feeds: path length (4-axis: at the reference radius; 5-axis: of the tool tip)
+    b_deg: float | None = None
 
 
 @dataclass(frozen=True)
@@ -118,6 +121,7 @@ class Toolpath:
     comments: tuple[str, ...] = ()
     opening: tuple = ()
     closing: tuple = ()
+    five_axis: bool = False  # X Y Z A B with tool-centre-point control (the post's tcp_on/tcp_off)
 
     @property
     def moves(self) -> tuple:

@@ -22,7 +22,7 @@ from pathlib import Path
 
 from camcam.toolpath.elements import Arc, Line
 
-__all__ = ["CanonMove", "rs274_available", "run_rs274", "feed_passes", "print_margin_mm"]
+__all__ = ["CanonMove", "rs274_available", "run_rs274", "feed_passes", "print_margin_mm", "tcp_readable"]
 
 _MOVE = re.compile(r"\b(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED|SELECT_PLANE|COMMENT)\((.*)\)\s*$")
 
@@ -39,6 +39,7 @@ class CanonMove:
     centre: tuple[float, float] | None = None
     ccw: bool = False
     turns: int = 0
+    b: float = 0.0
 
 
 def rs274_available() -> bool:
@@ -50,14 +51,16 @@ def print_margin_mm(decimals: int) -> float:
     return 0.0 if decimals <= 4 else 3 * 0.5 * 2**0.5 * 1e-4
 
 
-def run_rs274(path: str | Path, timeout_s: float = 60.0, comments: bool = False) -> list:
-    """Interpret ``path``; raise ``RuntimeError`` with rs274's message if it rejects the program.
+def run_rs274(path: str | Path, timeout_s: float = 60.0, comments: bool = False,
+              ini: str | Path | None = None) -> list:
+    """Interpret ``path`` (with ``ini``: ``rs274 -i INI``); raise ``RuntimeError`` with rs274's message if it
+    rejects the program.
 
     With ``comments`` the program's comments (``COMMENT("…")``, without rs274's
     own ``interpreter: …`` notes) come back as strings between the moves.
     """
-    proc = subprocess.run(["rs274", "-g", str(path)], stdin=subprocess.DEVNULL, capture_output=True,
-                          text=True, timeout=timeout_s)
+    cmd = ["rs274"] + (["-i", str(ini)] if ini is not None else []) + ["-g", str(path)]
+    proc = subprocess.run(cmd, stdin=subprocess.DEVNULL, capture_output=True, text=True, timeout=timeout_s)
     if proc.returncode != 0:
         msg = " / ".join(line.strip() for line in proc.stderr.splitlines() if line.strip())
         raise RuntimeError(f"rs274 rejected {path}: {msg}")
@@ -83,8 +86,43 @@ def run_rs274(path: str | Path, timeout_s: float = 60.0, comments: bool = False)
             x, y, cx, cy, rot, z, a = v[:7]
             moves.append(CanonMove("arc", x, y, z, a, (cx, cy), rot > 0, int(abs(rot)) - 1))
         else:
-            moves.append(CanonMove("rapid" if kind == "STRAIGHT_TRAVERSE" else "line", *v[:4]))
+            moves.append(CanonMove("rapid" if kind == "STRAIGHT_TRAVERSE" else "line", *v[:4], b=v[4]))
     return moves
+
+
+#: rs274 knows no tool-centre-point codes: Fanuc's G43.4 is remapped to an empty subroutine (REMAP
+#: accepts G codes in modal group 1 only here); Haas's G234 it cannot even parse ("G-code out of
+#: range": G numbers stop at 99.9), so that one block is turned into a comment.  Neither changes a
+#: coordinate: rs274 prints programmed positions (a length offset appears only in USE_TOOL_LENGTH_OFFSET).
+_REMAPS = {"G43.4": "g43_4"}
+
+
+def tcp_readable(text: str, tcp_on: tuple[str, ...], workdir: str | Path) -> tuple[Path, Path | None]:
+    """Write a 5-axis program where rs274 can read it: ``(program path, ini path or None)``.
+
+    ``tcp_on`` are the post's blocks that switch tool-centre-point control on (as printed).
+    """
+    workdir = Path(workdir)
+    ini_lines, out = [], []
+    for line in text.splitlines():
+        words = line.split()
+        block = " ".join(w for w in words if not (w[0] == "N" and w[1:].isdigit()))
+        if block in tcp_on:
+            code = block.split()[0]
+            if code in _REMAPS:
+                sub = workdir / f"{_REMAPS[code]}.ngc"
+                sub.write_text(f"o<{_REMAPS[code]}> sub\no<{_REMAPS[code]}> endsub\nM2\n")
+                ini_lines.append(f"REMAP={code} modalgroup=1 argspec=H ngc={_REMAPS[code]}")
+            else:
+                line = f"({block.replace('(', '[').replace(')', ']')}: tool-centre-point control, unknown to rs274)"
+        out.append(line)
+    prog = workdir / "program-rs274.ngc"
+    prog.write_text("\n".join(out) + "\n")
+    if not ini_lines:
+        return prog, None
+    ini = workdir / "tcp.ini"
+    ini.write_text("[RS274NGC]\nSUBROUTINE_PATH = " + str(workdir) + "\n" + "\n".join(dict.fromkeys(ini_lines)) + "\n")
+    return prog, ini
 
 
 def feed_passes(moves: list[CanonMove]) -> list[tuple[float, list]]:

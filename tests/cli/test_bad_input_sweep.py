@@ -134,3 +134,112 @@ def test_garbage_spec_files(garbage):
         for command in ("motion", "run", "optimize"):
             code, err = run_cli([command, str(spec), "-o", str(out)] if command != "optimize" else [command, str(spec)])
             check_outcome(code, err, out)
+
+
+# -- post files, output folders and signals (issue 16) ------------------------------------------------
+
+POST_VALUES = st.one_of(
+    BAD_VALUES, st.just("G20"), st.just("MM"), st.just(10**19), st.just(-10),
+    st.text(alphabet=st.sampled_from(list("{}()[];%!:.0d\n\r G21title")), max_size=24),
+    st.lists(st.text(alphabet=st.sampled_from(list("{}()[];%!:.0d\n G21toolname_pgr")), max_size=20), max_size=4),
+)
+
+
+@settings(max_examples=120, deadline=None)
+@given(data=st.data())
+def test_broken_post_files(data):
+    """A mutated post either fails to load with one line naming the post, or prints only program lines."""
+    from camcam.errors import InputError
+    from camcam.post.gcode import write_program
+    from camcam.post.post import parse_post
+    from camcam.toolpath.path import ArcMove, Feed, Rapid, Toolpath
+    from tests.hostile.harness import assert_program_safe
+
+    base = data.draw(st.sampled_from(["linuxcnc", "fanuc", "sinumerik", "heidenhain"]))
+    doc = tomllib.loads((ROOT / "post" / f"{base}.toml").read_text())
+    key = data.draw(st.sampled_from(sorted(doc) + ["header", "footer", "units", "max_line_number"]))
+    doc[key] = data.draw(POST_VALUES)
+    try:
+        post = parse_post(doc, "mill")
+    except InputError as err:
+        assert str(err).startswith("post mill: ") and "\n" not in str(err)
+        return
+    moves = (Rapid(0.0, 10.0, 25.0), Feed(None, None, -5.0, 200.0), ArcMove(10.0, 0.0, 0.0, 0.0, False, -5.0, 400.0))
+    try:
+        prog = write_program(Toolpath.of_moves("t) G0 Z-50 (", moves, 3000.0, comments=("x\nG0 Z-50",)), post, "cam")
+    except InputError as err:  # e.g. block numbers past the post's max_line_number
+        assert "\n" not in str(err)
+        return
+    assert_program_safe(prog.text, post)
+
+
+def _target_state(root: Path, state: str) -> Path:
+    target = root / "out"
+    if state == "file":
+        target.write_text("x")
+    elif state == "under-file":
+        (root / "f").write_text("x")
+        target = root / "f" / "out"
+    elif state in ("empty", "foreign", "earlier", "earlier+foreign", "orphans"):
+        target.mkdir()
+        if state == "foreign" or state == "earlier+foreign":
+            (target / "notes.txt").write_text("mine")
+        if state.startswith("earlier") or state == "orphans":
+            (target / "demo-motion.csv").write_text("old")
+            (target / "camcam-manifest.json").write_text('{"files": [{"name": "demo-motion.csv"}]}')
+        if state == "orphans":
+            (root / ".out.camcam-new-00aa11bb22cc").mkdir()
+            (root / ".out.camcam-lock").write_text("")
+    return target
+
+
+@settings(max_examples=25, deadline=None)
+@given(state=st.sampled_from(["missing", "empty", "file", "under-file", "foreign", "earlier", "earlier+foreign",
+                              "orphans"]),
+       force=st.booleans())
+def test_output_folders(state, force):
+    """Any target: a complete set with its manifest (exit 0), or one line, exit 2 and the target as it was."""
+    from tests.hostile.harness import snapshot
+
+    with tempfile.TemporaryDirectory() as d:
+        root = Path(d)
+        target = _target_state(root, state)
+        before = snapshot(root)
+        code, err = run_cli(["motion", str(ROOT / "samples" / "demo.toml"), "-o", str(target)] + (["--force"] if force else []))
+        if code == 0:
+            assert sorted(p.name for p in target.iterdir()) == ["camcam-manifest.json", "demo-motion.csv", "demo-svaj.png"]
+            assert sorted(p.name for p in root.iterdir()) == ["out"]  # orphans and the lock are gone
+        else:
+            assert code == 2 and len([ln for ln in err.splitlines() if ln.startswith("camcam: error: ")]) == 1, err
+            assert snapshot(root) == before
+
+
+@settings(max_examples=12, deadline=None)
+@given(signum=st.sampled_from([2, 15, 1]), k=st.integers(1, 3), earlier=st.booleans())
+def test_signals_while_writing(signum, k, earlier):
+    """A signal at the k-th file written: status 128+n, one line saying the target is as it was."""
+    import os
+
+    import camcam.export.files as files
+    from tests.hostile.harness import snapshot
+
+    with tempfile.TemporaryDirectory() as d:
+        root = Path(d)
+        target = _target_state(root, "earlier" if earlier else "missing")
+        before = snapshot(root)
+        real, calls = files._write_file, [0]
+
+        def write(*a):
+            calls[0] += 1
+            if calls[0] == k:
+                os.kill(os.getpid(), signum)
+            return real(*a)
+
+        files._write_file = write
+        try:
+            code, err = run_cli(["motion", str(ROOT / "samples" / "demo.toml"), "-o", str(target), "--force"])
+        finally:
+            files._write_file = real
+        assert code == 128 + signum, err
+        assert err.strip().splitlines()[-1].endswith(f"nothing was written; {target} is as it was"), err
+        assert snapshot(root) == before

@@ -92,7 +92,8 @@ def test_fit_command_on_the_sample(tmp_path):
     rows = np.loadtxt(tmp_path / "faired.csv", delimiter=",", skiprows=1)
     assert rows.shape == (361, 5) and rows[0, 0] == 0 and rows[-1, 0] == 360
     assert (tmp_path / "faired.csv").read_text().startswith("angle_deg,lift_mm,velocity,acceleration,jerk\n")
-    assert {p.name for p in tmp_path.iterdir()} == {"faired.csv", "curvature-comb.png", "roughness.png", "summary.json"}
+    assert {p.name for p in tmp_path.iterdir()} == {"faired.csv", "curvature-comb.png", "roughness.png", "summary.json",
+                                                 "camcam-manifest.json"}  # the manifest lists the other four
 
 
 def test_fit_command_mid_point(tmp_path):

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 from camcam.geometry.build import build_cam
 from camcam.nc.groove3d import (CylinderTool, ToolPoses, cut_walls, design_walls, follower_poses, measure_groove,
-                                poses_from_canon, poses_from_program)
+                                poses_from_program)
 from camcam.spec import load_spec
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -22,7 +22,7 @@ needs_rs274 = pytest.mark.skipif(not rs274_available(), reason="rs274 (Debian li
 def job(sample: str, rotation: str = "ccw", a_axis: str = "right-hand", tool_mm: float | None = None):
     spec = load_spec(ROOT / "samples" / f"{sample}.toml")
     built = build_cam(replace(spec.cam, rotation=rotation), spec.follower, spec.motion.program(spec.unit))
-    m = replace(spec.machining, a_axis=a_axis)
+    m = replace(spec.machining, a_axis=a_axis, axes=4)  # this module is the 4-axis job
     if tool_mm is not None:
         m = replace(m, tool_diameter_mm=tool_mm)
     return built, m, machine(built, m, spec.name)

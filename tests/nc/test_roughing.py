@@ -6,7 +6,6 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -129,3 +128,20 @@ def test_cut_cyclic_length(s0, run):
     assert sum(e.length for e in piece) == pytest.approx(run, rel=1e-9)
     a = (s0 % (20 * math.pi)) / 10.0
     assert piece[0].start == pytest.approx((10 * math.cos(a), 10 * math.sin(a)), abs=1e-9)
+
+
+def test_narrow_groove_tool_roughs_between_centre_and_flanks():
+    """A Ø8 tool in the 20 mm groove: centre slot, rough offsets at 2 and 4 mm, flanks at 6 mm from the centre."""
+    spec, built, m = _variant("disc-groove", tool_diameter_mm=8.0)
+    r = machine(built, m, "narrow", spec.stock)
+    assert [c.label for c in r.contours] == ["groove centre (rough)", "groove rough inner 1", "groove rough inner 2",
+                                             "groove rough outer 1", "groove rough outer 2", "inner flank",
+                                             "outer flank"]
+    rem = r.removal
+    assert rem.plunges == 0 and rem.rapid_touches == 0
+    # offsets 2 mm apart (≤ 0.9 × 3.2 mm): each meets a band of about 2 mm, more on the groove's curved walls
+    assert 2.0 <= rem.max_engagement_mm <= m.stepover_mm
+    # the last rough offset's tool edge is 10 − 4 − 4 = 2 mm from its flank (both within the 0.01 mm fit)
+    assert rem.rough_clearance_mm == pytest.approx(2.0, abs=0.011)
+    assert rem.material_left_mm <= m.tolerance_mm and rem.overcut_mm <= m.tolerance_mm
+    assert all(c.ok for c in r.checks)

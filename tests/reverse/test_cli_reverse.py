@@ -45,7 +45,7 @@ def test_noisy_and_disc_samples(tmp_path, capsys):
 
 @pytest.mark.parametrize("text,message", [
     ("x, y, z\n" + "1, 2, 3\n" * 5 + "1, 2\n", "p.csv row 7: expected 3 values (x, y, z), got '1, 2'"),
-    ("x, y\n1, 2\n3, nan\n", "p.csv row 3: y nan is not a finite number"),
+    ("x, y\n1, 2\n3, nan\n", "p.csv row 3: y 'nan' is not a plain decimal number (digits, point, exponent)"),
     ("x, y\n1, 2\n", "p.csv: 1 point(s); reverse design needs at least 20"),
 ])
 def test_bad_points(tmp_path, capsys, text, message):

@@ -26,7 +26,7 @@ def test_issue_table_reads():
     ({"post": "mach3"}, "machining.post: unknown post 'mach3'; known: fanuc"),
     ({"mode": "splines"}, 'machining.mode: expected one of "arcs", "lines"'),
     ({"tolerance": 0.001, "post": "fanuc"}, "machining.tolerance: 0.001 mm is too fine for post fanuc's 3 decimals"),
-    ({"feed": -1}, "machining.feed: expected a number > 0"),
+    ({"feed": -1}, "machining.feed: expected a number >= 1 and <= 100000 mm/min"),  # F must not print as F0
     ({"depht": 3}, "machining.depht: unknown key"),
 ])
 def test_bad_values_name_the_key(over, message):

@@ -1,0 +1,11 @@
+"""Running many independent tasks in this process or on a Dask cluster.
+
+The public names load their module on first use (:mod:`camcam.lazy`).
+"""
+
+from camcam.lazy import lazy_exports
+
+__getattr__, __dir__, __all__ = lazy_exports(__name__, {
+    **dict.fromkeys(("Executor", "InProcess", "DaskExecutor", "open_executor", "dask_available", "SCALE_HINT"),
+                    "camcam.scale.engine"),
+})

@@ -1,0 +1,154 @@
+"""Where `camcam size` and `camcam batch` run their tasks: in this process, or on Dask.
+
+With ``dask.distributed`` installed (``pip install 'camcam[scale]'``) the
+default is a local cluster of one single-threaded worker process per core;
+``--scheduler ADDRESS`` uses an existing cluster instead.  Without it the
+tasks run here, one after the other, and :attr:`Executor.note` says how to
+scale out.  Either way :meth:`Executor.map` returns the results in the order
+of the tasks, so what is written never depends on where a task ran.
+"""
+
+from __future__ import annotations
+
+import logging
+from abc import ABC, abstractmethod
+import os
+import sys
+from contextlib import contextmanager
+from typing import Any, Callable, Iterator, Sequence, TextIO
+
+from camcam.errors import SpecError
+
+__all__ = ["Executor", "InProcess", "DaskExecutor", "open_executor", "dask_available", "SCALE_HINT"]
+
+SCALE_HINT = "ran in-process; pip install 'camcam[scale]' runs it on a Dask cluster (local by default, or --scheduler ADDRESS)"
+
+
+def dask_available() -> bool:
+    try:
+        import distributed  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+class _Bar:
+    """A progress bar on ``stream`` (stderr) when ``enabled``; nothing otherwise."""
+
+    def __init__(self, what: str, total: int, enabled: bool, stream: TextIO | None = None) -> None:
+        self.stream = stream if stream is not None else sys.stderr
+        self.on = enabled and total > 1
+        self.what, self.total, self.done = what, total, 0
+
+    def step(self) -> None:
+        self.done += 1
+        if self.on:
+            filled = int(30 * self.done / self.total)
+            self.stream.write(f"\rcamcam: {self.what} [{'#' * filled}{'.' * (30 - filled)}] {self.done}/{self.total}")
+            if self.done == self.total:
+                self.stream.write("\n")
+            self.stream.flush()
+
+
+class Executor(ABC):
+    """Runs ``fn(item, **shared)`` for every item and returns the results in item order."""
+
+    label = "executor"
+    workers = 1
+    note = ""
+    #: Draw a progress bar on stderr (the commands set it: a terminal, or ``--progress``).
+    progress = False
+
+    @abstractmethod
+    def map(self, fn: Callable, items: Sequence, what: str = "tasks", **shared: Any) -> list:
+        """``[fn(item, **shared) for item in items]``, in the order of ``items``."""
+
+
+class InProcess(Executor):
+    """Every task in this process, in order.
+
+    Examples
+    --------
+    >>> InProcess().map(pow, [1, 2, 3], exp=2)
+    [1, 4, 9]
+    """
+
+    label = "in-process"
+
+    def __init__(self, note: str = "") -> None:
+        self.note = note
+
+    def map(self, fn, items, what="tasks", **shared):
+        bar = _Bar(what, len(items), self.progress)
+        out = []
+        for item in items:
+            out.append(fn(item, **shared))
+            bar.step()
+        return out
+
+
+class DaskExecutor(Executor):
+    """The tasks on a ``dask.distributed`` client; the shared arguments are sent to the workers once."""
+
+    def __init__(self, client, label: str) -> None:
+        self.client = client
+        self.label = label
+
+    @property
+    def workers(self) -> int:
+        return len(self.client.scheduler_info().get("workers", {}))
+
+    def map(self, fn, items, what="tasks", **shared):
+        from distributed import as_completed
+
+        if not items:
+            return []
+        # hash=False: a fresh key each call, so releasing an earlier call's copy cannot drop this one
+        scattered = {k: self.client.scatter(v, broadcast=True, hash=False) for k, v in shared.items()}
+        futures = self.client.map(fn, list(items), pure=False, **scattered)
+        bar = _Bar(what, len(futures), self.progress)
+        for _ in as_completed(futures):
+            bar.step()
+        return self.client.gather(futures)
+
+
+@contextmanager
+def open_executor(scheduler: str | None = None, workers: int | None = None, in_process: bool = False,
+                  progress: bool = False) -> Iterator[Executor]:
+    """The executor a command runs on (see the module docstring); closes what it opened."""
+    with _opened(scheduler, workers, in_process) as executor:
+        executor.progress = progress
+        yield executor
+
+
+@contextmanager
+def _opened(scheduler, workers, in_process) -> Iterator[Executor]:
+    if in_process:
+        yield InProcess()
+        return
+    if not dask_available():
+        if scheduler is not None:
+            raise SpecError("--scheduler", "needs dask.distributed: pip install 'camcam[scale]'")
+        yield InProcess(SCALE_HINT)
+        return
+    from distributed import Client, LocalCluster
+
+    if scheduler is not None:
+        try:
+            client = Client(scheduler, timeout="10s")
+        except (OSError, TimeoutError, ValueError) as err:
+            raise SpecError("--scheduler", f"cannot reach a Dask scheduler at {scheduler}: {' '.join(str(err).split())}") from None
+        try:
+            yield DaskExecutor(client, f"Dask scheduler {scheduler}")
+        finally:
+            client.close()
+        return
+    n = workers if workers is not None else (os.cpu_count() or 1)
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
+                           silence_logs=logging.ERROR)
+    client = Client(cluster)
+    try:
+        yield DaskExecutor(client, f"local Dask cluster, {n} worker{'s' if n != 1 else ''}")
+    finally:
+        client.close()
+        cluster.close()

@@ -1,0 +1,98 @@
+"""One design's figures from the full geometry: :class:`~camcam.geometry.disc.DiscCam` and
+:func:`~camcam.geometry.analysis.analyse` (root-found extremes), the reference the sweep's
+closed forms are checked against and the best design's figures come from.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from camcam.errors import GeometryError
+from camcam.geometry.analysis import analyse, max_pressure_angle, undercut_margin
+from camcam.geometry.disc import DiscCam
+from camcam.geometry.followers import OscillatingRoller, TranslatingFlat, TranslatingRoller
+from camcam.motion.program import MotionProgram
+
+__all__ = ["ExactFigures", "exact_figures", "design_cam", "outer_radius"]
+
+
+@dataclass(frozen=True)
+class ExactFigures:
+    """A design's figures by the full geometry; ``problem`` says why it cannot be built ("" if it can)."""
+
+    max_pressure_angle_deg: float
+    max_pressure_angle_at_deg: float
+    min_curvature_radius_mm: float
+    min_curvature_radius_at_deg: float
+    min_concave_radius_mm: float
+    undercut: bool
+    outer_radius_mm: float
+    problem: str = ""
+
+    @property
+    def valid(self) -> bool:
+        return not self.problem
+
+
+def design_cam(kind: str, program: MotionProgram, params: dict[str, float], rotation: str) -> DiscCam:
+    """The disc cam of one design (raises :class:`GeometryError` when it cannot be built)."""
+    if kind == "translating-roller":
+        f = TranslatingRoller(params["roller_radius"], params["offset"])
+    elif kind == "oscillating-roller":
+        f = OscillatingRoller(params["roller_radius"], params["pivot_distance"], params["arm_length"])
+    elif kind == "translating-flat":
+        f = TranslatingFlat(0.0)
+    else:
+        raise ValueError(f"no sizing for a {kind} follower")
+    return DiscCam(f, program, params["base_radius"], rotation)
+
+
+def outer_radius(cam: DiscCam, per_piece: int = 720) -> float:
+    """Largest distance of the profile from the cam centre, mm (dense samples, then bounded Brent on each piece's best)."""
+    best = 0.0
+    for i, (a, b) in enumerate(zip(cam.breaks, cam.breaks[1:])):
+        t = np.linspace(a, b, per_piece + 1)
+        p = cam.profile.evaluate(t, 0, i)
+        r = np.hypot(p[:, 0], p[:, 1])
+        k = int(np.argmax(r))
+        lo, hi = t[max(k - 1, 0)], t[min(k + 1, t.size - 1)]
+
+        def neg(x, i=i):
+            q = cam.profile.evaluate(np.array([x]), 0, i)[0]
+            return -math.hypot(q[0], q[1])
+
+        res = minimize_scalar(neg, bounds=(lo, hi), method="bounded", options={"xatol": 1e-12})
+        best = max(best, float(r[k]), -float(res.fun))
+    return best
+
+
+def exact_figures(kind: str, program: MotionProgram, params: dict[str, float], rotation: str) -> ExactFigures:
+    """Figures of one design by the full geometry.
+
+    Examples
+    --------
+    >>> from camcam.motion.catalog import make_law
+    >>> from camcam.motion.program import MotionProgram, Segment
+    >>> p = MotionProgram((Segment(make_law("cycloidal"), 0, 180, 10.0),
+    ...                    Segment(make_law("cycloidal"), 180, 360, -10.0, 10.0)), rpm=60)
+    >>> f = exact_figures("translating-roller", p, {"base_radius": 30.0, "offset": 0.0, "roller_radius": 5.0}, "ccw")
+    >>> round(f.outer_radius_mm, 9), f.undercut
+    (40.0, False)
+    """
+    nan = math.nan
+    try:
+        cam = design_cam(kind, program, params, rotation)
+    except GeometryError as err:
+        return ExactFigures(nan, nan, nan, nan, nan, False, nan, str(err))
+    margin, _ = undercut_margin(cam)
+    if margin <= 0:
+        pa = max_pressure_angle(cam)
+        return ExactFigures(pa.value, pa.angle_deg, nan, nan, nan, True, nan)
+    an = analyse(cam)
+    concave = an.profile.min_concave_radius.value if an.profile.min_concave_radius is not None else math.inf
+    return ExactFigures(an.max_pressure_angle_deg.value, an.max_pressure_angle_deg.angle_deg, an.profile.min_radius_mm,
+                        an.profile.angle_deg, concave, False, outer_radius(cam))

@@ -1,0 +1,664 @@
+"""Near-minimal G1 arc spline in a two-sided tolerance band, marched on the printed numbers.
+
+Problem.  Given a smooth planar curve P (the tool-centre path) and a
+tolerance δ, find a tangent-continuous (G1) spline of circular arcs, as few
+as possible, whose printed form (every end and centre rounded to the post's
+decimals) stays within δ of P on both sides.
+
+Literature and the choice made here.
+
+* Drysdale, Rote & Sturm ("Approximation of an open polygonal curve with a
+  minimum number of circular arcs and biarcs", Comput. Geom. 2008) find the
+  minimum by a shortest path in the graph of all feasible arcs, but only with
+  breakpoints at the input vertices (and, for G1, biarcs with tangents given at
+  the vertices), O(n² log n) in the vertices.
+* Held & Eibl ("Biarc approximation of polygons within asymmetric tolerance
+  bands", CAD 2005) and Meek & Walton (arc splines of smooth curves, 1992–95)
+  march biarcs through the band; a biarc spends two arcs per pair of
+  interpolated tangents, which is not the error pattern of the optimum.
+* Maier ("Smooth minimum arc paths", 2014) computes a SMAP, the true minimum
+  G1 arc spline in a tolerance polygon, by propagating the region reachable
+  with k arcs; breakpoints are free and the papers report that freeing them
+  "has a considerably positive effect on the number of segments" against
+  Drysdale–Rote–Sturm.
+
+For a *smooth* curve the optimum can be written down.  Along the curve the
+normal error e(s) of a G1 arc spline is C¹ and, on each arc (constant
+curvature), e‴ = −κ′.  A single arc with no continuity constraint could
+equioscillate like a Chebyshev cubic, |e| ≤ |κ′|h³/192: that is the lower
+bound N_lb = ∫(|κ′|/192δ)^⅓ ds.  With e and e′ continuous and period h the
+error is forced to e = −κ′h³B₃(s/h)/6 (B₃ the Bernoulli polynomial), which
+swings from +δ to −δ inside each arc and is zero at the joints:
+|e| ≤ |κ′|h³/124.7, i.e. (192/124.7)^⅓ = 1.155·N_lb arcs.  Its joints lie *on*
+the curve, so the free breakpoints of Maier's reachable regions buy nothing
+in the interior of a smooth curve: only the tangent at each joint is free.
+That reduces the search to one dimension per joint (the joint's parameter;
+the tangent is inherited from the previous arc), and the question becomes
+which joint sequence reaches the end with the fewest arcs.  A plain greedy
+march (longest arc each time) leaves tangent errors that cut the next arc
+short (≈ 1.7·N_lb measured here before this module); this module searches
+the joint sequences breadth-first with a beam: every state after k arcs is
+expanded to many candidate next joints at once (numpy: every candidate arc
+against the curve as one array), the states reaching farthest are kept, and
+a biarc with a free join (Held–Eibl's family,
+searched over its join parameter) closes onto the end gives the spline.
+
+What the search keeps.  Joints on the curve alone cannot undo a tangent
+error on a stretch of constant curvature (a dwell's circle): an arc between
+two points of a circle mirrors the error, so the march would crawl.  So each
+state is also tried with joints offset across the band (``offsets``), which
+is Maier's free breakpoint where it pays.  After k arcs the states are
+thinned like a reachable region: per cell of (joint offset, tangent error)
+only the farthest survives (:func:`_frontier`; the tangent error is measured
+in δ/h, the optimum's joints sit at ±10.4), then the ``beam`` whose next arc
+reaches farthest (one-step lookahead).  A closed contour starts at the middle
+of its quietest stretch (a dwell, :func:`_quiet_start`), its first joint's
+offset and tangent are free, and the march runs on past the start so the
+closing biarc may replace the first arcs.
+
+Measured (``benchmarks/run_nc.py``, the eight disc samples at 0.1–0.0005 mm):
+1.3–1.6·N_lb where N_lb is honest (1.5–2.0 at 0.1 mm, where the +4 matters);
+27 of 40 contour × tolerance cases within 1.2·N_lb + 4, the others over it by
+1–3 arcs, all at 0.002–0.0005 mm.  The default sample's curve: 9, 16, 25+1,
+32 and 42 blocks at 0.1, 0.01, 0.002, 0.001, 0.0005 mm, against 15, 20, –,
+40 and 48 with the earlier one-step-lookahead march split at every break.
+The remaining gap to 1.155·N_lb is the transitions into and out of dwells,
+where κ′ jumps, and the beam's myopia in smooth stretches (arcs reach 0.85–0.97
+of the optimum's length there).
+
+Vectorised.  The curve (the Chebyshev copy) is tabulated once; a joint is a
+table row, and every candidate arc of every state in a pass is built, put on
+the grid and measured against its curve samples as one set of numpy arrays
+(:func:`candidate_deviation`).
+
+Breaks between the curve's analytic pieces are crossed (the curve is G1
+there); only a tangent discontinuity (a corner) ends a section.
+
+Printed numbers.  Each candidate is built from the printed start, to the
+printed end (the curve point rounded), and its centre is rounded too
+(I/J posts); the deviation is measured on that printed arc, the controller's
+spiral included, and the next arc leaves along the printed arc's end tangent.
+So no share of the tolerance is reserved for rounding: the march's target is
+the tolerance less the sampling shares (see :class:`SplineBudget`), and the
+program is measured afterwards by :func:`~camcam.toolpath.deviation.measure_deviation`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from camcam.errors import InputError
+from camcam.toolpath.elements import Arc, Line, element_distance, element_tangent
+from camcam.toolpath.quantizer import Quantizer
+
+__all__ = ["SplineBudget", "ArcSpline", "fit_arc_spline", "g1_sections", "candidate_deviation"]
+
+
+@dataclass(frozen=True)
+class SplineBudget:
+    """How the march spends the tolerance δ and how hard it searches.
+
+    The band itself comes from :meth:`~camcam.toolpath.budget.FitBudget.spline_targets`.
+    ``samples``: curve samples per candidate arc (the peak refined by a
+    parabola); ``table``: rows of the curve table; ``beam``: states kept per
+    level after the lookahead, ``pool``: states the frontier keeps before it;
+    ``children``: joints kept per ray; ``candidates``: candidate joints per ray
+    and pass; ``shortest``: the shortest child as a fraction of the ray's reach;
+    ``offsets``: the rays' joint offsets (× the band); ``state_bins``: frontier
+    cells (offset, tangent error); ``start_turns``: first-joint tangent errors
+    of a closed section (× δ/h); ``wrap_joints``: first joints a closing biarc
+    may replace.
+    """
+
+    samples: int = 28
+    beam: int = 16
+    pool: int = 40
+    children: int = 5
+    candidates: int = 14
+    shortest: float = 0.7
+    table: int = 16385
+    start_turns: tuple[float, ...] = (0.0, -5.0, 5.0, -10.0, 10.0)
+    offsets: tuple[float, ...] = (0.0, -0.3, 0.3, -0.65, 0.65)
+    state_bins: tuple[int, int] = (5, 33)
+    wrap_joints: int = 6
+
+
+@dataclass(frozen=True)
+class ArcSpline:
+    """Printed elements of one G1 section and the curve parameter each starts at."""
+
+    elements: tuple
+    starts: tuple[float, ...]
+
+
+def _grid_near(p, weight, q: Quantizer) -> np.ndarray:
+    """Of the four grid points around each row of ``p``, the one with the least ``weight(candidate − p)``."""
+    lo = np.floor(np.asarray(p, float) / q.step_mm).astype(np.int64)
+    best, best_w = None, None
+    for dx in (0, 1):
+        for dy in (0, 1):
+            cand = q.value(lo + np.array([dx, dy]))
+            w = weight(cand - p)
+            if best is None:
+                best, best_w = cand, w
+            else:
+                take = w < best_w
+                best = np.where(take[:, None], cand, best)
+                best_w = np.where(take, w, best_w)
+    return best
+
+
+def _unit_rows(v):
+    return v / np.maximum(np.hypot(v[..., 0], v[..., 1]), 1e-300)[..., None]
+
+
+def g1_sections(curve, a: float, b: float, angle_tol: float = 1e-6) -> list[tuple[float, float]]:
+    """Split [a, b] at the breaks where the tangent direction jumps (corners); G1 breaks are crossed."""
+    br = [float(x) for x in np.asarray(curve.breaks, float) if a < x < b]
+    cuts = [a]
+    for x in br:
+        eps = 1e-9 * max(1.0, abs(x))
+        d = curve.evaluate(np.array([x - eps, x + eps]), 1)
+        u = _unit_rows(d)
+        if math.atan2(abs(u[0, 0] * u[1, 1] - u[0, 1] * u[1, 0]), float(u[0] @ u[1])) > angle_tol:
+            cuts.append(x)
+    cuts.append(b)
+    return list(zip(cuts, cuts[1:]))
+
+
+def _grid_joint(p, nrm, q: Quantizer) -> np.ndarray:
+    """The printed joint: of the four grid points around ``p``, the one least off it along the curve normal.
+
+    A shift along the curve only moves where one arc hands over to the next;
+    a shift across it is deviation.
+    """
+    return _grid_near(p, lambda d: np.abs(np.einsum("ij,ij->i", d, nrm)) + 1e-3 * np.hypot(d[:, 0], d[:, 1]), q)
+
+
+def _grid_centre(p0, c, q: Quantizer) -> np.ndarray:
+    """The printed centre: of the four grid points around the exact centre ``c``, the one nearest the line p0–c.
+
+    Moving the centre along the radius only bends the arc a little (its start
+    and tangent stay); moving it across turns the printed arc's start tangent
+    by Δc⊥/R, an error that grows along the arc.  So the grid point with the
+    least cross-radius shift is printed (the writer prints a centre already on
+    the grid unchanged).
+    """
+    u = _unit_rows(c - p0)
+    return _grid_near(c, lambda d: np.abs(d[:, 0] * u[:, 1] - d[:, 1] * u[:, 0]), q)
+
+
+def _arc_batch(p0, tan0, p1, q: Quantizer, sag: float):
+    """Printed arcs leaving p0 (N, 2) along tan0 (N, 2) to p1 (N, 2): centres, flags, end tangents.
+
+    ``p0`` and ``p1`` are already on the printed grid; the centre is put on it
+    too (:func:`_grid_centre`, as an I/J post prints it).  Arcs with sagitta ≤ ``sag`` are lines (nearly straight).
+    """
+    v = p1 - p0
+    nrm = np.stack([-tan0[:, 1], tan0[:, 0]], axis=-1)
+    chord2 = np.einsum("ij,ij->i", v, v)
+    chord = np.sqrt(chord2)
+    h = np.einsum("ij,ij->i", nrm, v)
+    half = np.arcsin(np.minimum(1.0, np.abs(h) / np.maximum(chord, 1e-300)))
+    half = np.where(np.einsum("ij,ij->i", tan0, v) < 0, np.pi - half, half)
+    is_line = (chord / 2 * np.tan(half / 2) <= sag) | (h == 0)
+    r = chord2 / (2 * np.where(h == 0, 1.0, h))
+    centre = _grid_centre(p0, p0 + r[:, None] * nrm, q)
+    ccw = r > 0
+    # end tangent of the printed element
+    rad = p1 - centre
+    rad = _unit_rows(np.where(is_line[:, None], 1.0, rad))
+    t_arc = np.where(ccw[:, None], np.stack([-rad[:, 1], rad[:, 0]], -1), np.stack([rad[:, 1], -rad[:, 0]], -1))
+    t_line = _unit_rows(np.where(is_line[:, None], v, 1.0))
+    t_end = np.where(is_line[:, None], t_line, t_arc)
+    a0 = np.arctan2(p0[:, 1] - centre[:, 1], p0[:, 0] - centre[:, 0])
+    a1 = np.arctan2(p1[:, 1] - centre[:, 1], p1[:, 0] - centre[:, 0])
+    sweep = np.mod(np.where(ccw, a1 - a0, a0 - a1), 2 * np.pi)
+    sweep = np.where(sweep <= 0, sweep + 2 * np.pi, sweep)
+    return centre, ccw, is_line, t_end, a0, sweep
+
+
+def candidate_deviation(q, p0, p1, centre, ccw, is_line, a0, sweep) -> np.ndarray:
+    """Distance of curve samples q (N, M, 2) from each printed element, (N, M).
+
+    Arcs are the controller's spiral: radius linear in angle from |p0 − c| to
+    |p1 − c| (see :func:`~camcam.toolpath.elements.element_nearest`); a sample
+    outside the arc's angular span is measured to the nearer end.  Sweeps are
+    at most a half turn (the fitter's sweep limit).
+    """
+    out = np.empty(q.shape[:2])
+    li = np.nonzero(is_line)[0]
+    if len(li):
+        ql, a, d = q[li], p0[li], p1[li] - p0[li]
+        L2 = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+        u = np.clip(np.einsum("nmj,nj->nm", ql - a[:, None], d) / L2[:, None], 0.0, 1.0)
+        out[li] = np.hypot(*(ql - a[:, None] - u[..., None] * d[:, None]).transpose(2, 0, 1))
+    ai = np.nonzero(~is_line)[0]
+    if len(ai):
+        qa, c, s0, s1 = q[ai], centre[ai], p0[ai], p1[ai]
+        v0 = s0 - c
+        r0 = np.hypot(v0[:, 0], v0[:, 1])[:, None]
+        r1 = np.hypot(*(s1 - c).T)[:, None]
+        rel = qa - c[:, None]
+        sgn = np.where(ccw[ai], 1.0, -1.0)[:, None]
+        cr = sgn * (v0[:, None, 0] * rel[..., 1] - v0[:, None, 1] * rel[..., 0])
+        dt = v0[:, None, 0] * rel[..., 0] + v0[:, None, 1] * rel[..., 1]
+        frac = np.arctan2(cr, dt) / sweep[ai][:, None]  # angle from the start, in the travel direction
+        dist = np.hypot(rel[..., 0], rel[..., 1])
+        d_arc = np.abs(dist - (r0 + (r1 - r0) * np.clip(frac, 0.0, 1.0)))
+        outside = (frac < 0.0) | (frac > 1.0)
+        if outside.any():
+            rows, cols = np.nonzero(outside)
+            pts = qa[rows, cols]
+            d_end = np.minimum(np.hypot(*(pts - s0[rows]).T), np.hypot(*(pts - s1[rows]).T))
+            d_arc[rows, cols] = d_end
+        out[ai] = d_arc
+    return out
+
+
+def _peak(d: np.ndarray) -> np.ndarray:
+    """Row maxima of sampled |e|, sharpened by a parabola through the peak and its neighbours."""
+    i = np.argmax(d, axis=1)
+    rows = np.arange(len(d))
+    y1 = d[rows, i]
+    inner = (i > 0) & (i < d.shape[1] - 1)
+    y0 = d[rows, np.maximum(i - 1, 0)]
+    y2 = d[rows, np.minimum(i + 1, d.shape[1] - 1)]
+    curv = y0 - 2 * y1 + y2
+    bump = np.where(inner & (curv < 0), -(y2 - y0) ** 2 / (8 * np.where(curv < 0, curv, -1.0)), 0.0)
+    return y1 + np.minimum(bump, 0.5 * y1)
+
+
+class _March:
+    """Candidate arcs of one section against the curve, from a dense table of the curve (the Chebyshev copy).
+
+    Joints are table indices: the curve's points and unit normals are
+    evaluated once on ``budget.table`` parameters, and a candidate arc's
+    curve samples are table rows, so a whole batch of candidates is a few
+    array operations.
+    """
+
+    def __init__(self, curve, a, b, tol, max_sweep, sag, quantizer: Quantizer, budget: SplineBudget, start=None):
+        self.curve, self.a, self.b = curve, a, b
+        self.tol, self.max_sweep, self.sag, self.q = tol, max_sweep, sag, quantizer
+        self.budget = budget
+        self.u = np.linspace(0.0, 1.0, budget.samples)
+        self.t = np.linspace(a, b, budget.table)
+        self.last = budget.table - 1
+        self.stop = self.last - 1  # the end itself is reached only by the closing biarc
+        if start is not None:
+            # a closed section marched from ``start`` once round and on past it by a third of a turn, where
+            # the closing biarc may meet the spline's first joints
+            extra = budget.table // 3
+            steps = np.arange(budget.table + extra) * ((b - a) / self.last)
+            self.t = a + np.mod(start - a + steps, b - a)
+            self.stop = self.last + extra - 1
+        self.P = curve.evaluate(self.t, 0)
+        d1 = _unit_rows(curve.evaluate(self.t, 1))
+        self.T = d1
+        self.N = np.stack([-d1[:, 1], d1[:, 0]], -1)
+
+    def arcs(self, i0, p0, tan0, i1, o1):
+        """Candidate arcs from joints (i0, p0, tan0) to joints at rows i1 offset o1 along the normal (N,)."""
+        p1 = _grid_joint(self.P[i1] + o1[:, None] * self.N[i1], self.N[i1], self.q)
+        centre, ccw, is_line, t_end, a0, sweep = _arc_batch(p0, tan0, p1, self.q, self.sag)
+        rows = np.rint(i0[:, None] + (i1 - i0)[:, None] * self.u[None, :]).astype(int)
+        q = self.P[rows]
+        dev = _peak(candidate_deviation(q, p0, p1, centre, ccw, is_line, a0, sweep))
+        long_enough = np.hypot(*(p1 - p0).T) >= MIN_CHORD_STEPS * self.q.step_mm
+        ok = (dev <= self.tol) & (is_line | (sweep <= self.max_sweep)) & (i1 > i0) & long_enough
+        return ok, (p1, centre, ccw, is_line, t_end, dev)
+
+    def expand(self, states, offsets) -> None:
+        """Fill each state's rays (feasible next joints) and reach; all candidates of all states as one batch a pass.
+
+        A state is tried along rays: next joints on the curve and offset from it
+        by ``offsets`` × the band (an off-curve joint is how a tangent error is
+        undone, e.g. on a dwell circle).  Along each ray, candidates are spread
+        over [0.4, 1.8] × the state's last step; a ray whose candidates are all
+        feasible widens, one with none narrows, until its farthest feasible
+        joint is bracketed; one more pass refines between it and the next
+        infeasible candidate.
+        """
+        K = self.budget.candidates
+        stop = self.stop
+        grid = np.linspace(0.4, 1.8, K)
+        rays = [_Ray(s, o * self.tol, max(s.h, 2.0)) for s in states for o in offsets]
+        for s in states:
+            s.rays = [r for r in rays if r.state is s]
+        todo = rays
+        brackets = []
+        for _ in range(24):
+            if not todo:
+                break
+            i0 = np.repeat([r.state.i for r in todo], K)
+            i1 = np.minimum(i0 + np.rint(np.outer([r.h for r in todo], grid).ravel()).astype(int), stop)
+            i1 = np.maximum(i1, np.minimum(i0 + 1, stop))
+            ok, data = self.arcs(i0, np.repeat([r.state.p for r in todo], K, axis=0),
+                                 np.repeat([r.state.tan for r in todo], K, axis=0), i1,
+                                 np.repeat([r.offset for r in todo], K))
+            ok = ok.reshape(len(todo), K)
+            again = []
+            for k, ray in enumerate(todo):
+                rows, ii = ok[k], i1[k * K:(k + 1) * K]
+                if not rows.any():
+                    ray.h *= 0.3
+                    if ray.h >= 1.0:
+                        again.append(ray)
+                    continue
+                if rows.all() and ii[-1] < stop:
+                    ray.h *= 2.0
+                    again.append(ray)
+                    continue
+                for j in np.nonzero(rows)[0]:
+                    ray.feasible.append((int(ii[j]), tuple(x[k * K + j] for x in data)))
+                jmax = int(np.nonzero(rows)[0].max())
+                if jmax + 1 < K and ii[jmax + 1] > ii[jmax] + 1:
+                    brackets.append((ray, int(ii[jmax]), int(ii[jmax + 1])))
+            todo = again
+        if brackets:
+            owners, cand = [], []
+            for ray, lo, hi in brackets:
+                ii = np.unique(np.rint(np.linspace(lo, hi, K + 2)[1:-1]).astype(int))
+                ii = ii[(ii > lo) & (ii < hi)]
+                owners += [ray] * len(ii)
+                cand.append(ii)
+            i1 = np.concatenate(cand)
+            ok, data = self.arcs(np.array([r.state.i for r in owners]), np.array([r.state.p for r in owners]),
+                                 np.array([r.state.tan for r in owners]), i1, np.array([r.offset for r in owners]))
+            for j in np.nonzero(ok)[0]:
+                owners[j].feasible.append((int(i1[j]), tuple(x[j] for x in data)))
+        for s in states:
+            for r in s.rays:
+                r.feasible.sort(key=lambda c: c[0])
+            s.reach = max((r.feasible[-1][0] for r in s.rays if r.feasible), default=s.i)
+
+    def biarcs(self, st, p1, t1, ratios, row: int) -> list:
+        """Closing biarcs from state ``st`` onto the point ``p1`` with tangent ``t1`` at table ``row``; the feasible ones."""
+        p0, tan0 = st.p, st.tan
+        v = p1 - p0
+        out = []
+        rows = np.unique(np.rint(np.linspace(st.i, row, 4 * self.budget.samples)).astype(int))
+        q = self.P[rows]
+        c = 1.0 - float(tan0 @ t1)
+        vt = float(v @ (tan0 + t1))
+        if c < 1e-12:
+            den = 4.0 * float(v @ tan0)
+            if abs(den) < 1e-300:
+                return out
+            alpha_eq = float(v @ v) / den
+        else:
+            alpha_eq = (-vt + math.sqrt(vt * vt + 2.0 * c * float(v @ v))) / (2.0 * c)
+        for k in ratios:
+            # tangent lengths α (from p0) and β (into p1) of a G1 biarc: |v − α t0 − β t1| = α + β
+            alpha = k * alpha_eq
+            w = v - alpha * tan0
+            den = 2.0 * (float(w @ t1) + alpha)
+            if not alpha > 0 or abs(den) < 1e-300:
+                continue
+            beta = (float(w @ w) - alpha * alpha) / den
+            if not beta > 0:
+                continue
+            A, B = p0 + alpha * tan0, p1 - beta * t1
+            gap = np.hypot(*(B - A))
+            if gap <= 0:
+                continue
+            joint = self.q.snap(A + alpha * (B - A) / gap)
+            chord2 = float(np.hypot(*(p1 - joint)))
+            if min(float(np.hypot(*(joint - p0))), chord2) < MIN_CHORD_STEPS * self.q.step_mm:
+                continue
+            c1, w1, l1, te1, _, s1 = (x[0] for x in _arc_batch(p0[None], tan0[None], joint[None], self.q, self.sag))
+            c2, w2, l2, _, _, s2 = (x[0] for x in _arc_batch(joint[None], te1[None], p1[None], self.q, self.sag))
+            if (not l1 and s1 > self.max_sweep) or (not l2 and s2 > self.max_sweep):
+                continue
+            e1 = _element(p0, joint, c1, w1, l1)
+            e2 = _element(joint, p1, c2, w2, l2)
+            t_end = element_tangent(e2, True)
+            # the rounded joint turns the second arc's end tangent a little; more than rounding can is no G1
+            if abs(math.atan2(t_end[0] * t1[1] - t_end[1] * t1[0], float(t_end @ t1))) > \
+                    2 * 0.71 * self.q.step_mm / chord2 + 1e-9:
+                continue
+            dev_c = float(np.minimum(element_distance(e1, q), element_distance(e2, q)).max())
+            # the joint is off the curve: the path → curve direction there as well
+            dev_j = float(np.hypot(*(q - joint).T).min())
+            dev = max(dev_c, dev_j)
+            if dev <= self.tol:
+                out.append((dev, e1, e2))
+        return out
+
+
+class _State:
+    """A joint of a partial spline: table row, printed point, tangent, last step (rows), parent, element to it."""
+
+    __slots__ = ("i", "p", "tan", "h", "parent", "element", "root", "first", "rays", "reach")
+
+    def __init__(self, i, p, tan, h, parent, element):
+        self.i, self.p, self.tan, self.h, self.parent, self.element = int(i), p, tan, h, parent, element
+        self.root = self if parent is None else parent.root
+        self.first = None if parent is None else (self if parent.parent is None else parent.first)
+        self.rays: list = []
+        self.reach = self.i
+
+
+class _Ray:
+    """Next joints of a state at one normal offset: the step guess (rows) and the feasible (row, arc data)."""
+
+    __slots__ = ("state", "offset", "h", "feasible")
+
+    def __init__(self, state, offset, h):
+        self.state, self.offset, self.h = state, offset, h
+        self.feasible: list = []
+
+
+def _plain(e):
+    """An element with plain-float coordinates."""
+    f = lambda p: tuple(float(x) + 0.0 for x in p)  # noqa: E731
+    if isinstance(e, Line):
+        return Line(f(e.start), f(e.end))
+    return Arc(f(e.start), f(e.end), f(e.centre), bool(e.ccw))
+
+
+def _element(p0, p1, centre, ccw, is_line):
+    if is_line:
+        return _plain(Line(tuple(p0), tuple(p1)))
+    return _plain(Arc(tuple(p0), tuple(p1), tuple(centre), bool(ccw)))
+
+
+#: Shortest chord of an arc or line, in grid steps (a shorter one would print a direction of its own).
+MIN_CHORD_STEPS = 50
+
+#: Join parameters of the closing biarcs tried: tangent length α from the start over the equal-length biarc's.
+BIARC_RATIOS = (1.0, 0.7, 1.4, 0.5, 2.0)
+
+
+def _start_states(m: _March, closed: bool, budget: SplineBudget) -> list:
+    """The first joints: the curve's start with its exact tangent; for a closed section also offset and turned ones.
+
+    A closed section closes onto its own first joint, so that joint's offset
+    and tangent are free: starting in the optimal pattern's state saves the
+    run-in of arcs from the exact tangent.
+    """
+    h0 = max(2.0, m.last / 12.0)
+    p = m.q.snap(m.P[0])
+    states = [_State(0, p, m.T[0], h0, None, None)]
+    if not closed:
+        return states
+    # tangent errors in units of δ/h (h: a first guess of an arc's length); the optimum's joints turn ≈ 10.4 δ/h
+    arc_len = float(np.hypot(*np.diff(m.P[: max(3, int(h0)) + 1], axis=0).T).sum())
+    unit = m.tol / max(arc_len, 1e-12)
+    for o in budget.offsets:
+        for f in budget.start_turns:
+            if o == 0.0 and f == 0.0:
+                continue
+            ang = f * unit
+            c, s = math.cos(ang), math.sin(ang)
+            tan = np.array([c * m.T[0, 0] - s * m.T[0, 1], s * m.T[0, 0] + c * m.T[0, 1]])
+            states.append(_State(0, m.q.snap(m.P[0] + o * m.tol * m.N[0]), tan, h0, None, None))
+    return states
+
+
+def _quiet_start(curve, a: float, b: float, n: int = 2048) -> float:
+    """Where a closed curve's spline starts and closes: the middle of its longest stretch of near-constant curvature.
+
+    There (a dwell's circle, for a cam) the curve's own tangent is the optimal
+    joint state, so neither the first arc nor the closing biarc is cut short.
+    """
+    t = np.linspace(a, b, n, endpoint=False)
+    d1, d2, d3 = (curve.evaluate(t, k) for k in (1, 2, 3))
+    v = np.hypot(d1[:, 0], d1[:, 1])
+    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    dot12 = d1[:, 0] * d2[:, 0] + d1[:, 1] * d2[:, 1]
+    cross3 = d1[:, 0] * d3[:, 1] - d1[:, 1] * d3[:, 0]
+    dk = (cross3 * v * v - 3.0 * cross * dot12) / v**6  # dκ/dt / |P′|
+    dens = np.cbrt(np.abs(dk)) * v  # the N_lb integrand per unit parameter
+    quiet = dens <= 0.05 * dens.mean()
+    if not quiet.any() or quiet.all():
+        return float(t[int(np.argmin(dens))])
+    # longest cyclic run of quiet samples
+    k0 = int(np.argmin(quiet))  # a loud sample: runs do not wrap past it
+    q = np.roll(quiet, -k0)
+    best, run, best_end = 0, 0, 0
+    for k, flag in enumerate(q):
+        run = run + 1 if flag else 0
+        if run > best:
+            best, best_end = run, k
+    mid = (best_end - (best - 1) / 2.0 + k0) % n
+    return float(a + (b - a) * mid / n)
+
+
+#: Tangent errors the frontier tells apart, in units of δ/h (the optimum sits at ±10.4).
+TURN_RANGE = 16.0
+
+
+def _frontier(m: _March, children: list, W: int, bins: tuple[int, int]) -> list:
+    """The states worth keeping after k arcs: per (offset, tangent error) cell the one that got farthest.
+
+    A joint's future depends on where it is (row), how far it sits off the
+    curve and how far its tangent turns from the curve's; two joints in the
+    same cell behave alike, so only the farthest of each survives (the
+    reachable region after k arcs, sampled as in Maier's method).  The
+    tangent error is scaled by δ/h: the optimal pattern's joints turn by
+    κ′h²/12 = (124.7/12)·δ/h ≈ 10.4·δ/h, so the cells span ±``TURN_RANGE``.
+    """
+    rows = np.array([c.i for c in children])
+    p = np.array([c.p for c in children])
+    tan = np.array([c.tan for c in children])
+    off = np.einsum("ij,ij->i", p - m.P[rows], m.N[rows]) / m.tol
+    turn = np.arctan2(m.T[rows, 0] * tan[:, 1] - m.T[rows, 1] * tan[:, 0], np.einsum("ij,ij->i", m.T[rows], tan))
+    step = np.array([max(float(np.hypot(*(c.p - c.parent.p))), 1e-12) for c in children])
+    turn = turn * step / m.tol
+    lim = TURN_RANGE
+    bo = np.clip(np.rint((off + 1.0) / 2.0 * (bins[0] - 1)), 0, bins[0] - 1).astype(int)
+    bt = np.clip(np.rint((np.clip(turn, -lim, lim) + lim) / (2 * lim) * (bins[1] - 1)), 0, bins[1] - 1).astype(int)
+    best: dict = {}
+    for k in np.argsort(-rows, kind="stable"):
+        key = (bo[k], bt[k])
+        if key not in best:
+            best[key] = children[k]
+    kept = sorted(best.values(), key=lambda c: -c.i)
+    return kept[:W]
+
+
+def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer: Quantizer, max_sweep: float,
+                   sag: float, closed: bool = False, budget: SplineBudget = SplineBudget()) -> ArcSpline:
+    """A near-minimal printed G1 arc spline over [a, b] within ``tolerance_mm`` (sampled).
+
+    Parameters
+    ----------
+    curve : PlanarCurve
+        The curve (G1 on [a, b]); usually the Chebyshev copy of the exact one.
+    tolerance_mm : float
+        The band's half width the march keeps its sampled deviation within.
+    quantizer : Quantizer
+        The post's printed rounding: joints and centres go on its grid as the march goes.
+    max_sweep : float
+        Largest arc sweep (rad), at most π.
+    sag : float
+        Arcs whose sagitta is at most this print as lines.
+    closed : bool
+        The section is a whole closed curve: the spline closes G1 onto its own
+        first joint (whose offset and tangent are then free).  Otherwise it
+        starts and ends on the curve with the curve's exact tangents.
+
+    Examples
+    --------
+    >>> from camcam.geometry.curve import FunctionCurve
+    >>> def ellipse(t, k):
+    ...     c, s = np.cos(t), np.sin(t)
+    ...     return np.stack([[40 * c, 25 * s], [-40 * s, 25 * c], [-40 * c, -25 * s], [40 * s, -25 * c]][k], -1)
+    >>> E = FunctionCurve(ellipse, 0.0, 2 * np.pi, closed=True)
+    >>> from camcam.toolpath.quantizer import Quantizer
+    >>> sp = fit_arc_spline(E, 0.0, 2 * np.pi, 0.0097, quantizer=Quantizer(4), max_sweep=np.radians(120), sag=5e-5,
+    ...                     closed=True)
+    >>> len(sp.elements) <= 1.2 * 14.65 + 4, sp.elements[0].start == sp.elements[-1].end  # N_lb = 14.65
+    (True, True)
+    """
+    tol = tolerance_mm
+    m = _March(curve, a, b, tol, max_sweep, sag, quantizer, budget, _quiet_start(curve, a, b) if closed else None)
+    W = budget.beam
+    level = _start_states(m, closed, budget)
+    m.expand(level, budget.offsets)
+    end_p, end_t = m.q.snap(m.P[-1]), m.T[-1]
+    best, best_level = None, None
+    for level_no in range(8 * m.last):
+        # 1. closing biarcs; a closed section looks two levels further (a later closure may skip more arcs)
+        for st in level:
+            targets = [(end_p, end_t, m.last, 0)]
+            if closed:
+                # onto the start (row ``last`` once round), or on past it to the j-th joint: the biarc then
+                # replaces the first j arcs
+                chain = []
+                c = st
+                while c.parent is not None:
+                    chain.append(c)
+                    c = c.parent
+                chain.reverse()  # chain[j - 1]: the j-th joint
+                targets = [(st.root.p, st.root.tan, m.last, 0)]
+                for j in range(1, min(budget.wrap_joints, len(chain) - 1) + 1):
+                    jt = chain[j - 1]
+                    targets.append((jt.p, jt.tan, jt.i + m.last, j))
+            for p1, t1, row, saved in targets:
+                if not st.i < row <= min(st.i + 2.0 * (st.reach - st.i) + 1, len(m.P) - 1):
+                    continue
+                for dev, e1, e2 in m.biarcs(st, p1, t1, BIARC_RATIOS, row):
+                    total = level_no + 2 - saved
+                    if best is None or (total, dev) < (best[5], best[0]):
+                        best, best_level = (dev, st, e1, e2, saved, total), level_no
+        if best is not None and (not closed or level_no - best_level >= 2):
+            break
+        # 2. children: along each ray of each state, the farthest joint and some shorter ones
+        children = []
+        for st in level:
+            for ray in st.rays:
+                if not ray.feasible:
+                    continue
+                reach = ray.feasible[-1][0]
+                near = [c for c in ray.feasible if c[0] >= st.i + budget.shortest * (reach - st.i)]
+                for k in np.unique(np.round(np.linspace(len(near) - 1, 0, budget.children)).astype(int)):
+                    i1, (p1, centre, ccw, is_line, t_end, _dev) = near[k]
+                    children.append(_State(i1, p1, t_end, i1 - st.i, st, _element(st.p, p1, centre, ccw, is_line)))
+        if not children:
+            break
+        # 3. keep the farthest child of each joint state (normal offset, tangent error), then the farthest W
+        level = _frontier(m, children, budget.pool, budget.state_bins)
+        m.expand(level, budget.offsets)
+        level.sort(key=lambda c: -c.reach)  # one-step lookahead: the farthest next reach first
+        level = level[:W]
+    if best is None:
+        raise InputError(f"cannot fit the curve on t ∈ [{a:g}, {b:g}] within {tolerance_mm:g} mm")
+    _, st, e1, e2, saved, _ = best
+    elems, starts = [e2, e1], [st.i, st.i]  # the closing biarc's second arc counts with the first
+    while st.parent is not None:
+        elems.append(st.element)
+        starts.append(st.parent.i)
+        st = st.parent
+    elems.reverse()
+    starts.reverse()
+    if saved:  # the biarc ends at the saved-th joint: drop the arcs before it, start with the biarc's end
+        elems, starts = elems[saved:], starts[saved:]
+        elems = [elems[-1]] + elems[:-1]
+        starts = [starts[-1]] + starts[:-1]
+    return ArcSpline(tuple(elems), tuple(float(m.t[i]) for i in starts))

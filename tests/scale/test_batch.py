@@ -1,0 +1,49 @@
+"""`camcam batch` in-process (no Dask): one folder per spec, a summary row for every spec, a failing
+spec (bad input or an internal fault) reported without stopping the others."""
+
+from __future__ import annotations
+
+import csv
+import json
+
+from camcam.cli import run as run_cmd
+from camcam.scale import engine
+from tests.size.helpers import ROOT, cli
+
+
+def test_batch_without_dask_reports_every_spec(tmp_path, monkeypatch):
+    monkeypatch.setattr(engine, "dask_available", lambda: False)
+    bad = tmp_path / "bad.toml"
+    bad.write_text((ROOT / "samples" / "demo.toml").read_text().replace("rpm = ", "rpm = -"))
+    specs = [str(ROOT / "samples" / "demo.toml"), str(bad), str(ROOT / "samples" / "demo.toml")]
+    code, out, err = cli("batch", *specs, "-o", str(tmp_path / "out"), "--json")
+    assert code == 3
+    assert err.startswith("camcam: FAIL: 1 of 3 specs did not pass; first: ") and err.count("\n") == 1
+    printed = json.loads(out)
+    assert printed["note"] == engine.SCALE_HINT  # the scale-out hint rides in the printed summary only
+    rows = list(csv.DictReader((tmp_path / "out" / "summary.csv").open()))
+    assert [r["verdict"] for r in rows] == ["PASS", "ERROR", "PASS"]
+    assert rows[1]["reason"].startswith("motion.rpm: expected a number > 0")
+    # a repeated file stem gets its own folder
+    assert [r["folder"] for r in rows] == ["demo", "bad", "demo-2"]
+    assert (tmp_path / "out" / "demo" / "demo-svaj.png").read_bytes() == (tmp_path / "out" / "demo-2" / "demo-svaj.png").read_bytes()
+    assert not (tmp_path / "out" / "bad").exists()
+    index = (tmp_path / "out" / "index.html").read_text()
+    assert "3 specs: 2 PASS, 1 not" in index and engine.SCALE_HINT not in index
+
+
+def test_an_internal_fault_is_a_row_not_the_end(tmp_path, monkeypatch):
+    real = run_cmd.job
+
+    def job(spec, out, progress):
+        if spec.name == "disc-translating-flat":
+            raise ZeroDivisionError("simulated fault")
+        return real(spec, out, progress)
+
+    monkeypatch.setattr(run_cmd, "job", job)
+    code, _, err = cli("batch", str(ROOT / "samples" / "disc-translating-flat.toml"), str(ROOT / "samples" / "demo.toml"),
+                       "-o", str(tmp_path / "out"), "--in-process")
+    assert code == 3
+    rows = list(csv.DictReader((tmp_path / "out" / "summary.csv").open()))
+    assert rows[0]["verdict"] == "ERROR" and rows[0]["reason"] == "internal fault: ZeroDivisionError: simulated fault"
+    assert rows[1]["verdict"] == "PASS" and (tmp_path / "out" / "demo" / "demo-motion.csv").exists()
