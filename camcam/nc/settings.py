@@ -1,4 +1,4 @@
-"""The settings of a machining job: the validated ``[machining]`` table as the NC stage reads it.
+"""The settings of a machining job: the validated ``[machining]`` and ``[stock]`` tables as the NC stage reads them.
 
 :func:`camcam.spec.machining.read_machining` builds a :class:`MachiningSpec`
 from a spec file; the NC stage takes it from there.  The post is reached
@@ -14,7 +14,32 @@ from typing import Protocol
 from camcam.toolpath.path import CutSettings, Toolpath
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["MachiningSpec", "PostDialect"]
+__all__ = ["MachiningSpec", "PostDialect", "StockSpec", "DEFAULT_STOCK", "DEFAULT_OVERSIZE_MM", "STOCK_KINDS"]
+
+STOCK_KINDS = ("round", "offset")
+
+#: The default blank's radius over the cam's largest radius (mm).
+DEFAULT_OVERSIZE_MM = 2.0
+
+
+@dataclass(frozen=True)
+class StockSpec:
+    """The validated ``[stock]`` table.
+
+    ``diameter_mm`` is set for ``kind = "round"`` (``None``: the default blank,
+    :data:`DEFAULT_OVERSIZE_MM` over the cam's largest radius), ``allowance_mm``
+    for ``kind = "offset"``.  ``stated`` is False when the spec has no ``[stock]``.
+    """
+
+    kind: str = "round"
+    diameter_mm: float | None = None
+    allowance_mm: float | None = None
+    top_allowance_mm: float = 0.0
+    stated: bool = False
+
+
+#: The blank when a spec has no ``[stock]`` table.
+DEFAULT_STOCK = StockSpec()
 
 
 class PostDialect(Protocol):
