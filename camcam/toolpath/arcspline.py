@@ -638,8 +638,10 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
             for p1, t1, row, saved in targets:
                 if not st.i < row <= min(st.i + 2.0 * (st.reach - st.i) + 1, len(m.P) - 1):
                     continue
+                total = level_no + 2 - saved
+                if best is not None and total > best[5]:  # more arcs than the best closure: cannot win
+                    continue
                 for dev, e1, e2 in m.biarcs(st, p1, t1, BIARC_RATIOS, row):
-                    total = level_no + 2 - saved
                     if best is None or (total, dev) < (best[5], best[0]):
                         best, best_level = (dev, st, e1, e2, saved, total), level_no
         if best is not None and (not closed or level_no - best_level >= 2):
