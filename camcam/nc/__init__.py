@@ -13,6 +13,7 @@ Examples
 --------
 >>> from camcam.spec import load_spec
 >>> from camcam.geometry.build import build_cam
+>>> from camcam.nc import machine
 >>> spec = load_spec("samples/disc-translating-roller.toml")
 >>> built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
 >>> result = machine(built, spec.machining, spec.name, spec.stock)
@@ -22,14 +23,15 @@ Examples
 True
 """
 
-from camcam.nc.job import machine
-from camcam.nc.readback import Move, read_program
-from camcam.nc.removal import RemovalReport, check_moves, check_program, design_keep
-from camcam.nc.result import MachiningResult, Program, deviation_checks
-from camcam.nc.settings import MachiningSpec, PostDialect
-from camcam.nc.stock import DEFAULT_STOCK, Blank, StockSpec, blank_for
-from camcam.nc.tools import SAME_TOOL_MM, check_profile_tool, groove_passes, job_title
+from camcam.lazy import lazy_exports
 
-__all__ = ["machine", "MachiningResult", "Program", "MachiningSpec", "PostDialect", "deviation_checks",
-           "SAME_TOOL_MM", "check_profile_tool", "groove_passes", "job_title", "StockSpec", "DEFAULT_STOCK", "Blank",
-           "blank_for", "RemovalReport", "check_moves", "check_program", "design_keep", "Move", "read_program"]
+# lazy (camcam.lazy): the spec reader needs only the settings; the job pulls in shapely and the geometry
+__getattr__, __dir__, __all__ = lazy_exports(__name__, {
+    "machine": "camcam.nc.job",
+    **dict.fromkeys(("Move", "read_program"), "camcam.nc.readback"),
+    **dict.fromkeys(("RemovalReport", "check_moves", "check_program", "design_keep"), "camcam.nc.removal"),
+    **dict.fromkeys(("MachiningResult", "Program", "deviation_checks"), "camcam.nc.result"),
+    **dict.fromkeys(("MachiningSpec", "PostDialect", "StockSpec", "DEFAULT_STOCK"), "camcam.nc.settings"),
+    **dict.fromkeys(("Blank", "blank_for"), "camcam.nc.stock"),
+    **dict.fromkeys(("SAME_TOOL_MM", "check_profile_tool", "groove_passes", "job_title"), "camcam.nc.tools"),
+})

@@ -37,7 +37,8 @@ from camcam.nc.removal import check_program
 from camcam.nc.result import MachiningResult, deviation_checks
 from camcam.nc.roughing import RING_STEP_FRACTION, disc_spiral
 from camcam.nc.settings import MachiningSpec
-from camcam.nc.stock import DEFAULT_STOCK, StockSpec, blank_for
+from camcam.nc.settings import DEFAULT_STOCK, StockSpec
+from camcam.nc.stock import blank_for
 from camcam.nc.tools import check_profile_tool, groove_passes, job_title
 from camcam.toolpath.contours import CutContour, fit_printed
 from camcam.toolpath.path import Pass, Rapid, Toolpath, depth_levels

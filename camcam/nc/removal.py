@@ -320,53 +320,108 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
                          clearance, clear_at)
 
 
-def _nearest(tree: cKDTree, q: np.ndarray, near_mm: float) -> np.ndarray:
-    """Distances from ``q`` to the tree's points; beyond ``near_mm`` searched only for the points that need it."""
-    d, _ = tree.query(q, distance_upper_bound=near_mm)
-    far = ~np.isfinite(d)
-    if far.any():
-        d[far], _ = tree.query(q[far])
-    return d
-
-
 def _finish_figures(moves, levels, top_z, keep, boundary, r_t):
-    """Material left at the final depth, overcut anywhere below the top, and the roughing's distance from the part."""
+    """Material left at the final depth, overcut anywhere below the top, and the roughing's distance from the part.
+
+    All moves' samples are measured in one pass.  A path point farther than
+    ``near`` from every boundary point only needs its exact distance where
+    nothing nearer decides the figure (a centre inside the part, a boundary
+    point no path point comes near, a roughing that never comes near); so a
+    move whose :data:`SAMPLE_MM` samples all keep ``near`` + half their
+    spacing off the boundary, outside the part (every point of it is then
+    farther than ``near``, and outside), is sampled densely only if such a
+    figure needs it.
+    """
     if not levels:
         return math.inf, "nothing is cut", 0.0, "", None, ""
     final = levels[-1]
     near = r_t + 1.0
     tree = cKDTree(boundary)
-    dense = [(m, m.samples(DENSE_MM)) for m in moves]
-    at_final = np.concatenate([p[:, :2] for m, p in dense if np.all(p[:, 2] <= final + 1e-6)] or [np.empty((0, 2))])
-    if len(at_final):
-        d = _nearest(cKDTree(at_final), boundary, near)
-        k = int(np.argmax(d))
-        left, left_at = float(d[k] - r_t), f"design boundary at X{boundary[k, 0]:.3f} Y{boundary[k, 1]:.3f}"
+    far = _far_moves(moves, tree, keep, near, top_z)
+    none = np.empty((0, 3))
+    dense = [none if f else m.samples(DENSE_MM) for m, f in zip(moves, far)]
+    below = [p[:, 2] < top_z - 1e-9 for p in dense]
+    q = np.concatenate([p[b] for p, b in zip(dense, below)] or [none])
+    ends = np.cumsum([0] + [int(b.sum()) for b in below])
+    d, _ = tree.query(q[:, :2], distance_upper_bound=near, workers=-1)  # exact either way; threads only speed it
+    inside = shapely.contains_xy(keep, q[:, 0], q[:, 1])
+    if inside.any():  # a centre inside the part: its exact distance to the boundary
+        d[inside], _ = tree.query(q[inside, :2])
+    sd = np.where(inside, -d, d)
+    at_final = np.zeros(len(q), bool)
+    final_far = []  # far moves at the final depth
+    for i, m in enumerate(moves):
+        if far[i]:
+            if m.p0[2] <= final + 1e-6 and m.p1[2] <= final + 1e-6:  # z is linear along a move
+                final_far.append(m.samples(DENSE_MM)[:, :2])
+        elif len(dense[i]) and np.all(dense[i][:, 2] <= final + 1e-6):
+            at_final[ends[i]:ends[i + 1]] = True
+    if at_final.any() or final_far:
+        # a boundary point's nearest path point is within ``near`` whenever any is: search those first
+        close = at_final & np.isfinite(d)
+        d_left, _ = cKDTree(q[close, :2]).query(boundary, distance_upper_bound=near, workers=-1) if close.any() else (
+            np.full(len(boundary), np.inf), None)
+        beyond = ~np.isfinite(d_left)
+        if beyond.any():
+            d_left[beyond], _ = cKDTree(np.concatenate([q[at_final, :2], *final_far])).query(boundary[beyond])
+        k = int(np.argmax(d_left))
+        left, left_at = float(d_left[k] - r_t), f"design boundary at X{boundary[k, 0]:.3f} Y{boundary[k, 1]:.3f}"
     else:
         left, left_at = math.inf, "no feed move at the final depth"
     over, over_at, clear, clear_at = -math.inf, "", None, ""
-    for m, p in dense:
-        below = p[:, 2] < top_z - 1e-9
-        if not below.any():
+    distant = []  # roughing moves with no point within ``near`` of the part
+    for i, m in enumerate(moves):
+        if far[i]:
+            if m.pass_kind == "rough":
+                distant.append(i)
             continue
-        q = p[below]
-        d, _ = tree.query(q[:, :2], distance_upper_bound=near)
-        inside = shapely.contains_xy(keep, q[:, 0], q[:, 1])
-        if inside.any():  # a centre inside the part: its exact distance to the boundary
-            d[inside], _ = tree.query(q[inside, :2])
-        sd = np.where(inside, -d, d)
-        k = int(np.argmin(sd))
-        if np.isfinite(sd[k]) and r_t - sd[k] > over:
-            over, over_at = float(r_t - sd[k]), _where(m.pass_label, q[k])
+        lo, hi = ends[i], ends[i + 1]
+        if lo == hi:
+            continue
+        k = int(np.argmin(sd[lo:hi]))
+        if np.isfinite(sd[lo + k]) and r_t - sd[lo + k] > over:
+            over, over_at = float(r_t - sd[lo + k]), _where(m.pass_label, q[lo + k])
         if m.pass_kind == "rough":
-            if not np.isfinite(sd[k]):  # everything beyond the near band: its true distance
-                d, _ = tree.query(q[:, :2])
-                sd = np.where(inside, -d, d)
-                k = int(np.argmin(sd))
-            c = float(sd[k] - r_t)
+            if not np.isfinite(sd[lo + k]):
+                distant.append(i)
+                continue
+            c = float(sd[lo + k] - r_t)
             if clear is None or c < clear:
-                clear, clear_at = c, _where(m.pass_label, q[k])
+                clear, clear_at = c, _where(m.pass_label, q[lo + k])
+    if clear is None:  # no roughing move comes near: the true distances of those that are far (else they lose)
+        for i in sorted(distant):
+            p = moves[i].samples(DENSE_MM)
+            p = p[p[:, 2] < top_z - 1e-9]
+            if not len(p):
+                continue
+            dd, _ = tree.query(p[:, :2])
+            s_ = np.where(shapely.contains_xy(keep, p[:, 0], p[:, 1]), -dd, dd)
+            k = int(np.argmin(s_))
+            c = float(s_[k] - r_t)
+            if clear is None or c < clear:
+                clear, clear_at = c, _where(moves[i].pass_label, p[k])
     return max(left, 0.0), left_at, max(over, 0.0), over_at, clear, clear_at
+
+
+def _far_moves(moves, tree, keep, near: float, top_z: float) -> list[bool]:
+    """Per move: every point of it is farther than ``near`` from the boundary points and outside ``keep``.
+
+    Judged on its :data:`SAMPLE_MM` samples: each point of a move lies within
+    half that spacing of one, so samples ``near`` + half the spacing off and
+    outside the part prove it (a move crossing the top face is never far).
+    """
+    coarse = [m.samples(SAMPLE_MM) for m in moves]
+    if not coarse:
+        return []
+    c = np.concatenate(coarse)
+    dc, _ = tree.query(c[:, :2], distance_upper_bound=near + 0.5 * SAMPLE_MM + 1e-9, workers=-1)
+    ok = ~np.isfinite(dc) & ~shapely.contains_xy(keep, c[:, 0], c[:, 1])
+    ends = np.cumsum([0] + [len(p) for p in coarse])
+    out = []
+    for i, p in enumerate(coarse):
+        under = p[:, 2] < top_z - 1e-9
+        out.append(bool(ok[ends[i]:ends[i + 1]].all()) and (under.all() or not under.any()))
+    return out
 
 
 def check_program(text: str, post, blank, m, built) -> RemovalReport:

@@ -1,4 +1,4 @@
-"""The settings of a machining job: the validated ``[machining]`` table as the NC stage reads it.
+"""The settings of a machining job: the validated ``[machining]`` and ``[stock]`` tables as the NC stage reads them.
 
 :func:`camcam.spec.machining.read_machining` builds a :class:`MachiningSpec`
 from a spec file; the NC stage takes it from there.  The post is reached
@@ -15,7 +15,8 @@ from camcam.errors import InputError
 from camcam.toolpath.path import CutSettings, Toolpath
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["MachiningSpec", "PostDialect", "ProgramSetup", "WORK_OFFSETS", "COOLANTS"]
+__all__ = ["MachiningSpec", "PostDialect", "ProgramSetup", "WORK_OFFSETS", "COOLANTS", "StockSpec", "DEFAULT_STOCK",
+           "DEFAULT_OVERSIZE_MM", "STOCK_KINDS"]
 
 #: The work offsets a spec may name; a post prints each in its own words (``Post.work_offsets``).
 WORK_OFFSETS = ("G54", "G55", "G56", "G57", "G58", "G59")
@@ -51,6 +52,32 @@ class ProgramSetup:
             if not 1 <= self.program_number <= post.program_number_max:
                 raise InputError(f"program_number: expected 1–{post.program_number_max} for post {post.name}, "
                                  f"got {self.program_number}")
+
+
+STOCK_KINDS = ("round", "offset")
+
+#: The default blank's radius over the cam's largest radius (mm).
+DEFAULT_OVERSIZE_MM = 2.0
+
+
+@dataclass(frozen=True)
+class StockSpec:
+    """The validated ``[stock]`` table.
+
+    ``diameter_mm`` is set for ``kind = "round"`` (``None``: the default blank,
+    :data:`DEFAULT_OVERSIZE_MM` over the cam's largest radius), ``allowance_mm``
+    for ``kind = "offset"``.  ``stated`` is False when the spec has no ``[stock]``.
+    """
+
+    kind: str = "round"
+    diameter_mm: float | None = None
+    allowance_mm: float | None = None
+    top_allowance_mm: float = 0.0
+    stated: bool = False
+
+
+#: The blank when a spec has no ``[stock]`` table.
+DEFAULT_STOCK = StockSpec()
 
 
 class PostDialect(Protocol):

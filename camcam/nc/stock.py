@@ -19,34 +19,10 @@ from shapely.geometry import Point, Polygon
 from camcam.errors import SpecError
 from camcam.geometry.build import BuiltCam, groove_outer_radius
 from camcam.geometry.extrema import extreme
+from camcam.nc.settings import DEFAULT_OVERSIZE_MM, DEFAULT_STOCK, STOCK_KINDS, StockSpec
 
-__all__ = ["Blank", "blank_for", "largest_radius", "curve_polygon", "CIRCLE_SEGMENTS", "StockSpec", "DEFAULT_STOCK",
+__all__ = ["Blank", "blank_for", "largest_radius", "curve_polygon", "CIRCLE_SEGMENTS",
            "DEFAULT_OVERSIZE_MM", "STOCK_KINDS", "bore_region"]
-
-STOCK_KINDS = ("round", "offset")
-
-#: The default blank's radius over the cam's largest radius (mm).
-DEFAULT_OVERSIZE_MM = 2.0
-
-
-@dataclass(frozen=True)
-class StockSpec:
-    """The validated ``[stock]`` table.
-
-    ``diameter_mm`` is set for ``kind = "round"`` (``None``: the default blank,
-    :data:`DEFAULT_OVERSIZE_MM` over the cam's largest radius), ``allowance_mm``
-    for ``kind = "offset"``.  ``stated`` is False when the spec has no ``[stock]``.
-    """
-
-    kind: str = "round"
-    diameter_mm: float | None = None
-    allowance_mm: float | None = None
-    top_allowance_mm: float = 0.0
-    stated: bool = False
-
-
-#: The blank when a spec has no ``[stock]`` table.
-DEFAULT_STOCK = StockSpec()
 
 #: Segments of a polygonised circle (blank, bore): chord error R·(1 − cos(π/n)), 3.8e-5·R.
 CIRCLE_SEGMENTS = 512

@@ -19,7 +19,7 @@ checks it.
 
 from __future__ import annotations
 
-from camcam.nc.stock import DEFAULT_OVERSIZE_MM, DEFAULT_STOCK, STOCK_KINDS, StockSpec
+from camcam.nc.settings import DEFAULT_OVERSIZE_MM, DEFAULT_STOCK, STOCK_KINDS, StockSpec
 from camcam.spec.reader import Table
 
 __all__ = ["StockSpec", "read_stock", "DEFAULT_STOCK", "DEFAULT_OVERSIZE_MM", "STOCK_KINDS"]

@@ -54,6 +54,9 @@ class FitResult:
     lower_bound: float  # N_lb for arcs (∫(|κ′|/192δ)^⅓ ds), for lines ∫√(|κ|/8δ) ds
     piece_blocks: tuple[int, ...]
     piece_lower_bounds: tuple[float, ...]
+    #: ``deviation`` was measured on the whole printed path over the whole curve (one section, nothing
+    #: left out), so it is that path's deviation as it stands, not only the worst of its pieces'.
+    measured_whole: bool = False
 
     @property
     def line_blocks(self) -> int:
@@ -144,8 +147,9 @@ def _fit_arcs(curve, tolerance_mm, band, quantizer, max_sweep, a, b, exact, prin
     blocks = [int(np.count_nonzero((starts >= lo) & ((starts < hi) | (hi == last))))
               for lo, hi in edges]  # each arc counts on the piece its start joint lies on
     lbs = [lower_bound_blocks(exact, tolerance_mm, lo, hi) for lo, hi in edges]
+    measured_whole = len(sections) == 1 and sections[0] == (exact.t_start, exact.t_end)
     return FitResult(tuple(elems), "arcs", tolerance_mm, quantizer.decimals, worst, float(sum(lbs)),
-                     tuple(blocks), tuple(lbs))
+                     tuple(blocks), tuple(lbs), measured_whole)
 
 
 def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",

@@ -85,6 +85,7 @@ program is measured afterwards by :func:`~camcam.toolpath.deviation.measure_devi
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -354,7 +355,7 @@ class _March:
                     again.append(ray)
                     continue
                 for j in np.nonzero(rows)[0]:
-                    ray.feasible.append((int(ii[j]), tuple(x[k * K + j] for x in data)))
+                    ray.feasible.append((int(ii[j]), data, k * K + j))  # the arc: row k·K + j of the batch
                 jmax = int(np.nonzero(rows)[0].max())
                 if jmax + 1 < K and ii[jmax + 1] > ii[jmax] + 1:
                     brackets.append((ray, int(ii[jmax]), int(ii[jmax + 1])))
@@ -370,7 +371,7 @@ class _March:
             ok, data = self.arcs(np.array([r.state.i for r in owners]), np.array([r.state.p for r in owners]),
                                  np.array([r.state.tan for r in owners]), i1, np.array([r.offset for r in owners]))
             for j in np.nonzero(ok)[0]:
-                owners[j].feasible.append((int(i1[j]), tuple(x[j] for x in data)))
+                owners[j].feasible.append((int(i1[j]), data, j))
         for s in states:
             for r in s.rays:
                 r.feasible.sort(key=lambda c: c[0])
@@ -431,20 +432,28 @@ class _March:
 
 
 class _State:
-    """A joint of a partial spline: table row, printed point, tangent, last step (rows), parent, element to it."""
+    """A joint of a partial spline: table row, printed point, tangent, last step (rows), parent, element to it.
 
-    __slots__ = ("i", "p", "tan", "h", "parent", "element", "root", "first", "rays", "reach")
+    ``arc`` holds the element's data (start, end, centre, ccw, is_line); the
+    element itself is built only for the states the spline keeps.
+    """
 
-    def __init__(self, i, p, tan, h, parent, element):
-        self.i, self.p, self.tan, self.h, self.parent, self.element = int(i), p, tan, h, parent, element
+    __slots__ = ("i", "p", "tan", "h", "parent", "arc", "root", "first", "rays", "reach")
+
+    def __init__(self, i, p, tan, h, parent, arc):
+        self.i, self.p, self.tan, self.h, self.parent, self.arc = int(i), p, tan, h, parent, arc
         self.root = self if parent is None else parent.root
         self.first = None if parent is None else (self if parent.parent is None else parent.first)
         self.rays: list = []
         self.reach = self.i
 
+    @property
+    def element(self):
+        return _element(*self.arc)
+
 
 class _Ray:
-    """Next joints of a state at one normal offset: the step guess (rows) and the feasible (row, arc data)."""
+    """Next joints of a state at one normal offset: the step guess (rows) and the feasible (row, batch data, index)."""
 
     __slots__ = ("state", "offset", "h", "feasible")
 
@@ -472,6 +481,12 @@ MIN_CHORD_STEPS = 50
 
 #: Join parameters of the closing biarcs tried: tangent length α from the start over the equal-length biarc's.
 BIARC_RATIOS = (1.0, 0.7, 1.4, 0.5, 2.0)
+
+
+@functools.lru_cache(maxsize=None)
+def _spread(n: int, k: int) -> tuple[int, ...]:
+    """At most ``k`` indices spread evenly over ``range(n)``, the last first, each once."""
+    return tuple(int(i) for i in np.unique(np.round(np.linspace(n - 1, 0, k)).astype(int)))
 
 
 def _start_states(m: _March, closed: bool, budget: SplineBudget) -> list:
@@ -623,8 +638,10 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
             for p1, t1, row, saved in targets:
                 if not st.i < row <= min(st.i + 2.0 * (st.reach - st.i) + 1, len(m.P) - 1):
                     continue
+                total = level_no + 2 - saved
+                if best is not None and total > best[5]:  # more arcs than the best closure: cannot win
+                    continue
                 for dev, e1, e2 in m.biarcs(st, p1, t1, BIARC_RATIOS, row):
-                    total = level_no + 2 - saved
                     if best is None or (total, dev) < (best[5], best[0]):
                         best, best_level = (dev, st, e1, e2, saved, total), level_no
         if best is not None and (not closed or level_no - best_level >= 2):
@@ -637,9 +654,10 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
                     continue
                 reach = ray.feasible[-1][0]
                 near = [c for c in ray.feasible if c[0] >= st.i + budget.shortest * (reach - st.i)]
-                for k in np.unique(np.round(np.linspace(len(near) - 1, 0, budget.children)).astype(int)):
-                    i1, (p1, centre, ccw, is_line, t_end, _dev) = near[k]
-                    children.append(_State(i1, p1, t_end, i1 - st.i, st, _element(st.p, p1, centre, ccw, is_line)))
+                for k in _spread(len(near), budget.children):
+                    i1, data, j = near[k]
+                    p1, centre, ccw, is_line, t_end = (x[j] for x in data[:5])
+                    children.append(_State(i1, p1, t_end, i1 - st.i, st, (st.p, p1, centre, ccw, is_line)))
         if not children:
             break
         # 3. keep the farthest child of each joint state (normal offset, tangent error), then the farthest W

@@ -16,7 +16,7 @@ import numpy as np
 
 from camcam.errors import FitError, GeometryError, InputError
 from camcam.geometry.jet import hypot
-from camcam.toolpath.arcfit import FitResult, fit_contour, line_estimate_blocks, lower_bound_blocks
+from camcam.toolpath.arcfit import FitResult, fit_contour
 from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.toolpath.deviation import Deviation, measure_deviation
 from camcam.toolpath.fitcore import pieces
@@ -93,13 +93,15 @@ def fit_printed(curve, tolerance_mm: float, mode: str, quantizer: Quantizer, max
     except InputError as err:
         raise GeometryError(f"{label}: {err}") from None
     path = printed(fit.elements)
-    dev = measure_deviation(curve, path, margin_mm=budget.margin_mm(tolerance_mm))
+    if fit.measured_whole:  # the fit measured this very path over the whole curve already
+        dev = fit.deviation
+    else:
+        dev = measure_deviation(curve, path, margin_mm=budget.margin_mm(tolerance_mm))
     if dev.max_deviation_mm > tolerance_mm:  # every piece passed, so the whole can only pass too
         raise FitError(f"{label}: the printed path stays {dev.max_deviation_mm:.4g} mm from the exact curve, "
                        f"above the tolerance {tolerance_mm:g} mm")
-    bound = lower_bound_blocks if mode == "arcs" else line_estimate_blocks
-    segs = tuple(SegmentBlocks(math.degrees(lo), math.degrees(hi), n, bound(curve, tolerance_mm, lo, hi))
-                 for (lo, hi), n in zip(pieces(curve), fit.piece_blocks))
+    segs = tuple(SegmentBlocks(math.degrees(lo), math.degrees(hi), n, lb)
+                 for (lo, hi), n, lb in zip(pieces(curve), fit.piece_blocks, fit.piece_lower_bounds))
     return fit, path, dev, segs
 
 
