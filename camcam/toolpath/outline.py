@@ -41,7 +41,7 @@ def offset_element(e, distance_mm: float):
         n = np.array([-t[1], t[0]]) * distance_mm
         return Line(tuple(map(float, np.add(e.start, n))), tuple(map(float, np.add(e.end, n))))
     r = e.radius - (distance_mm if e.ccw else -distance_mm)
-    if r <= 0:
+    if _inverted(e, distance_mm):
         raise GeometryError(f"the tool radius {abs(distance_mm):g} mm exceeds a path arc's radius {e.radius:g} mm "
                             f"on the material side; the part outline is undefined there")
     c = np.asarray(e.centre)
@@ -51,6 +51,11 @@ def offset_element(e, distance_mm: float):
         return tuple(map(float, c + d / np.hypot(*d) * r))
 
     return Arc(move(e.start), move(e.end), e.centre, e.ccw)
+
+
+def _inverted(e, distance_mm: float) -> bool:
+    """Whether ``e`` is an arc whose offset by ``distance_mm`` (left) would have no positive radius."""
+    return isinstance(e, Arc) and e.radius - (distance_mm if e.ccw else -distance_mm) <= 0
 
 
 def _circle(e):
@@ -105,12 +110,20 @@ def part_outline(elements, distance_mm: float, snap_mm: float = 1e-3, near_mm: f
     start).  Overlapping offsets whose carriers miss each other (nearly
     tangent arcs of a path rounded to a post's decimals) are joined halfway
     when their ends lie within ``near_mm``; the caller measures the result.
-    Raises :class:`GeometryError` where an arc is tighter than the offset on
-    its inner side, or offsets cannot be joined.
+    An arc tighter than the offset on its inner side (a short joint arc of a
+    fitted arc spline, R < tool radius) is left out: its offset would be an
+    inverted arc, and every point of that lies inside the disc of the tool at
+    another point of the arc (``|R·u(θ') + (r_t − R)·u(θ)| < r_t``), so the
+    part's edge there is its neighbours' offsets, cut back to their
+    intersection as at a corner the path turns into the material.  Raises
+    :class:`GeometryError` where offsets cannot be joined.
     """
     els = tuple(elements)
     if math.dist(els[-1].end, els[0].start) > snap_mm:
         raise GeometryError("part outline: the tool path is not closed")
+    els = tuple(e for e in els if not _inverted(e, distance_mm))
+    if not els:
+        raise GeometryError(f"part outline: every arc of the path is tighter than the offset {abs(distance_mm):g} mm")
     off = [offset_element(e, distance_mm) for e in els]
     n = len(off)
     starts: list = [None] * n

@@ -79,6 +79,22 @@ def test_lines_mode_part_has_sharp_trimmed_corners():
     assert all(isinstance(e, Line) for e in out)  # turning into the material: corners cut back, no arcs
 
 
+def test_joint_arcs_tighter_than_the_tool_leave_a_sharp_corner():
+    # a 30 mm square path with R2 corner arcs, material inside, tool radius 8: a tool rolling round a
+    # square part leaves its corners sharp (the arcs' offsets would be inverted, radius 2 - 8 < 0), so the
+    # part is the 14 mm square of the lines' offsets cut back to their intersections (near-minimal arc
+    # splines close with such short tight arcs: the sized sample's best design has one of R5.7, 0.21 mm long)
+    c = ((28.0, 2.0), (28.0, 28.0), (2.0, 28.0), (2.0, 2.0))
+    path = (Line((2.0, 0.0), (28.0, 0.0)), Arc((28.0, 0.0), (30.0, 2.0), c[0], True),
+            Line((30.0, 2.0), (30.0, 28.0)), Arc((30.0, 28.0), (28.0, 30.0), c[1], True),
+            Line((28.0, 30.0), (2.0, 30.0)), Arc((2.0, 30.0), (0.0, 28.0), c[2], True),
+            Line((0.0, 28.0), (0.0, 2.0)), Arc((0.0, 2.0), (2.0, 0.0), c[3], True))
+    out = part_outline(path, 8.0)
+    assert all(isinstance(e, Line) for e in out) and len(out) == 4
+    corners = sorted(tuple(round(v, 9) for v in e.start) for e in out)  # exact up to float rounding
+    assert corners == [(8.0, 8.0), (8.0, 22.0), (22.0, 8.0), (22.0, 22.0)]
+
+
 needs_librecad = pytest.mark.skipif(shutil.which("librecad") is None or shutil.which("pdftoppm") is None,
                                     reason="LibreCAD (Debian librecad) or pdftoppm (poppler-utils) missing")
 
