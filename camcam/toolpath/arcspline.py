@@ -56,11 +56,11 @@ of its quietest stretch (a dwell, :func:`_quiet_start`), its first joint's
 offset and tangent are free, and the march runs on past the start so the
 closing biarc may replace the first arcs.
 
-Measured (``benchmarks/run_nc.py``, the eight disc samples at 0.1–0.0005 mm):
-1.3–1.6·N_lb where N_lb is honest (1.5–2.0 at 0.1 mm, where the +4 matters);
-27 of 40 contour × tolerance cases within 1.2·N_lb + 4, the others over it by
-1–3 arcs, all at 0.002–0.0005 mm.  The default sample's curve: 9, 16, 25+1,
-32 and 42 blocks at 0.1, 0.01, 0.002, 0.001, 0.0005 mm, against 15, 20, –,
+Measured (``benchmarks/run_nc.py --arcs``, the eight disc samples at 0.1–0.0005 mm,
+band 0.95·δ): 1.34–1.67·N_lb where N_lb is honest (1.5–1.8 at 0.1 mm, where
+the +4 matters); 24 of 40 contour × tolerance cases within 1.2·N_lb + 4, the
+others over it by 0.1–2.6 blocks.  The default sample's curve: 9, 16, 25+1,
+32+1 and 40 blocks at 0.1, 0.01, 0.002, 0.001, 0.0005 mm, against 15, 20, –,
 40 and 48 with the earlier one-step-lookahead march split at every break.
 The remaining gap to 1.155·N_lb is the transitions into and out of dwells,
 where κ′ jumps, and the beam's myopia in smooth stretches (arcs reach 0.85–0.97
