@@ -18,7 +18,8 @@ from pathlib import Path
 import numpy as np
 
 from camcam.geometry.build import build_cam
-from camcam.nc.groove3d import CylinderTool, measure_groove, poses_from_canon
+from camcam.nc.toolposes import CylinderTool, poses_from_canon
+from camcam.nc.groove3d import measure_groove
 from camcam.nc.job import machine
 from camcam.post.post import load_post
 from camcam.spec import load_spec

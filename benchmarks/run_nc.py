@@ -68,7 +68,7 @@ def blocks_table(sample: str = "disc-translating-roller") -> None:
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
     curve = built.cam.offset_profile(spec.machining.tool_diameter_mm / 2)
     print(f"{sample}: tool-centre curve, post {spec.machining.post.name}")
-    print("| δ mm | lines | ∫√(κ/8δ) | s | arcs | N_lb | 1.5·N_lb+2 per segment (blocks/target) | s | max dev lines, arcs mm |")
+    print("| δ mm | lines | ∫√(κ/8δ) | s | arcs | N_lb | 1.2·N_lb+4 per segment (blocks/target) | s | max dev lines, arcs mm |")
     print("|---|---|---|---|---|---|---|---|---|")
     for tol in (0.1, 0.01, 0.001):
         row = {}

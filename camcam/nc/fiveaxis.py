@@ -49,7 +49,8 @@ import numpy as np
 
 from camcam.errors import FitError, GeometryError, InputError, PostError
 from camcam.geometry.build import BuiltCam
-from camcam.nc.groove3d import CylinderTool, measure_groove, poses_from_program
+from camcam.nc.toolposes import CylinderTool, poses_from_program
+from camcam.nc.groove3d import measure_groove
 from camcam.nc.result import MachiningResult
 from camcam.nc.settings import MachiningSpec
 from camcam.nc.tools import SAME_TOOL_MM, job_title

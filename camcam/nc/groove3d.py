@@ -57,82 +57,20 @@ negative = material left (the designed wall not reached).
 from __future__ import annotations
 
 import math
-from abc import ABC, abstractmethod
-import re
 from dataclasses import dataclass
 
 import numpy as np
 
-from camcam.geometry.cylindrical import BarrelOscillatingRoller, CylindricalCam
+from camcam.geometry.cylindrical import CylindricalCam
+from camcam.nc.groove_motion import Motion, ProgramMotion, RollerMotion, follower_poses, section_interval, side_extent
+from camcam.nc.toolposes import CylinderTool, ToolPoses, frozen_array
 
-__all__ = ["ToolPoses", "CylinderTool", "WallExtreme", "WallDeviation", "GrooveMeasurement", "measure_groove",
-           "poses_from_program", "poses_from_canon", "follower_poses", "A_AXIS_SENSE", "WALL_LABELS",
-           "design_walls", "cut_walls", "section_interval"]
-
-#: Sign of the part's turn for a positive A: Rx(sign·A).
-A_AXIS_SENSE = {"right-hand": 1, "left-hand": -1}
+__all__ = ["WallExtreme", "WallDeviation", "GrooveMeasurement", "measure_groove", "WALL_LABELS", "design_walls",
+           "cut_walls"]
 
 WALL_LABELS = ("flank 0 (-X wall)", "flank 1 (+X wall)")
 
 _GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
-
-
-def _frozen(a, shape_tail=()) -> np.ndarray:
-    arr = np.array(a, dtype=float)
-    arr.setflags(write=False)
-    return arr
-
-
-@dataclass(frozen=True)
-class ToolPoses:
-    """Tool poses as printed: tip X Y Z (mm), A and B (degrees), in program order.
-
-    The tool moves linearly in every axis word from one pose to the next.
-
-    Examples
-    --------
-    >>> p = ToolPoses([[0.0, 0.0, 60.0], [10.0, 0.0, 60.0]], [0.0, 90.0], [0.0, 0.0])
-    >>> len(p), p.a_axis
-    (2, 'right-hand')
-    """
-
-    tip_mm: np.ndarray
-    a_deg: np.ndarray
-    b_deg: np.ndarray
-    a_axis: str = "right-hand"
-
-    def __post_init__(self) -> None:
-        tip = _frozen(self.tip_mm)
-        a = _frozen(self.a_deg)
-        b = _frozen(self.b_deg)
-        if tip.ndim != 2 or tip.shape[1] != 3 or len(tip) < 2:
-            raise ValueError(f"tip_mm must be (n, 3) with n ≥ 2, got shape {tip.shape}")
-        if a.shape != (len(tip),) or b.shape != (len(tip),):
-            raise ValueError(f"a_deg and b_deg must have {len(tip)} values, got {a.shape} and {b.shape}")
-        if not (np.all(np.isfinite(tip)) and np.all(np.isfinite(a)) and np.all(np.isfinite(b))):
-            raise ValueError("tool poses must be finite")
-        if np.any(np.abs(b) >= 90.0):
-            raise ValueError("B must stay within ±90°")
-        if self.a_axis not in A_AXIS_SENSE:
-            raise ValueError(f'a_axis must be "right-hand" or "left-hand", got {self.a_axis!r}')
-        object.__setattr__(self, "tip_mm", tip)
-        object.__setattr__(self, "a_deg", a)
-        object.__setattr__(self, "b_deg", b)
-
-    def __len__(self) -> int:
-        return len(self.a_deg)
-
-
-@dataclass(frozen=True)
-class CylinderTool:
-    """A flat end mill: ``radius_mm``, cutting length ``length_mm`` from the tip."""
-
-    radius_mm: float
-    length_mm: float
-
-    def __post_init__(self) -> None:
-        if not (self.radius_mm > 0 and self.length_mm > 0):
-            raise ValueError(f"tool radius and length must be > 0, got {self.radius_mm!r}, {self.length_mm!r}")
 
 
 @dataclass(frozen=True)
@@ -222,183 +160,6 @@ class GrooveMeasurement:
                 "uncut_points": self.uncut_points, "walls": [w.as_dict() for w in self.walls]}
 
 
-# -- poses from text -----------------------------------------------------------------------
-_WORD = re.compile(r"([A-Z])\s*([-+]?(?:\d+\.?\d*|\.\d+))")
-_COMMENT = re.compile(r"\([^)]*\)|;.*$")
-
-
-def poses_from_program(text: str, a_axis: str = "right-hand", assume: dict | None = None) -> ToolPoses:
-    """Tool poses read back from a printed G-code program (G0/G1 with X Y Z A B, modal).
-
-    Poses start once X, Y, Z and A are all known (B is 0 until given);
-    ``assume`` gives axis values a program never prints (e.g. ``{"Y": 0.0}``
-    for a program that leaves Y where the machine has it).
-    Arcs (G2/G3) are refused: a barrel-cam program has none.
-
-    Examples
-    --------
-    >>> p = poses_from_program("G0 X0 Y0 Z60 A0\\nG1 X10 A90 F3\\nM2\\n")
-    >>> p.tip_mm.tolist(), p.a_deg.tolist()
-    ([[0.0, 0.0, 60.0], [10.0, 0.0, 60.0]], [0.0, 90.0])
-    """
-    pos = {"X": None, "Y": None, "Z": None, "A": None, "B": 0.0}
-    pos.update(assume or {})
-    motion = None
-    rows = []
-    for raw in text.splitlines():
-        line = _COMMENT.sub("", raw.upper()).strip()
-        if not line or line.startswith("%") or line.startswith("O"):
-            continue
-        words = _WORD.findall(line)
-        moved = False
-        for letter, num in words:
-            if letter == "G":
-                g = float(num)
-                if g in (0.0, 1.0):
-                    motion = int(g)
-                elif g in (2.0, 3.0):
-                    raise ValueError(f"arc move in a barrel-cam program: {raw.strip()!r}")
-            elif letter in pos:
-                pos[letter] = float(num)
-                moved = True
-        if moved and motion is not None and all(pos[k] is not None for k in "XYZA"):
-            rows.append((pos["X"], pos["Y"], pos["Z"], pos["A"], pos["B"]))
-    if len(rows) < 2:
-        raise ValueError("the program positions X, Y, Z and A fewer than twice")
-    arr = np.array(rows)
-    return ToolPoses(arr[:, :3], arr[:, 3], arr[:, 4], a_axis)
-
-
-def poses_from_canon(moves, a_axis: str = "right-hand") -> ToolPoses:
-    """Tool poses from rs274's canonical moves (:func:`camcam.verify.rs274.run_rs274`)."""
-    rows = []
-    for m in moves:
-        if m.kind == "arc":
-            raise ValueError("arc move in an interpreted barrel-cam program")
-        rows.append((m.x, m.y, m.z, m.a, float(getattr(m, "b", 0.0))))
-    arr = np.array(rows)
-    return ToolPoses(arr[:, :3], arr[:, 3], arr[:, 4], a_axis)
-
-
-# -- the section of a posed cylinder on the cylinder r = ρ ---------------------------------
-def section_interval(X, Y, Z, a, B, r, L, rho, gamma):
-    """x-interval (lo, hi) of a posed cylinder on r = ρ at part angle γ; NaN where it misses."""
-    beta = gamma + a
-    sb, cb = np.sin(B), np.cos(B)
-    eta = rho * np.sin(beta) + Y
-    zeta = rho * np.cos(beta) - Z
-    q2 = r * r - eta * eta
-    q = np.sqrt(np.maximum(q2, 0.0))
-    lo = (zeta * sb - q) / cb
-    hi = (zeta * sb + q) / cb
-    tilted = np.abs(sb) > 1e-15
-    safe = np.where(tilted, sb, 1.0)
-    e0 = -zeta * cb / safe  # axial position 0 (the tip plane)
-    e1 = (L - zeta * cb) / safe  # axial position L
-    alo = np.where(sb > 0, e0, e1)
-    ahi = np.where(sb > 0, e1, e0)
-    lo = np.where(tilted, np.maximum(lo, alo), lo)
-    hi = np.where(tilted, np.minimum(hi, ahi), hi)
-    ok = (q2 >= 0) & (lo <= hi) & (tilted | ((zeta >= 0) & (zeta <= L)))
-    return np.where(ok, X + lo, np.nan), np.where(ok, X + hi, np.nan)
-
-
-def _side(X, Y, Z, a, B, r, L, rho, gamma, side):
-    """The wall-side extent: hi for side 1, −lo for side 0 (both maximised); −inf where it misses."""
-    lo, hi = section_interval(X, Y, Z, a, B, r, L, rho, gamma)
-    v = hi if side == 1 else -lo
-    return np.where(np.isnan(v), -np.inf, v)
-
-
-class _Motion(ABC):
-    """A continuous motion p ↦ pose (X, Y, Z, a, B) of a cylinder (r, L)."""
-
-    r: float
-    L: float
-    periodic: bool
-    p_lo: float
-    p_hi: float
-
-    @abstractmethod
-    def pose(self, p):
-        """The cylinder's pose (X, Y, Z, a, B) at motion parameter ``p``."""
-
-    @abstractmethod
-    def samples(self, pose_step_mm: float, rho_max: float) -> np.ndarray:
-        """Motion parameters no farther apart than ``pose_step_mm`` at radius ``rho_max``."""
-
-    def clamp(self, p):
-        return p if self.periodic else np.clip(p, self.p_lo, self.p_hi)
-
-
-class _ProgramMotion(_Motion):
-    periodic = False
-
-    def __init__(self, poses: ToolPoses, tool: CylinderTool):
-        self.r, self.L = tool.radius_mm, tool.length_mm
-        s = A_AXIS_SENSE[poses.a_axis]
-        self.q = np.column_stack([poses.tip_mm, s * np.radians(poses.a_deg), np.radians(poses.b_deg)])
-        self.p_lo, self.p_hi = 0.0, float(len(self.q) - 1)
-
-    def pose(self, p):
-        p = np.asarray(p, float)
-        k = np.clip(np.floor(p).astype(int), 0, len(self.q) - 2)
-        t = (p - k)[..., None]
-        v = self.q[k] * (1 - t) + self.q[k + 1] * t
-        return tuple(v[..., i] for i in range(5))
-
-    def samples(self, pose_step_mm, rho_max):
-        d = np.abs(np.diff(self.q, axis=0))
-        size = d[:, 0] + d[:, 1] + d[:, 2] + rho_max * d[:, 3] + (self.L + self.r) * d[:, 4]
-        m = np.maximum(1, np.ceil(size / pose_step_mm)).astype(int)
-        starts = np.repeat(np.arange(len(m)), m)
-        frac = np.arange(m.sum()) - np.repeat(np.cumsum(m) - m, m)
-        p = starts + frac / np.repeat(m, m)
-        return np.append(p, self.p_hi)
-
-
-class _RollerMotion(_Motion):
-    """The roller at program angle θ = p (radians), exactly."""
-
-    periodic = True
-
-    def __init__(self, cam: CylindricalCam):
-        self.cam = cam
-        self.r = cam.roller_radius
-        f = cam.follower
-        self.osc = isinstance(f, BarrelOscillatingRoller)
-        self.d = f.pivot_distance if self.osc else 0.0
-        self.L = 2.0 * self.d if self.osc else 2.0 * cam.base_radius
-        self.p_lo, self.p_hi = 0.0, 2 * math.pi
-
-    def pose(self, p):
-        th = np.asarray(p, float)
-        flat = np.mod(th.ravel(), 2 * math.pi)
-        s = self.cam.lift(flat, 0).value.reshape(th.shape)
-        a = self.cam.sigma * th
-        half = 0.5 * self.cam.length
-        zero = np.zeros_like(th)
-        if not self.osc:
-            return half + s, zero, zero, a, zero
-        # axis through the pivot (half, 0, d) along (sin θf, 0, cos θf); tip at the pivot's depth d below it
-        return half - self.d * np.sin(s), zero, self.d - self.d * np.cos(s), a, s
-
-    def samples(self, pose_step_mm, rho_max):
-        n = int(math.ceil(2 * math.pi * (rho_max + self._speed()) / pose_step_mm))
-        return np.linspace(0.0, 2 * math.pi, n, endpoint=False)
-
-    def _speed(self) -> float:
-        """Largest |dx/dθ| of the roller axis (mm/rad), from a dense view (sets only the sample count)."""
-        th = np.linspace(0, 2 * math.pi, 4001)
-        v = np.abs(self.cam.lift(th, 1).d[1]).max()
-        return float(v * (self.d + self.r if self.osc else 1.0))
-
-
-def follower_poses(cam: CylindricalCam, theta) -> tuple:
-    """The roller's pose (X, Y, Z, a, B) at program angles ``theta`` (rad) in the machine frame (a, B in rad)."""
-    return _RollerMotion(cam).pose(theta)
-
-
 # -- envelopes -----------------------------------------------------------------------------
 #: Golden-section steps refining a motion extreme between two samples (bracket × 0.618²⁰ ≈ 7e-5).
 _MOTION_STEPS = 20
@@ -437,7 +198,7 @@ def _reachable(poses: tuple, r: float, rho: float) -> np.ndarray:
     return (Z - r * np.abs(np.sin(B)) <= rho) & (np.abs(Y) <= rho + r)
 
 
-def _envelope(motion: _Motion, samples: np.ndarray, poses: tuple, rho: float, gamma: np.ndarray,
+def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gamma: np.ndarray,
               iterations: int = _MOTION_STEPS) -> tuple[_Envelope, _Envelope]:
     """The extreme wall extents over the motion at each γ: (side 0: −lo, side 1: hi).
 
@@ -506,7 +267,7 @@ def _refine_motion(motion, samples, rho, gamma, side, best_v, best_j, iterations
     g = gamma[found]
 
     def f(pp):
-        return _side(*motion.pose(motion.clamp(pp)), motion.r, motion.L, rho, g, side)
+        return side_extent(*motion.pose(motion.clamp(pp)), motion.r, motion.L, rho, g, side)
 
     pr, vr = _golden(f, lo_p, hi_p, iterations)
     better = vr > best_v[found]
@@ -542,8 +303,8 @@ class _Setup:
     def __init__(self, cam, tool, poses, pose_step_mm):
         self.cam = cam
         self.sigma = cam.sigma
-        self.design = _RollerMotion(cam)
-        self.cut = _ProgramMotion(poses, tool)
+        self.design = RollerMotion(cam)
+        self.cut = ProgramMotion(poses, tool)
         rmax = cam.base_radius
         self.ds = self.design.samples(pose_step_mm, rmax)
         self.dposes = self.design.pose(self.ds)
@@ -565,9 +326,9 @@ class _Setup:
         X, Y, Z, a, B = self.design.pose(theta)
         r, L = self.design.r, self.design.L
         h = 1e-6
-        vp = _side(X, Y, Z, a, B, r, L, rho, gamma + h, side)
-        vm = _side(X, Y, Z, a, B, r, L, rho, gamma - h, side)
-        v0 = _side(X, Y, Z, a, B, r, L, rho, gamma, side)
+        vp = side_extent(X, Y, Z, a, B, r, L, rho, gamma + h, side)
+        vm = side_extent(X, Y, Z, a, B, r, L, rho, gamma - h, side)
+        v0 = side_extent(X, Y, Z, a, B, r, L, rho, gamma, side)
         slope = (vp - vm) / (2 * h * rho)  # dx/du at fixed θ: the envelope's slope (envelope theorem)
         cos_psi = 1.0 / np.sqrt(1.0 + slope**2)
         # the wall point and the roller's surface normal there (machine frame at pose θ)
@@ -720,13 +481,13 @@ def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *,
             ext.append(WallExtreme(float(v), float(rho), float(math.degrees(t) % 360.0)))
         walls.append(WallDeviation(side, ext[0], ext[1]))
     bound = pose_step_mm**2 / (8.0 * tool.radius_mm)
-    return GrooveMeasurement(_frozen(rad), _frozen(np.degrees(th)), _frozen(dev), (walls[0], walls[1]),
+    return GrooveMeasurement(frozen_array(rad), frozen_array(np.degrees(th)), frozen_array(dev), (walls[0], walls[1]),
                              float(bound), float(pose_step_mm), uncut)
 
 
 def design_walls(cam: CylindricalCam, radius_mm: float, cam_angle_deg, pose_step_mm: float = 0.1) -> np.ndarray:
     """The designed walls' x (−X wall, +X wall) at radius ρ and program cam angles θc: (n, 2), mm."""
-    motion = _RollerMotion(cam)
+    motion = RollerMotion(cam)
     s = motion.samples(pose_step_mm, cam.base_radius)
     g = -cam.sigma * np.radians(np.atleast_1d(np.asarray(cam_angle_deg, float)))
     e0, e1 = _envelope(motion, s, motion.pose(s), float(radius_mm), g)
@@ -736,7 +497,7 @@ def design_walls(cam: CylindricalCam, radius_mm: float, cam_angle_deg, pose_step
 def cut_walls(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, radius_mm: float, cam_angle_deg,
               pose_step_mm: float = 0.1) -> np.ndarray:
     """The cut walls' x (−X wall, +X wall) at radius ρ and program cam angles θc: (n, 2), mm; NaN where uncut."""
-    motion = _ProgramMotion(poses, tool)
+    motion = ProgramMotion(poses, tool)
     s = motion.samples(pose_step_mm, cam.base_radius)
     g = -cam.sigma * np.radians(np.atleast_1d(np.asarray(cam_angle_deg, float)))
     e0, e1 = _envelope(motion, s, motion.pose(s), float(radius_mm), g)

@@ -42,7 +42,8 @@ import numpy as np
 from camcam.errors import GeometryError, InputError, PostError
 from camcam.geometry.build import BuiltCam
 from camcam.nc.flank import DisplacedCurve, plan_flank, smallest_tool_radius
-from camcam.nc.groove3d import A_AXIS_SENSE, CylinderTool, GrooveMeasurement, measure_groove, poses_from_program
+from camcam.nc.toolposes import A_AXIS_SENSE, CylinderTool, poses_from_program
+from camcam.nc.groove3d import GrooveMeasurement, measure_groove
 from camcam.nc.result import MachiningResult, deviation_checks
 from camcam.nc.settings import MachiningSpec
 from camcam.nc.tools import SAME_TOOL_MM, groove_passes

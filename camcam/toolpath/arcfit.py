@@ -6,7 +6,7 @@ contour unless it has corners), marched on the printed numbers by
 literature and why it was chosen): joints on or near the curve, each arc
 swinging across the whole band two-sided, a beam search over the joint
 sequences, a closing biarc onto the exact (or, for a closed contour, the
-spline's own) start tangent.  About 1.2–1.45·N_lb arcs on the disc samples,
+spline's own) start tangent.  About 1.34–1.67·N_lb blocks on the disc samples,
 N_lb = ∫(|κ′|/192δ)^⅓ ds.
 
 Lines.  The seed paper's chordal method (Hu & Guo, eq. 8): a chord of length

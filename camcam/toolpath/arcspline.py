@@ -56,11 +56,11 @@ of its quietest stretch (a dwell, :func:`_quiet_start`), its first joint's
 offset and tangent are free, and the march runs on past the start so the
 closing biarc may replace the first arcs.
 
-Measured (``benchmarks/run_nc.py``, the eight disc samples at 0.1–0.0005 mm):
-1.3–1.6·N_lb where N_lb is honest (1.5–2.0 at 0.1 mm, where the +4 matters);
-27 of 40 contour × tolerance cases within 1.2·N_lb + 4, the others over it by
-1–3 arcs, all at 0.002–0.0005 mm.  The default sample's curve: 9, 16, 25+1,
-32 and 42 blocks at 0.1, 0.01, 0.002, 0.001, 0.0005 mm, against 15, 20, –,
+Measured (``benchmarks/run_nc.py --arcs``, the eight disc samples at 0.1–0.0005 mm,
+band 0.95·δ): 1.34–1.67·N_lb where N_lb is honest (1.5–1.8 at 0.1 mm, where
+the +4 matters); 24 of 40 contour × tolerance cases within 1.2·N_lb + 4, the
+others over it by 0.1–2.6 blocks.  The default sample's curve: 9, 16, 25+1,
+32+1 and 40 blocks at 0.1, 0.01, 0.002, 0.001, 0.0005 mm, against 15, 20, –,
 40 and 48 with the earlier one-step-lookahead march split at every break.
 The remaining gap to 1.155·N_lb is the transitions into and out of dwells,
 where κ′ jumps, and the beam's myopia in smooth stretches (arcs reach 0.85–0.97
@@ -69,7 +69,7 @@ of the optimum's length there).
 Vectorised.  The curve (the Chebyshev copy) is tabulated once; a joint is a
 table row, and every candidate arc of every state in a pass is built, put on
 the grid and measured against its curve samples as one set of numpy arrays
-(:func:`candidate_deviation`).
+(:func:`~camcam.toolpath.arcbatch.candidate_deviation`).
 
 Breaks between the curve's analytic pieces are crossed (the curve is G1
 there); only a tangent discontinuity (a corner) ends a section.
@@ -92,10 +92,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from camcam.errors import InputError
+from camcam.toolpath.arcbatch import arc_batch, candidate_deviation, grid_joint, peak_deviation, unit_rows
 from camcam.toolpath.elements import Arc, Line, element_distance, element_tangent
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["SplineBudget", "ArcSpline", "fit_arc_spline", "g1_sections", "candidate_deviation"]
+__all__ = ["SplineBudget", "ArcSpline", "fit_arc_spline", "g1_sections"]
 
 
 @dataclass(frozen=True)
@@ -135,27 +136,6 @@ class ArcSpline:
     starts: tuple[float, ...]
 
 
-def _grid_near(p, weight, q: Quantizer) -> np.ndarray:
-    """Of the four grid points around each row of ``p``, the one with the least ``weight(candidate − p)``."""
-    lo = np.floor(np.asarray(p, float) / q.step_mm).astype(np.int64)
-    best, best_w = None, None
-    for dx in (0, 1):
-        for dy in (0, 1):
-            cand = q.value(lo + np.array([dx, dy]))
-            w = weight(cand - p)
-            if best is None:
-                best, best_w = cand, w
-            else:
-                take = w < best_w
-                best = np.where(take[:, None], cand, best)
-                best_w = np.where(take, w, best_w)
-    return best
-
-
-def _unit_rows(v):
-    return v / np.maximum(np.hypot(v[..., 0], v[..., 1]), 1e-300)[..., None]
-
-
 def g1_sections(curve, a: float, b: float, angle_tol: float = 1e-6) -> list[tuple[float, float]]:
     """Split [a, b] at the breaks where the tangent direction jumps (corners); G1 breaks are crossed."""
     br = [float(x) for x in np.asarray(curve.breaks, float) if a < x < b]
@@ -163,114 +143,11 @@ def g1_sections(curve, a: float, b: float, angle_tol: float = 1e-6) -> list[tupl
     for x in br:
         eps = 1e-9 * max(1.0, abs(x))
         d = curve.evaluate(np.array([x - eps, x + eps]), 1)
-        u = _unit_rows(d)
+        u = unit_rows(d)
         if math.atan2(abs(u[0, 0] * u[1, 1] - u[0, 1] * u[1, 0]), float(u[0] @ u[1])) > angle_tol:
             cuts.append(x)
     cuts.append(b)
     return list(zip(cuts, cuts[1:]))
-
-
-def _grid_joint(p, nrm, q: Quantizer) -> np.ndarray:
-    """The printed joint: of the four grid points around ``p``, the one least off it along the curve normal.
-
-    A shift along the curve only moves where one arc hands over to the next;
-    a shift across it is deviation.
-    """
-    return _grid_near(p, lambda d: np.abs(np.einsum("ij,ij->i", d, nrm)) + 1e-3 * np.hypot(d[:, 0], d[:, 1]), q)
-
-
-def _grid_centre(p0, c, q: Quantizer) -> np.ndarray:
-    """The printed centre: of the four grid points around the exact centre ``c``, the one nearest the line p0–c.
-
-    Moving the centre along the radius only bends the arc a little (its start
-    and tangent stay); moving it across turns the printed arc's start tangent
-    by Δc⊥/R, an error that grows along the arc.  So the grid point with the
-    least cross-radius shift is printed (the writer prints a centre already on
-    the grid unchanged).
-    """
-    u = _unit_rows(c - p0)
-    return _grid_near(c, lambda d: np.abs(d[:, 0] * u[:, 1] - d[:, 1] * u[:, 0]), q)
-
-
-def _arc_batch(p0, tan0, p1, q: Quantizer, sag: float):
-    """Printed arcs leaving p0 (N, 2) along tan0 (N, 2) to p1 (N, 2): centres, flags, end tangents.
-
-    ``p0`` and ``p1`` are already on the printed grid; the centre is put on it
-    too (:func:`_grid_centre`, as an I/J post prints it).  Arcs with sagitta ≤ ``sag`` are lines (nearly straight).
-    """
-    v = p1 - p0
-    nrm = np.stack([-tan0[:, 1], tan0[:, 0]], axis=-1)
-    chord2 = np.einsum("ij,ij->i", v, v)
-    chord = np.sqrt(chord2)
-    h = np.einsum("ij,ij->i", nrm, v)
-    half = np.arcsin(np.minimum(1.0, np.abs(h) / np.maximum(chord, 1e-300)))
-    half = np.where(np.einsum("ij,ij->i", tan0, v) < 0, np.pi - half, half)
-    is_line = (chord / 2 * np.tan(half / 2) <= sag) | (h == 0)
-    r = chord2 / (2 * np.where(h == 0, 1.0, h))
-    centre = _grid_centre(p0, p0 + r[:, None] * nrm, q)
-    ccw = r > 0
-    # end tangent of the printed element
-    rad = p1 - centre
-    rad = _unit_rows(np.where(is_line[:, None], 1.0, rad))
-    t_arc = np.where(ccw[:, None], np.stack([-rad[:, 1], rad[:, 0]], -1), np.stack([rad[:, 1], -rad[:, 0]], -1))
-    t_line = _unit_rows(np.where(is_line[:, None], v, 1.0))
-    t_end = np.where(is_line[:, None], t_line, t_arc)
-    a0 = np.arctan2(p0[:, 1] - centre[:, 1], p0[:, 0] - centre[:, 0])
-    a1 = np.arctan2(p1[:, 1] - centre[:, 1], p1[:, 0] - centre[:, 0])
-    sweep = np.mod(np.where(ccw, a1 - a0, a0 - a1), 2 * np.pi)
-    sweep = np.where(sweep <= 0, sweep + 2 * np.pi, sweep)
-    return centre, ccw, is_line, t_end, a0, sweep
-
-
-def candidate_deviation(q, p0, p1, centre, ccw, is_line, a0, sweep) -> np.ndarray:
-    """Distance of curve samples q (N, M, 2) from each printed element, (N, M).
-
-    Arcs are the controller's spiral: radius linear in angle from |p0 − c| to
-    |p1 − c| (see :func:`~camcam.toolpath.elements.element_nearest`); a sample
-    outside the arc's angular span is measured to the nearer end.  Sweeps are
-    at most a half turn (the fitter's sweep limit).
-    """
-    out = np.empty(q.shape[:2])
-    li = np.nonzero(is_line)[0]
-    if len(li):
-        ql, a, d = q[li], p0[li], p1[li] - p0[li]
-        L2 = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
-        u = np.clip(np.einsum("nmj,nj->nm", ql - a[:, None], d) / L2[:, None], 0.0, 1.0)
-        out[li] = np.hypot(*(ql - a[:, None] - u[..., None] * d[:, None]).transpose(2, 0, 1))
-    ai = np.nonzero(~is_line)[0]
-    if len(ai):
-        qa, c, s0, s1 = q[ai], centre[ai], p0[ai], p1[ai]
-        v0 = s0 - c
-        r0 = np.hypot(v0[:, 0], v0[:, 1])[:, None]
-        r1 = np.hypot(*(s1 - c).T)[:, None]
-        rel = qa - c[:, None]
-        sgn = np.where(ccw[ai], 1.0, -1.0)[:, None]
-        cr = sgn * (v0[:, None, 0] * rel[..., 1] - v0[:, None, 1] * rel[..., 0])
-        dt = v0[:, None, 0] * rel[..., 0] + v0[:, None, 1] * rel[..., 1]
-        frac = np.arctan2(cr, dt) / sweep[ai][:, None]  # angle from the start, in the travel direction
-        dist = np.hypot(rel[..., 0], rel[..., 1])
-        d_arc = np.abs(dist - (r0 + (r1 - r0) * np.clip(frac, 0.0, 1.0)))
-        outside = (frac < 0.0) | (frac > 1.0)
-        if outside.any():
-            rows, cols = np.nonzero(outside)
-            pts = qa[rows, cols]
-            d_end = np.minimum(np.hypot(*(pts - s0[rows]).T), np.hypot(*(pts - s1[rows]).T))
-            d_arc[rows, cols] = d_end
-        out[ai] = d_arc
-    return out
-
-
-def _peak(d: np.ndarray) -> np.ndarray:
-    """Row maxima of sampled |e|, sharpened by a parabola through the peak and its neighbours."""
-    i = np.argmax(d, axis=1)
-    rows = np.arange(len(d))
-    y1 = d[rows, i]
-    inner = (i > 0) & (i < d.shape[1] - 1)
-    y0 = d[rows, np.maximum(i - 1, 0)]
-    y2 = d[rows, np.minimum(i + 1, d.shape[1] - 1)]
-    curv = y0 - 2 * y1 + y2
-    bump = np.where(inner & (curv < 0), -(y2 - y0) ** 2 / (8 * np.where(curv < 0, curv, -1.0)), 0.0)
-    return y1 + np.minimum(bump, 0.5 * y1)
 
 
 class _March:
@@ -298,17 +175,17 @@ class _March:
             self.t = a + np.mod(start - a + steps, b - a)
             self.stop = self.last + extra - 1
         self.P = curve.evaluate(self.t, 0)
-        d1 = _unit_rows(curve.evaluate(self.t, 1))
+        d1 = unit_rows(curve.evaluate(self.t, 1))
         self.T = d1
         self.N = np.stack([-d1[:, 1], d1[:, 0]], -1)
 
     def arcs(self, i0, p0, tan0, i1, o1):
         """Candidate arcs from joints (i0, p0, tan0) to joints at rows i1 offset o1 along the normal (N,)."""
-        p1 = _grid_joint(self.P[i1] + o1[:, None] * self.N[i1], self.N[i1], self.q)
-        centre, ccw, is_line, t_end, a0, sweep = _arc_batch(p0, tan0, p1, self.q, self.sag)
+        p1 = grid_joint(self.P[i1] + o1[:, None] * self.N[i1], self.N[i1], self.q)
+        centre, ccw, is_line, t_end, a0, sweep = arc_batch(p0, tan0, p1, self.q, self.sag)
         rows = np.rint(i0[:, None] + (i1 - i0)[:, None] * self.u[None, :]).astype(int)
         q = self.P[rows]
-        dev = _peak(candidate_deviation(q, p0, p1, centre, ccw, is_line, a0, sweep))
+        dev = peak_deviation(candidate_deviation(q, p0, p1, centre, ccw, is_line, a0, sweep))
         long_enough = np.hypot(*(p1 - p0).T) >= MIN_CHORD_STEPS * self.q.step_mm
         ok = (dev <= self.tol) & (is_line | (sweep <= self.max_sweep)) & (i1 > i0) & long_enough
         return ok, (p1, centre, ccw, is_line, t_end, dev)
@@ -411,8 +288,8 @@ class _March:
             chord2 = float(np.hypot(*(p1 - joint)))
             if min(float(np.hypot(*(joint - p0))), chord2) < MIN_CHORD_STEPS * self.q.step_mm:
                 continue
-            c1, w1, l1, te1, _, s1 = (x[0] for x in _arc_batch(p0[None], tan0[None], joint[None], self.q, self.sag))
-            c2, w2, l2, _, _, s2 = (x[0] for x in _arc_batch(joint[None], te1[None], p1[None], self.q, self.sag))
+            c1, w1, l1, te1, _, s1 = (x[0] for x in arc_batch(p0[None], tan0[None], joint[None], self.q, self.sag))
+            c2, w2, l2, _, _, s2 = (x[0] for x in arc_batch(joint[None], te1[None], p1[None], self.q, self.sag))
             if (not l1 and s1 > self.max_sweep) or (not l2 and s2 > self.max_sweep):
                 continue
             e1 = _element(p0, joint, c1, w1, l1)

@@ -37,8 +37,8 @@ class SegmentBlocks:
 
     @property
     def target(self) -> float:
-        """The issue's target for arcs: 1.5·N_lb + 2."""
-        return 1.5 * self.lower_bound + 2.0
+        """The arc count a near-minimal spline keeps within: 1.2·N_lb + 4 (issue 13's bound)."""
+        return 1.2 * self.lower_bound + 4.0
 
 
 @dataclass(frozen=True)

@@ -14,8 +14,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from camcam.geometry.build import build_cam
-from camcam.nc.groove3d import (CylinderTool, ToolPoses, cut_walls, design_walls, follower_poses, measure_groove,
-                                poses_from_program)
+from camcam.nc.toolposes import CylinderTool, ToolPoses, poses_from_program
+from camcam.nc.groove3d import cut_walls, design_walls, measure_groove
+from camcam.nc.groove_motion import follower_poses
 from camcam.spec import load_spec
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -216,7 +217,7 @@ def test_legacy_translating_figures_of_the_issue():
        gamma=st.floats(-math.pi, math.pi))
 def test_section_interval_is_the_membership_of_the_line(X, Y, Z, a, B, r, L, rho, gamma):
     """The closed-form x-interval of a posed cylinder on r = ρ against 3-D point membership along that line."""
-    from camcam.nc.groove3d import section_interval
+    from camcam.nc.groove_motion import section_interval
 
     lo, hi = (float(v) for v in section_interval(X, Y, Z, a, B, r, L, rho, gamma))
 

@@ -110,3 +110,36 @@ def test_todays_program_plunges_into_the_blank():
     assert r.plunges >= 1
     assert r.plunge_where.endswith("X-2.330 Y56.818 Z-6.000")  # r = 56.87 mm, where the old first pass plunged
     assert not {c.name: c for c in r.checks()}["plunges into material"].ok
+
+
+def test_skipping_far_moves_changes_no_figure(monkeypatch):
+    """The check samples densely only the moves that come near the part; every figure must be what
+    sampling every move densely gives (the default sample's program, where 88 of 156 moves are far)."""
+    import camcam.nc.removal as removal
+    from camcam.nc import machine
+
+    spec = load_spec(ROOT / "samples" / "disc-translating-roller.toml")
+    built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
+    m = spec.machining
+    result = machine(built, m, spec.name, spec.stock)
+    skipped = check_program(result.program.text, m.post, result.blank, m, built)
+    far = removal._far_moves
+    seen = []
+    monkeypatch.setattr(removal, "_far_moves", lambda moves, *a: seen.append(sum(far(moves, *a))) or
+                        [False] * len(moves))
+    dense = check_program(result.program.text, m.post, result.blank, m, built)
+    assert seen[0] > 0  # the program has far moves, so the comparison means something
+    assert skipped == dense  # equal dataclasses: every figure and every "where" identical
+
+
+def test_roughing_that_never_comes_near_is_measured_exactly():
+    """Far from the part, the roughing's clearance is its true distance (the fallback of the far-move skip)."""
+    # a rough pass along y = 45 over the part below y = 20: 25 mm off the edge, beyond tool radius + 1
+    events = ["pass 1/2: rough, test", _rapid(-10.0, 45.0, 5.0), _line(-10.0, 45.0, -1.0), _line(110.0, 45.0, -1.0),
+              "pass 2/2: finish, test", _rapid(-10.0, 20.0 + R_T, 5.0), _line(-10.0, 20.0 + R_T, -1.0),
+              _line(110.0, 20.0 + R_T, -1.0)]
+    r = _check(events, 20.0)
+    # centre 25 mm above the sampled edge (x 20…80), less the tool radius: exact, samples on the same line
+    assert r.rough_clearance_mm == pytest.approx(25.0 - R_T, abs=1e-9)
+    # the band y 30…40 between the two passes stays: up to 20 mm off the part (slab polygons, within 2.4e-3 mm)
+    assert r.material_left_mm == pytest.approx(20.0, abs=0.01)

@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from camcam.geometry.build import build_cam
-from camcam.nc.groove3d import CylinderTool, measure_groove, poses_from_canon, poses_from_program
+from camcam.nc.toolposes import CylinderTool, poses_from_canon, poses_from_program
+from camcam.nc.groove3d import measure_groove
 from camcam.nc.job import machine
 from camcam.spec import load_spec
 from camcam.verify.rs274 import rs274_available, run_rs274

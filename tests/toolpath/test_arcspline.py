@@ -11,7 +11,8 @@ from scipy.spatial import cKDTree
 
 from camcam.geometry.curve import FunctionCurve
 from camcam.toolpath.arcfit import fit_contour, lower_bound_blocks
-from camcam.toolpath.arcspline import _grid_centre, candidate_deviation, g1_sections
+from camcam.toolpath.arcbatch import candidate_deviation, grid_centre
+from camcam.toolpath.arcspline import g1_sections
 from camcam.toolpath.deviation import closest_params
 from camcam.toolpath.elements import Arc, element_distance, element_points, element_tangent
 from camcam.toolpath.quantizer import Quantizer
@@ -137,7 +138,7 @@ def test_printed_centre_least_across_the_radius():
     q = Quantizer(4)
     p0 = q.snap(rng.uniform(-50, 50, (200, 2)))
     c = rng.uniform(-50, 50, (200, 2))
-    got = _grid_centre(p0, c, q)
+    got = grid_centre(p0, c, q)
     u = (c - p0) / np.hypot(*(c - p0).T)[:, None]
     across = lambda x: np.abs((x - c)[:, 0] * u[:, 1] - (x - c)[:, 1] * u[:, 0])  # noqa: E731
     assert np.all(np.abs(got * 1e4 - np.rint(got * 1e4)) < 1e-6)  # on the grid

@@ -1,0 +1,140 @@
+"""Posed cylinders and how they move: the section of a cylinder on r = ρ, the program's tool and the roller.
+
+A cylinder (radius r, length L from its tip) posed at (X, Y, Z, a, B) in the
+barrel-cam machine frame (:mod:`camcam.nc.groove3d` gives the frame and the
+closed form) cuts the cylinder r = ρ of the part in an x-interval at each
+part angle γ (:func:`section_interval`).  A :class:`Motion` is a continuous
+family of such poses: the program's tool moving linearly between its printed
+poses (:class:`ProgramMotion`), or the follower's roller at every program
+angle (:class:`RollerMotion`, exact).
+"""
+
+from __future__ import annotations
+
+import math
+from abc import ABC, abstractmethod
+
+import numpy as np
+
+from camcam.geometry.cylindrical import BarrelOscillatingRoller, CylindricalCam
+from camcam.nc.toolposes import A_AXIS_SENSE, CylinderTool, ToolPoses
+
+__all__ = ["section_interval", "side_extent", "Motion", "ProgramMotion", "RollerMotion", "follower_poses"]
+
+
+def section_interval(X, Y, Z, a, B, r, L, rho, gamma):
+    """x-interval (lo, hi) of a posed cylinder on r = ρ at part angle γ; NaN where it misses."""
+    beta = gamma + a
+    sb, cb = np.sin(B), np.cos(B)
+    eta = rho * np.sin(beta) + Y
+    zeta = rho * np.cos(beta) - Z
+    q2 = r * r - eta * eta
+    q = np.sqrt(np.maximum(q2, 0.0))
+    lo = (zeta * sb - q) / cb
+    hi = (zeta * sb + q) / cb
+    tilted = np.abs(sb) > 1e-15
+    safe = np.where(tilted, sb, 1.0)
+    e0 = -zeta * cb / safe  # axial position 0 (the tip plane)
+    e1 = (L - zeta * cb) / safe  # axial position L
+    alo = np.where(sb > 0, e0, e1)
+    ahi = np.where(sb > 0, e1, e0)
+    lo = np.where(tilted, np.maximum(lo, alo), lo)
+    hi = np.where(tilted, np.minimum(hi, ahi), hi)
+    ok = (q2 >= 0) & (lo <= hi) & (tilted | ((zeta >= 0) & (zeta <= L)))
+    return np.where(ok, X + lo, np.nan), np.where(ok, X + hi, np.nan)
+
+
+def side_extent(X, Y, Z, a, B, r, L, rho, gamma, side):
+    """The wall-side extent: hi for side 1, −lo for side 0 (both maximised); −inf where it misses."""
+    lo, hi = section_interval(X, Y, Z, a, B, r, L, rho, gamma)
+    v = hi if side == 1 else -lo
+    return np.where(np.isnan(v), -np.inf, v)
+
+
+class Motion(ABC):
+    """A continuous motion p ↦ pose (X, Y, Z, a, B) of a cylinder (r, L)."""
+
+    r: float
+    L: float
+    periodic: bool
+    p_lo: float
+    p_hi: float
+
+    @abstractmethod
+    def pose(self, p):
+        """The cylinder's pose (X, Y, Z, a, B) at motion parameter ``p``."""
+
+    @abstractmethod
+    def samples(self, pose_step_mm: float, rho_max: float) -> np.ndarray:
+        """Motion parameters no farther apart than ``pose_step_mm`` at radius ``rho_max``."""
+
+    def clamp(self, p):
+        return p if self.periodic else np.clip(p, self.p_lo, self.p_hi)
+
+
+class ProgramMotion(Motion):
+    periodic = False
+
+    def __init__(self, poses: ToolPoses, tool: CylinderTool):
+        self.r, self.L = tool.radius_mm, tool.length_mm
+        s = A_AXIS_SENSE[poses.a_axis]
+        self.q = np.column_stack([poses.tip_mm, s * np.radians(poses.a_deg), np.radians(poses.b_deg)])
+        self.p_lo, self.p_hi = 0.0, float(len(self.q) - 1)
+
+    def pose(self, p):
+        p = np.asarray(p, float)
+        k = np.clip(np.floor(p).astype(int), 0, len(self.q) - 2)
+        t = (p - k)[..., None]
+        v = self.q[k] * (1 - t) + self.q[k + 1] * t
+        return tuple(v[..., i] for i in range(5))
+
+    def samples(self, pose_step_mm, rho_max):
+        d = np.abs(np.diff(self.q, axis=0))
+        size = d[:, 0] + d[:, 1] + d[:, 2] + rho_max * d[:, 3] + (self.L + self.r) * d[:, 4]
+        m = np.maximum(1, np.ceil(size / pose_step_mm)).astype(int)
+        starts = np.repeat(np.arange(len(m)), m)
+        frac = np.arange(m.sum()) - np.repeat(np.cumsum(m) - m, m)
+        p = starts + frac / np.repeat(m, m)
+        return np.append(p, self.p_hi)
+
+
+class RollerMotion(Motion):
+    """The roller at program angle θ = p (radians), exactly."""
+
+    periodic = True
+
+    def __init__(self, cam: CylindricalCam):
+        self.cam = cam
+        self.r = cam.roller_radius
+        f = cam.follower
+        self.osc = isinstance(f, BarrelOscillatingRoller)
+        self.d = f.pivot_distance if self.osc else 0.0
+        self.L = 2.0 * self.d if self.osc else 2.0 * cam.base_radius
+        self.p_lo, self.p_hi = 0.0, 2 * math.pi
+
+    def pose(self, p):
+        th = np.asarray(p, float)
+        flat = np.mod(th.ravel(), 2 * math.pi)
+        s = self.cam.lift(flat, 0).value.reshape(th.shape)
+        a = self.cam.sigma * th
+        half = 0.5 * self.cam.length
+        zero = np.zeros_like(th)
+        if not self.osc:
+            return half + s, zero, zero, a, zero
+        # axis through the pivot (half, 0, d) along (sin θf, 0, cos θf); tip at the pivot's depth d below it
+        return half - self.d * np.sin(s), zero, self.d - self.d * np.cos(s), a, s
+
+    def samples(self, pose_step_mm, rho_max):
+        n = int(math.ceil(2 * math.pi * (rho_max + self._speed()) / pose_step_mm))
+        return np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+
+    def _speed(self) -> float:
+        """Largest |dx/dθ| of the roller axis (mm/rad), from a dense view (sets only the sample count)."""
+        th = np.linspace(0, 2 * math.pi, 4001)
+        v = np.abs(self.cam.lift(th, 1).d[1]).max()
+        return float(v * (self.d + self.r if self.osc else 1.0))
+
+
+def follower_poses(cam: CylindricalCam, theta) -> tuple:
+    """The roller's pose (X, Y, Z, a, B) at program angles ``theta`` (rad) in the machine frame (a, B in rad)."""
+    return RollerMotion(cam).pose(theta)

@@ -1,0 +1,141 @@
+"""Candidate arcs of the arc-spline march as arrays: printed joints and centres, and their deviation.
+
+:mod:`camcam.toolpath.arcspline` tries many next arcs at once; each is built
+here as the post prints it (joint and centre on the grid,
+:func:`grid_joint`, :func:`grid_centre`; :func:`arc_batch`) and measured
+against curve samples (:func:`candidate_deviation`, the controller's
+spiral included; :func:`peak_deviation` sharpens the sampled maximum).
+Rows are candidates: arrays in, arrays out.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from camcam.toolpath.quantizer import Quantizer
+
+__all__ = ["grid_near", "unit_rows", "grid_joint", "grid_centre", "arc_batch", "candidate_deviation", "peak_deviation"]
+
+
+def grid_near(p, weight, q: Quantizer) -> np.ndarray:
+    """Of the four grid points around each row of ``p``, the one with the least ``weight(candidate − p)``."""
+    lo = np.floor(np.asarray(p, float) / q.step_mm).astype(np.int64)
+    best, best_w = None, None
+    for dx in (0, 1):
+        for dy in (0, 1):
+            cand = q.value(lo + np.array([dx, dy]))
+            w = weight(cand - p)
+            if best is None:
+                best, best_w = cand, w
+            else:
+                take = w < best_w
+                best = np.where(take[:, None], cand, best)
+                best_w = np.where(take, w, best_w)
+    return best
+
+
+def unit_rows(v):
+    return v / np.maximum(np.hypot(v[..., 0], v[..., 1]), 1e-300)[..., None]
+
+
+def grid_joint(p, nrm, q: Quantizer) -> np.ndarray:
+    """The printed joint: of the four grid points around ``p``, the one least off it along the curve normal.
+
+    A shift along the curve only moves where one arc hands over to the next;
+    a shift across it is deviation.
+    """
+    return grid_near(p, lambda d: np.abs(np.einsum("ij,ij->i", d, nrm)) + 1e-3 * np.hypot(d[:, 0], d[:, 1]), q)
+
+
+def grid_centre(p0, c, q: Quantizer) -> np.ndarray:
+    """The printed centre: of the four grid points around the exact centre ``c``, the one nearest the line p0–c.
+
+    Moving the centre along the radius only bends the arc a little (its start
+    and tangent stay); moving it across turns the printed arc's start tangent
+    by Δc⊥/R, an error that grows along the arc.  So the grid point with the
+    least cross-radius shift is printed (the writer prints a centre already on
+    the grid unchanged).
+    """
+    u = unit_rows(c - p0)
+    return grid_near(c, lambda d: np.abs(d[:, 0] * u[:, 1] - d[:, 1] * u[:, 0]), q)
+
+
+def arc_batch(p0, tan0, p1, q: Quantizer, sag: float):
+    """Printed arcs leaving p0 (N, 2) along tan0 (N, 2) to p1 (N, 2): centres, flags, end tangents.
+
+    ``p0`` and ``p1`` are already on the printed grid; the centre is put on it
+    too (:func:`grid_centre`, as an I/J post prints it).  Arcs with sagitta ≤ ``sag`` are lines (nearly straight).
+    """
+    v = p1 - p0
+    nrm = np.stack([-tan0[:, 1], tan0[:, 0]], axis=-1)
+    chord2 = np.einsum("ij,ij->i", v, v)
+    chord = np.sqrt(chord2)
+    h = np.einsum("ij,ij->i", nrm, v)
+    half = np.arcsin(np.minimum(1.0, np.abs(h) / np.maximum(chord, 1e-300)))
+    half = np.where(np.einsum("ij,ij->i", tan0, v) < 0, np.pi - half, half)
+    is_line = (chord / 2 * np.tan(half / 2) <= sag) | (h == 0)
+    r = chord2 / (2 * np.where(h == 0, 1.0, h))
+    centre = grid_centre(p0, p0 + r[:, None] * nrm, q)
+    ccw = r > 0
+    # end tangent of the printed element
+    rad = p1 - centre
+    rad = unit_rows(np.where(is_line[:, None], 1.0, rad))
+    t_arc = np.where(ccw[:, None], np.stack([-rad[:, 1], rad[:, 0]], -1), np.stack([rad[:, 1], -rad[:, 0]], -1))
+    t_line = unit_rows(np.where(is_line[:, None], v, 1.0))
+    t_end = np.where(is_line[:, None], t_line, t_arc)
+    a0 = np.arctan2(p0[:, 1] - centre[:, 1], p0[:, 0] - centre[:, 0])
+    a1 = np.arctan2(p1[:, 1] - centre[:, 1], p1[:, 0] - centre[:, 0])
+    sweep = np.mod(np.where(ccw, a1 - a0, a0 - a1), 2 * np.pi)
+    sweep = np.where(sweep <= 0, sweep + 2 * np.pi, sweep)
+    return centre, ccw, is_line, t_end, a0, sweep
+
+
+def candidate_deviation(q, p0, p1, centre, ccw, is_line, a0, sweep) -> np.ndarray:
+    """Distance of curve samples q (N, M, 2) from each printed element, (N, M).
+
+    Arcs are the controller's spiral: radius linear in angle from |p0 − c| to
+    |p1 − c| (see :func:`~camcam.toolpath.elements.element_nearest`); a sample
+    outside the arc's angular span is measured to the nearer end.  Sweeps are
+    at most a half turn (the fitter's sweep limit).
+    """
+    out = np.empty(q.shape[:2])
+    li = np.nonzero(is_line)[0]
+    if len(li):
+        ql, a, d = q[li], p0[li], p1[li] - p0[li]
+        L2 = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+        u = np.clip(np.einsum("nmj,nj->nm", ql - a[:, None], d) / L2[:, None], 0.0, 1.0)
+        out[li] = np.hypot(*(ql - a[:, None] - u[..., None] * d[:, None]).transpose(2, 0, 1))
+    ai = np.nonzero(~is_line)[0]
+    if len(ai):
+        qa, c, s0, s1 = q[ai], centre[ai], p0[ai], p1[ai]
+        v0 = s0 - c
+        r0 = np.hypot(v0[:, 0], v0[:, 1])[:, None]
+        r1 = np.hypot(*(s1 - c).T)[:, None]
+        rel = qa - c[:, None]
+        sgn = np.where(ccw[ai], 1.0, -1.0)[:, None]
+        cr = sgn * (v0[:, None, 0] * rel[..., 1] - v0[:, None, 1] * rel[..., 0])
+        dt = v0[:, None, 0] * rel[..., 0] + v0[:, None, 1] * rel[..., 1]
+        frac = np.arctan2(cr, dt) / sweep[ai][:, None]  # angle from the start, in the travel direction
+        dist = np.hypot(rel[..., 0], rel[..., 1])
+        d_arc = np.abs(dist - (r0 + (r1 - r0) * np.clip(frac, 0.0, 1.0)))
+        outside = (frac < 0.0) | (frac > 1.0)
+        if outside.any():
+            rows, cols = np.nonzero(outside)
+            pts = qa[rows, cols]
+            d_end = np.minimum(np.hypot(*(pts - s0[rows]).T), np.hypot(*(pts - s1[rows]).T))
+            d_arc[rows, cols] = d_end
+        out[ai] = d_arc
+    return out
+
+
+def peak_deviation(d: np.ndarray) -> np.ndarray:
+    """Row maxima of sampled |e|, sharpened by a parabola through the peak and its neighbours."""
+    i = np.argmax(d, axis=1)
+    rows = np.arange(len(d))
+    y1 = d[rows, i]
+    inner = (i > 0) & (i < d.shape[1] - 1)
+    y0 = d[rows, np.maximum(i - 1, 0)]
+    y2 = d[rows, np.minimum(i + 1, d.shape[1] - 1)]
+    curv = y0 - 2 * y1 + y2
+    bump = np.where(inner & (curv < 0), -(y2 - y0) ** 2 / (8 * np.where(curv < 0, curv, -1.0)), 0.0)
+    return y1 + np.minimum(bump, 0.5 * y1)
