@@ -349,11 +349,11 @@ def _finish_figures(moves, levels, top_z, keep, boundary, r_t):
         d[inside], _ = tree.query(q[inside, :2])
     sd = np.where(inside, -d, d)
     at_final = np.zeros(len(q), bool)
-    final_far = []  # far moves at the final depth
+    final_far = []  # far moves at the final depth (sampled only if a boundary point has no path point near)
     for i, m in enumerate(moves):
         if far[i]:
             if m.p0[2] <= final + 1e-6 and m.p1[2] <= final + 1e-6:  # z is linear along a move
-                final_far.append(m.samples(DENSE_MM)[:, :2])
+                final_far.append(m)
         elif len(dense[i]) and np.all(dense[i][:, 2] <= final + 1e-6):
             at_final[ends[i]:ends[i + 1]] = True
     if at_final.any() or final_far:
@@ -363,7 +363,8 @@ def _finish_figures(moves, levels, top_z, keep, boundary, r_t):
             np.full(len(boundary), np.inf), None)
         beyond = ~np.isfinite(d_left)
         if beyond.any():
-            d_left[beyond], _ = cKDTree(np.concatenate([q[at_final, :2], *final_far])).query(boundary[beyond])
+            pts = np.concatenate([q[at_final, :2], *(m.samples(DENSE_MM)[:, :2] for m in final_far)])
+            d_left[beyond], _ = cKDTree(pts).query(boundary[beyond])
         k = int(np.argmax(d_left))
         left, left_at = float(d_left[k] - r_t), f"design boundary at X{boundary[k, 0]:.3f} Y{boundary[k, 1]:.3f}"
     else:
