@@ -126,6 +126,8 @@ class SplineBudget:
     offsets: tuple[float, ...] = (0.0, -0.3, 0.3, -0.65, 0.65)
     state_bins: tuple[int, int] = (5, 33)
     wrap_joints: int = 6
+    start_shifts: tuple[float, ...] = (0.0, -0.12, 0.12, 0.36, -0.6, 0.6, 0.24, -0.36)
+    goal: tuple[float, float] = (1.18, 4.0)
 
 
 @dataclass(frozen=True)
@@ -308,6 +310,64 @@ class _March:
         return out
 
 
+    def landings(self, st, chain, jmax: int, row_cap: int) -> list:
+        """Closing arcs from state ``st`` that land tangentially on the circle of the spline's j-th arc, j ≤ ``jmax``.
+
+        One arc from the state's joint and tangent touches a given circle
+        with the same direction of travel at exactly one point (:func:`_touch`).
+        Where that point lies on
+        the j-th arc's circle ahead of its end, the spline closes with this one
+        arc and the j-th arc drawn back to the touch point: arcs 1 … j−1 drop
+        out.  A biarc onto the j-th joint spends two arcs for the same; the
+        feasible landings (printed, G1 up to the rounding, within the band)
+        are returned as (j, deviation, closing arc, lengthened j-th arc).
+        """
+        out = []
+        p, t = st.p, st.tan
+        step = self.q.step_mm
+        for j in range(1, jmax + 1):
+            jt = chain[j - 1]
+            row = jt.i + self.last
+            if not st.i < row <= row_cap:
+                continue
+            p_s, p_e, c, ccw, is_line = jt.arc
+            if is_line:
+                continue
+            c = np.asarray(c, float)
+            R = float(np.hypot(*(p_e - c)))
+            x, good = _touch(p[None], t[None], c[None], np.array([R if ccw else -R]))
+            if not good[0]:
+                continue
+            x = self.q.snap(x[0])
+            chord1 = float(np.hypot(*(x - p)))
+            if min(chord1, float(np.hypot(*(p_e - x)))) < MIN_CHORD_STEPS * step:
+                continue
+            # the lengthened arc: from x round to the j-th joint, forward and within the sweep limit
+            a_x = math.atan2(x[1] - c[1], x[0] - c[0])
+            a_e = math.atan2(p_e[1] - c[1], p_e[0] - c[0])
+            sweep2 = (a_e - a_x if ccw else a_x - a_e) % (2 * math.pi)
+            if not 0 < sweep2 <= self.max_sweep:
+                continue
+            c1, w1, l1, _, _, s1 = (v[0] for v in arc_batch(p[None], t[None], x[None], self.q, self.sag))
+            if (not l1 and s1 > self.max_sweep) or float((x - p) @ t) <= 0:
+                continue
+            e1 = _element(p, x, c1, w1, l1)
+            e2 = _plain(Arc(tuple(x), tuple(p_e), tuple(c), bool(ccw)))
+            t_end, t_start = element_tangent(e1, True), element_tangent(e2, False)
+            kink = abs(math.atan2(t_end[0] * t_start[1] - t_end[1] * t_start[0], float(t_end @ t_start)))
+            # both rounded: the touch point turns the closing arc's end tangent by ≤ 2·0.71·step/chord and the
+            # lengthened arc's start tangent by ≤ 0.71·step/R; more than that is no G1
+            if kink > 0.71 * step * (2.0 / chord1 + 1.0 / R) + 1e-12:
+                continue
+            rows = np.unique(np.rint(np.linspace(st.i, row, 4 * self.budget.samples)).astype(int))
+            qs = self.P[rows]
+            dev_c = float(np.minimum(element_distance(e1, qs), element_distance(e2, qs)).max())
+            dev = max(dev_c, float(np.hypot(*(qs - x).T).min()))
+            if dev <= self.tol:
+                out.append((j, dev, e1, e2))
+        return out
+
+
 class _State:
     """A joint of a partial spline: table row, printed point, tangent, last step (rows), parent, element to it.
 
@@ -392,11 +452,31 @@ def _start_states(m: _March, closed: bool, budget: SplineBudget) -> list:
     return states
 
 
-def _quiet_start(curve, a: float, b: float, n: int = 2048) -> float:
-    """Where a closed curve's spline starts and closes: the middle of its longest stretch of near-constant curvature.
+def _touch(p, t, c, Rs):
+    """Where the one arc leaving p (N, 2) along t (N, 2) touches the circle (centre c, signed radius Rs), same travel.
 
-    There (a dwell's circle, for a cam) the curve's own tangent is the optimal
-    joint state, so neither the first arc nor the closing biarc is cut short.
+    Signed radii (positive: centre on the left): the arc's centre q = p + ρ n
+    and the circle's centre both lie on the common normal at the touch point,
+    |q − c| = |ρ − Rs|, so ρ = (Rs² − |p − c|²) / (2 (n·(p − c) + Rs)).
+    Returns the touch points and which rows have one.
+    """
+    n = np.stack([-t[:, 1], t[:, 0]], -1)
+    d = p - c
+    den = 2.0 * (np.einsum("ij,ij->i", d, n) + Rs)
+    rho = (Rs * Rs - np.einsum("ij,ij->i", d, d)) / np.where(np.abs(den) > 1e-300, den, 1.0)
+    good = (np.abs(den) > 1e-300) & (np.abs(rho - Rs) > 1e-9 * np.abs(Rs))
+    qc = p + rho[:, None] * n
+    x = c - (Rs / np.where(good, rho - Rs, 1.0))[:, None] * (qc - c)
+    return x, good
+
+
+def _quiet_stretch(curve, a: float, b: float, n: int = 2048) -> tuple[float, float, float]:
+    """A closed curve's longest stretch of near-constant curvature: its middle, its half length (parameter), ∫|κ′|^⅓ ds.
+
+    The middle is where the spline starts and closes: there (a dwell's circle,
+    for a cam) the curve's own tangent is the optimal joint state, so neither
+    the first arc nor the closing arc is cut short.  The last figure (periodic
+    trapezoid rule on the ``n`` samples) gives the march its N_lb.
     """
     t = np.linspace(a, b, n, endpoint=False)
     d1, d2, d3 = (curve.evaluate(t, k) for k in (1, 2, 3))
@@ -405,10 +485,11 @@ def _quiet_start(curve, a: float, b: float, n: int = 2048) -> float:
     dot12 = d1[:, 0] * d2[:, 0] + d1[:, 1] * d2[:, 1]
     cross3 = d1[:, 0] * d3[:, 1] - d1[:, 1] * d3[:, 0]
     dk = (cross3 * v * v - 3.0 * cross * dot12) / v**6  # dκ/dt / |P′|
-    dens = np.cbrt(np.abs(dk)) * v  # the N_lb integrand per unit parameter
+    dens = np.cbrt(np.abs(dk)) * v  # the N_lb integrand per unit parameter (× (192 δ)^⅓)
+    integral = float(dens.sum() * (b - a) / n)
     quiet = dens <= 0.05 * dens.mean()
     if not quiet.any() or quiet.all():
-        return float(t[int(np.argmin(dens))])
+        return float(t[int(np.argmin(dens))]), 0.0, integral
     # longest cyclic run of quiet samples
     k0 = int(np.argmin(quiet))  # a loud sample: runs do not wrap past it
     q = np.roll(quiet, -k0)
@@ -418,7 +499,7 @@ def _quiet_start(curve, a: float, b: float, n: int = 2048) -> float:
         if run > best:
             best, best_end = run, k
     mid = (best_end - (best - 1) / 2.0 + k0) % n
-    return float(a + (b - a) * mid / n)
+    return float(a + (b - a) * mid / n), (b - a) * best / (2.0 * n), integral
 
 
 #: Tangent errors the frontier tells apart, in units of δ/h (the optimum sits at ±10.4).
@@ -488,8 +569,24 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
     >>> len(sp.elements) <= 1.2 * 14.65 + 4, sp.elements[0].start == sp.elements[-1].end  # N_lb = 14.65
     (True, True)
     """
-    tol = tolerance_mm
-    m = _March(curve, a, b, tol, max_sweep, sag, quantizer, budget, _quiet_start(curve, a, b) if closed else None)
+    if not closed:
+        return _march(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, False, budget, None)
+    mid, half, integral = _quiet_stretch(curve, a, b)
+    goal = budget.goal[0] * integral / np.cbrt(192.0 * tolerance_mm) + budget.goal[1]
+    best = None
+    for shift in budget.start_shifts:
+        start = a + (mid - a + shift * half) % (b - a)
+        spline = _march(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, True, budget, start)
+        if best is None or len(spline.elements) < len(best.elements):
+            best = spline
+        if len(best.elements) <= goal:
+            break
+    return best
+
+
+def _march(curve, a, b, tol, quantizer, max_sweep, sag, closed, budget, start) -> ArcSpline:
+    """One beam march over [a, b] (closed: from ``start`` once round and closing onto its own first joints)."""
+    m = _March(curve, a, b, tol, max_sweep, sag, quantizer, budget, start)
     W = budget.beam
     level = _start_states(m, closed, budget)
     m.expand(level, budget.offsets)
@@ -512,6 +609,12 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
                 for j in range(1, min(budget.wrap_joints, len(chain) - 1) + 1):
                     jt = chain[j - 1]
                     targets.append((jt.p, jt.tan, jt.i + m.last, j))
+            if closed:
+                cap = min(st.i + 2.0 * (st.reach - st.i) + 1, len(m.P) - 1)
+                for j, dev, e1, e2 in m.landings(st, chain, min(budget.wrap_joints, len(chain) - 1), cap):
+                    total = level_no + 2 - j  # one closing arc; arcs 1 … j−1 drop out, the j-th is lengthened
+                    if best is None or (total, dev) < (best[5], best[0]):
+                        best, best_level = (dev, st, e1, e2, j, total), level_no
             for p1, t1, row, saved in targets:
                 if not st.i < row <= min(st.i + 2.0 * (st.reach - st.i) + 1, len(m.P) - 1):
                     continue
@@ -543,7 +646,7 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
         level.sort(key=lambda c: -c.reach)  # one-step lookahead: the farthest next reach first
         level = level[:W]
     if best is None:
-        raise InputError(f"cannot fit the curve on t ∈ [{a:g}, {b:g}] within {tolerance_mm:g} mm")
+        raise InputError(f"cannot fit the curve on t ∈ [{a:g}, {b:g}] within {tol:g} mm")
     _, st, e1, e2, saved, _ = best
     elems, starts = [e2, e1], [st.i, st.i]  # the closing biarc's second arc counts with the first
     while st.parent is not None:
