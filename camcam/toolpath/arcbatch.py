@@ -74,7 +74,7 @@ def arc_batch(p0, tan0, p1, q: Quantizer, sag: float):
     half = np.arcsin(np.minimum(1.0, np.abs(h) / np.maximum(chord, 1e-300)))
     half = np.where(np.einsum("ij,ij->i", tan0, v) < 0, np.pi - half, half)
     is_line = (chord / 2 * np.tan(half / 2) <= sag) | (h == 0)
-    r = chord2 / (2 * np.where(h == 0, 1.0, h))
+    r = chord2 / (2 * np.where(is_line, 1.0, h))  # a line's centre is never used (a tiny h would overflow)
     centre = grid_centre(p0, p0 + r[:, None] * nrm, q)
     ccw = r > 0
     # end tangent of the printed element

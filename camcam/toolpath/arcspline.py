@@ -40,8 +40,7 @@ short (≈ 1.7·N_lb measured here before this module); this module searches
 the joint sequences breadth-first with a beam: every state after k arcs is
 expanded to many candidate next joints at once (numpy: every candidate arc
 against the curve as one array), the states reaching farthest are kept, and
-a biarc with a free join (Held–Eibl's family,
-searched over its join parameter) closes onto the end gives the spline.
+a closing biarc or arc (below) gives the spline.
 
 What the search keeps.  Joints on the curve alone cannot undo a tangent
 error on a stretch of constant curvature (a dwell's circle): an arc between
@@ -51,20 +50,59 @@ is Maier's free breakpoint where it pays.  After k arcs the states are
 thinned like a reachable region: per cell of (joint offset, tangent error)
 only the farthest survives (:func:`_frontier`; the tangent error is measured
 in δ/h, the optimum's joints sit at ±10.4), then the ``beam`` whose next arc
-reaches farthest (one-step lookahead).  A closed contour starts at the middle
-of its quietest stretch (a dwell, :func:`_quiet_start`), its first joint's
-offset and tangent are free, and the march runs on past the start so the
-closing biarc may replace the first arcs.
+reaches farthest (one-step lookahead).
+
+Closing a closed contour.  The march starts at the middle of a stretch of
+near-constant curvature (a dwell, :func:`_quiet_stretches`) with its first
+joint's offset and tangent free, runs on past the start by a third of a
+turn, and closes in one of two ways, whichever spends fewer arcs:
+
+* a biarc with a free join (Held–Eibl's family, searched over its join
+  parameter) onto the start or onto the j-th joint, the first j arcs then
+  dropped (two arcs for the closure);
+* one arc that *lands* on the circle of the j-th arc: from a state's joint and
+  tangent exactly one arc touches a given circle with the same direction of
+  travel (:func:`_touch`, signed radii ρ = (R² − |p − c|²) / (2 (n·(p − c) + R))),
+  so where the touch point lies on the j-th arc's circle ahead of its end,
+  that arc is drawn back to it and arcs 1 … j−1 drop out
+  (:meth:`_March.landings`): one arc for the closure.  The touch point is
+  rounded to the grid, and the closure is kept only if the kink it leaves is
+  no more than rounding makes (≤ 0.71·step·(2/chord + 1/R)) and the two arcs
+  stay within the band on the curve samples.
+
+Counting arcs is a step function of a chaotic search: moving the start by a
+few degrees inside the dwell changes the count by ±1–2 (measured on the disc
+samples: e.g. 31–34 arcs on one curve at 0.001 mm).  So while a closed
+contour's spline has more than ``goal`` = 1.18·N_lb + 4 blocks (N_lb of the
+march's band, 0.95·δ: 1.18·(1/0.95)^⅓ = 1.2 on the tolerance's N_lb, the
+issue's bound), the march starts again from shifted points of the longest
+dwell and of the next one (``start_shifts`` × half the stretch, at most
+``tries`` marches) and keeps the spline with the fewest blocks.  A contour
+within the goal at the first start (the default sample at 0.1–0.001 mm) is
+marched once, as before.
+
+Tried and dropped (measured on the misses): a finer frontier (33 → 65 or 129
+tangent cells, pool 80–200, beam 30–60) saves 1–2 arcs on some cases at 2–4×
+the time and loses 1–2 on others; extra children that land tangentially on a
+dwell's circle (offset across the band) from the states before it changed no
+count on the 40 cases.
 
 Measured (``benchmarks/run_nc.py --arcs``, the eight disc samples at 0.1–0.0005 mm,
-band 0.95·δ): 1.34–1.67·N_lb where N_lb is honest (1.5–1.8 at 0.1 mm, where
-the +4 matters); 24 of 40 contour × tolerance cases within 1.2·N_lb + 4, the
-others over it by 0.1–2.6 blocks.  The default sample's curve: 9, 16, 25+1,
-32+1 and 40 blocks at 0.1, 0.01, 0.002, 0.001, 0.0005 mm, against 15, 20, –,
-40 and 48 with the earlier one-step-lookahead march split at every break.
-The remaining gap to 1.155·N_lb is the transitions into and out of dwells,
-where κ′ jumps, and the beam's myopia in smooth stretches (arcs reach 0.85–0.97
-of the optimum's length there).
+band 0.95·δ): 38 of 40 contour × tolerance cases within 1.2·N_lb + 4 (24
+with the biarc closure and one start; 27 with the landing closure alone),
+1.28–1.57·N_lb at 0.01–0.0005 mm where N_lb is honest (1.48–1.76 at 0.1 mm,
+where the +4 matters).
+The two misses, each by one block: disc-translating-flat at 0.0005 mm (40
+against 39.8) and optimize/run-table1 at 0.001 mm (31 against 30.4); 32
+starts found no spline with one arc fewer.  The default sample's curve: 9,
+16, 25, 32 and 39 blocks at 0.1, 0.01, 0.002, 0.001, 0.0005 mm (9, 16, 26,
+33, 40 before the landing closure; 15, 20, –, 40 and 48 with the earlier
+one-step-lookahead march split at every break).  The remaining gap to
+1.155·N_lb is the transitions into and out of dwells, where κ′ jumps (about
+an arc each), and the beam's myopia in smooth stretches (arcs reach
+0.85–0.97 of the optimum's length there).  The further starts cost time only
+where the first misses the goal: up to ``tries`` marches (≈ 3 s each at
+0.001 mm), e.g. 29–35 s of fit on the contours that need many.
 
 Vectorised.  The curve (the Chebyshev copy) is tabulated once; a joint is a
 table row, and every candidate arc of every state in a pass is built, put on
@@ -127,6 +165,8 @@ class SplineBudget:
     state_bins: tuple[int, int] = (5, 33)
     wrap_joints: int = 6
     start_shifts: tuple[float, ...] = (0.0, -0.12, 0.12, 0.36, -0.6, 0.6, 0.24, -0.36)
+    stretches: int = 2
+    tries: int = 12
     goal: tuple[float, float] = (1.18, 4.0)
 
 
@@ -458,25 +498,29 @@ def _touch(p, t, c, Rs):
     Signed radii (positive: centre on the left): the arc's centre q = p + ρ n
     and the circle's centre both lie on the common normal at the touch point,
     |q − c| = |ρ − Rs|, so ρ = (Rs² − |p − c|²) / (2 (n·(p − c) + Rs)).
-    Returns the touch points and which rows have one.
+    Returns the touch points and which rows have one (not a line, not the
+    circle itself, not a point).
     """
     n = np.stack([-t[:, 1], t[:, 0]], -1)
     d = p - c
     den = 2.0 * (np.einsum("ij,ij->i", d, n) + Rs)
     rho = (Rs * Rs - np.einsum("ij,ij->i", d, d)) / np.where(np.abs(den) > 1e-300, den, 1.0)
-    good = (np.abs(den) > 1e-300) & (np.abs(rho - Rs) > 1e-9 * np.abs(Rs))
+    # no touch point: the arc is a line (den = 0), the circle itself (ρ = Rs) or shrinks to p (ρ = 0, p on the
+    # circle travelled the other way)
+    good = (np.abs(den) > 1e-300) & (np.abs(rho - Rs) > 1e-9 * np.abs(Rs)) & (np.abs(rho) > 1e-9 * np.abs(Rs))
     qc = p + rho[:, None] * n
     x = c - (Rs / np.where(good, rho - Rs, 1.0))[:, None] * (qc - c)
     return x, good
 
 
-def _quiet_stretch(curve, a: float, b: float, n: int = 2048) -> tuple[float, float, float]:
-    """A closed curve's longest stretch of near-constant curvature: its middle, its half length (parameter), ∫|κ′|^⅓ ds.
+def _quiet_stretches(curve, a: float, b: float, n: int = 2048) -> tuple[list, float]:
+    """A closed curve's stretches of near-constant curvature, longest first, as (middle, half length); and ∫|κ′|^⅓ ds.
 
-    The middle is where the spline starts and closes: there (a dwell's circle,
-    for a cam) the curve's own tangent is the optimal joint state, so neither
-    the first arc nor the closing arc is cut short.  The last figure (periodic
-    trapezoid rule on the ``n`` samples) gives the march its N_lb.
+    A stretch's middle is where the spline may start and close: there (a
+    dwell's circle, for a cam) the curve's own tangent is the optimal joint
+    state, so neither the first arc nor the closing arc is cut short.  The
+    integral (periodic trapezoid rule on the ``n`` samples) gives the march
+    its N_lb.  A curve without such a stretch starts where κ′ is least.
     """
     t = np.linspace(a, b, n, endpoint=False)
     d1, d2, d3 = (curve.evaluate(t, k) for k in (1, 2, 3))
@@ -489,17 +533,25 @@ def _quiet_stretch(curve, a: float, b: float, n: int = 2048) -> tuple[float, flo
     integral = float(dens.sum() * (b - a) / n)
     quiet = dens <= 0.05 * dens.mean()
     if not quiet.any() or quiet.all():
-        return float(t[int(np.argmin(dens))]), 0.0, integral
-    # longest cyclic run of quiet samples
+        return [(float(t[int(np.argmin(dens))]), 0.0)], integral
+    # cyclic runs of quiet samples
     k0 = int(np.argmin(quiet))  # a loud sample: runs do not wrap past it
     q = np.roll(quiet, -k0)
-    best, run, best_end = 0, 0, 0
+    runs, run = [], 0
     for k, flag in enumerate(q):
-        run = run + 1 if flag else 0
-        if run > best:
-            best, best_end = run, k
-    mid = (best_end - (best - 1) / 2.0 + k0) % n
-    return float(a + (b - a) * mid / n), (b - a) * best / (2.0 * n), integral
+        if flag:
+            run += 1
+        elif run:
+            runs.append((run, k - 1))
+            run = 0
+    if run:
+        runs.append((run, n - 1))
+    runs.sort(key=lambda r: -r[0])
+    out = []
+    for length, end in runs:
+        mid = (end - (length - 1) / 2.0 + k0) % n
+        out.append((float(a + (b - a) * mid / n), (b - a) * length / (2.0 * n)))
+    return out, integral
 
 
 #: Tangent errors the frontier tells apart, in units of δ/h (the optimum sits at ±10.4).
@@ -571,10 +623,12 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
     """
     if not closed:
         return _march(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, False, budget, None)
-    mid, half, integral = _quiet_stretch(curve, a, b)
+    stretches, integral = _quiet_stretches(curve, a, b)
     goal = budget.goal[0] * integral / np.cbrt(192.0 * tolerance_mm) + budget.goal[1]
+    # the longest stretch first; then the others at least half as long, each start shift in turn
+    stretches = [st for st in stretches if st[1] >= 0.5 * stretches[0][1]][:budget.stretches]
     best = None
-    for shift in budget.start_shifts:
+    for shift, (mid, half) in [(sh, st) for sh in budget.start_shifts for st in stretches][:budget.tries]:
         start = a + (mid - a + shift * half) % (b - a)
         spline = _march(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, True, budget, start)
         if best is None or len(spline.elements) < len(best.elements):
