@@ -19,24 +19,45 @@ from camcam.cli.output import add_output_arguments, output_set, publish, to_json
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
 
-__all__ = ["register", "nc_step", "job_verdict", "design_and_drawing_checks", "job", "DEFAULT_SPEC"]
+__all__ = ["register", "nc_step", "drawing_and_model", "nc_figures", "job_verdict", "design_and_drawing_checks", "job", "DEFAULT_SPEC"]
 
 #: The bundled job `camcam run` runs without a spec.
 DEFAULT_SPEC = "default.toml"
 
 
-def nc_step(out, spec, built, report: dict):
-    """The NC step's I/O half: run the job (:func:`camcam.nc.machine`), add the program and DXF to
-    ``out`` and the figures to ``report``; returns the :class:`~camcam.nc.MachiningResult`."""
-    from camcam.export.nc import nc_files, part_of
-    from camcam.nc import machine
+def nc_step(spec, built):
+    """Start the NC step: the program (:func:`camcam.nc.machine_program`), then its material check
+    (:func:`camcam.nc.material_check`) in a child process; (result without the check, pending check or None)."""
+    from camcam.forked import later
+    from camcam.nc import machine_program, material_check
 
-    result = machine(built, spec.machining, spec.name, spec.stock)
-    part = part_of(built, result)
-    for name, data in nc_files(built, result, part).items():
-        out.add(name, data)
+    result = machine_program(built, spec.machining, spec.name, spec.stock)
+    check = later(material_check, result, built, spec.machining) if result.blank is not None else None
+    return result, check
+
+
+def drawing_and_model(built, machining, name: str) -> tuple[dict, float | None, dict]:
+    """The program, the DXF (with the part outline) and the STL: ({file: bytes}, the part outline's
+    deviation from the design or None, the mesh's figures).  ezdxf and trimesh are imported (and the
+    mesh made) here: `camcam run` calls this in a child process."""
+    from camcam.export.cam_report import mesh_figures
+    from camcam.export.stl import program_frame, stl_bytes
+
+    files, deviation = {}, None
+    if machining is not None:
+        from camcam.export.nc import nc_files, part_of
+
+        part = part_of(built, machining)
+        files.update(nc_files(built, machining, part))
+        deviation = part.deviation_mm
+    files[f"{name}.stl"] = stl_bytes(program_frame(built))
+    return files, deviation, mesh_figures(built)
+
+
+def nc_figures(report: dict, result, part_deviation_mm: float | None) -> None:
+    """Add the NC step's figures to ``report`` and print its notes as warnings."""
     nc = result.figures()
-    nc["dxf_part_deviation_mm"] = part.deviation_mm
+    nc["dxf_part_deviation_mm"] = part_deviation_mm
     for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks", "cycle_time_s"):
         report[key] = nc[key]
     report["machining"] = nc
@@ -44,7 +65,6 @@ def nc_step(out, spec, built, report: dict):
         report["material"] = nc["material"]
     for note in result.notes:
         warn(note)
-    return result
 
 
 def job_verdict(machining, machining_spec) -> Verdict:
@@ -91,49 +111,76 @@ def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
 
     `camcam run` and each spec of `camcam batch` go through here.
     """
-    from camcam.cli.motion import motion_outputs, motion_summary
+    from camcam.cli.motion import SVAJ_PLOT, motion_outputs, motion_summary, svaj_title
 
     verdict = Verdict(())
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
-    with progress.step("motion table and plot"):
-        svaj = motion_outputs(out, spec.name, program, 0.5)
-    summary = {"name": spec.name, "motion": motion_summary(program)}
-    if spec.cam is not None:
-        from camcam.export.cam_report import cam_report
-        from camcam.export.stl import program_frame, stl_bytes
-        from camcam.geometry.build import build_cam
-        from camcam.plots.concurrent import render_later
-        from camcam.plots.profile import cam_png
-        from camcam.report.job import job_report
+    if spec.cam is None:
+        with progress.step("motion table and plot"):
+            motion_outputs(out, spec.name, program, 0.5)
+        return {"name": spec.name, "motion": motion_summary(program)}, verdict
+    from camcam.export.cam_report import cam_report
+    from camcam.forked import Server, later, resolve
+    from camcam.geometry.build import build_cam
 
-        with progress.step("cam geometry, analysis and mesh"):
-            built = build_cam(spec.cam, spec.follower, program)
-            # drawn in a child process while the NC step runs (camcam.plots.concurrent)
-            profile_png = render_later(cam_png, built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
-            report = cam_report(built)
-        machining = None
+    with progress.step("cam geometry and analysis"):
+        built = build_cam(spec.cam, spec.follower, program)
+    # one child process draws every plot while the NC step runs, and only it imports matplotlib
+    # (camcam.forked): the SVAJ and profile plots from the memory it inherits, the report's plots
+    # from the arrays sent to it
+    plots = Server([(SVAJ_PLOT, (program,), {"title": svaj_title(spec.name, program)}),
+                    (CAM_PLOT, (built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower"), {})])
+    try:
+        svaj, profile_png = plots.first
+        with progress.step("motion table and plot"):
+            motion_outputs(out, spec.name, program, 0.5, svaj)
+        summary = {"name": spec.name, "motion": motion_summary(program)}
+        report = cam_report(built, mesh=False)  # its "mesh" comes with the STL, from drawing_and_model
+        machining = check = None
         if spec.machining is not None:
             with progress.step("NC second fitting and program"):
-                machining = nc_step(out, spec, built, report)
+                machining, check = nc_step(spec, built)
+        # beside the NC work that is left: the drawing and model in one child, the check in another
+        exported = later(drawing_and_model, built, machining, spec.name)
+        with progress.step("report analysis"):
+            from camcam.report.job import job_report, report_analysis
+
+            analysis = report_analysis(spec.name, built, machining, spec.report.inspection_step_deg, plots.submit)
+        with progress.step("drawing, model and material check"):
+            files, part_deviation, report["mesh"] = resolve(exported)
+            if machining is not None:
+                from camcam.nc import with_removal
+
+                out.add(machining.program_filename, files.pop(machining.program_filename))
+                out.add(f"{spec.name}.dxf", files.pop(f"{spec.name}.dxf"))
+                if check is not None:
+                    machining = with_removal(machining, resolve(check))
+                nc_figures(report, machining, part_deviation)
         verdict = job_verdict(machining, spec.machining)
         verdict = Verdict(verdict.checks + design_and_drawing_checks(
             built, machining, spec.machining, spec.report.strict,
             report.get("machining", {}).get("dxf_part_deviation_mm")), verdict.accepted)
         report["verdict"] = verdict.as_dict()
-        with progress.step("drawing, model and report"):
-            out.add(f"{spec.name}.stl", stl_bytes(program_frame(built)))
+        with progress.step("report"):
+            out.add(f"{spec.name}.stl", files.pop(f"{spec.name}.stl"))
             out.add(f"{spec.name}-profile.png", profile_png)
             page = job_report(spec.name, spec, program, svaj, built, report, profile_png, machining,
-                              spec.report.inspection_step_deg, verdict)
+                              spec.report.inspection_step_deg, verdict, render=plots.submit, analysis=analysis)
             for name, data in page.files.items():
                 out.add(name, data)
             report.update(page.figures)
             out.add(f"{spec.name}-report.html", page.html)
             out.add(f"{spec.name}-report.json", to_json(report) + "\n")
         summary["cam"] = report
+    finally:
+        plots.close()
     return summary, verdict
+
+
+#: The cam profile plot's function (drawn in the plot server, camcam.forked).
+CAM_PLOT = "camcam.plots.profile:cam_png"
 
 
 def run(args) -> int:

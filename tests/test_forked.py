@@ -1,0 +1,112 @@
+"""camcam.forked: jobs in forked children give the in-process results, in order, without deadlock."""
+
+import os
+
+import numpy as np
+import pytest
+
+from camcam.forked import ChildError, Server, call_target, later, resolve
+
+needs_fork = pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork on this platform: jobs run in process")
+
+
+def _boom(message):
+    raise ValueError(message)
+
+
+@needs_fork
+def test_later_returns_the_child_result():
+    a = np.arange(10.0)
+    pending = later(np.cumsum, a)  # the child reads ``a`` from the memory it inherited
+    assert np.array_equal(resolve(pending), np.cumsum(a))
+    assert resolve(pending) is resolve(pending)  # collected once, kept
+
+
+class _Unpicklable(Exception):
+    def __init__(self, a, b):
+        super().__init__(f"{a}/{b}")
+
+
+def _unpicklable():
+    raise _Unpicklable(1, 2)
+
+
+def _bad_spec():
+    from camcam.errors import SpecError
+
+    raise SpecError("machining.stock", "blank smaller than the cam")
+
+
+@needs_fork
+def test_later_failure_is_the_child_exception_with_its_traceback():
+    pending = later(_boom, "no such cam")
+    with pytest.raises(ValueError, match="no such cam") as info:
+        pending.result()
+    # the child's traceback rides along as the cause
+    assert isinstance(info.value.__cause__, ChildError) and "in _boom" in str(info.value.__cause__)
+
+
+@needs_fork
+def test_a_user_error_in_a_child_stays_a_user_error():
+    from camcam.errors import SpecError
+
+    # a bad-input error must still exit 2 with its one line, not become an internal fault
+    with pytest.raises(SpecError) as info:
+        later(_bad_spec).result()
+    assert str(info.value) == "machining.stock: blank smaller than the cam" and info.value.path == "machining.stock"
+
+
+@needs_fork
+def test_an_exception_that_does_not_pickle_becomes_a_child_error():
+    with pytest.raises(ChildError, match="(?s)_unpicklable failed: .*_Unpicklable: 1/2"):
+        later(_unpicklable).result()
+
+
+@needs_fork
+def test_server_first_jobs_and_submitted_jobs_in_order():
+    s = Server([("numpy:arange", (5,), {}), ("numpy:ones", (3,), {})])
+    try:
+        jobs = [s.submit("numpy:full", 2, k) for k in range(4)]
+        # asked in reverse order: replies come in order and wait in the parent until asked for
+        assert [resolve(j).tolist() for j in reversed(jobs)] == [[k, k] for k in reversed(range(4))]
+        assert resolve(s.first[1]).tolist() == [1.0, 1.0, 1.0]
+        assert resolve(s.first[0]).tolist() == [0, 1, 2, 3, 4]
+    finally:
+        s.close()
+
+
+@needs_fork
+def test_server_big_requests_and_replies_do_not_deadlock():
+    # each request and reply is far larger than a pipe's 64 KiB buffer, and replies are not read until the end
+    s = Server([("numpy:zeros", (500_000,), {})])
+    big = np.arange(300_000.0)
+    jobs = [s.submit("numpy:negative", big) for _ in range(6)]
+    s.close()  # reads what is still due before ending the child
+    assert all(np.array_equal(resolve(j), -big) for j in jobs)
+    assert resolve(s.first[0]).shape == (500_000,)
+
+
+@needs_fork
+def test_server_failure_is_reported_on_its_own_job():
+    s = Server()
+    try:
+        bad = s.submit("math:sqrt", -1.0)
+        good = s.submit("math:sqrt", 4.0)
+        with pytest.raises(ValueError, match="math domain error"):
+            bad.result()
+        assert resolve(good) == 2.0  # the server goes on after a failed job
+    finally:
+        s.close()
+
+
+def test_call_target_imports_by_name():
+    assert call_target("math:hypot", 3.0, 4.0) == 5.0
+
+
+def test_without_fork_everything_runs_in_process(monkeypatch):
+    monkeypatch.delattr(os, "fork")
+    assert later(sum, [1, 2]) == 3
+    s = Server([("math:hypot", (3.0, 4.0), {})])
+    assert s.first == (5.0,)
+    assert s.submit("math:sqrt", 9.0) == 3.0
+    s.close()
