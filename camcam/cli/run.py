@@ -19,7 +19,7 @@ from camcam.cli.output import add_output_arguments, output_set, publish, to_json
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
 
-__all__ = ["register", "nc_step", "drawing_and_model", "nc_figures", "job_verdict", "design_and_drawing_checks", "job", "DEFAULT_SPEC"]
+__all__ = ["register", "nc_step", "model", "drawing", "nc_figures", "job_verdict", "design_and_drawing_checks", "job", "DEFAULT_SPEC"]
 
 #: The bundled job `camcam run` runs without a spec.
 DEFAULT_SPEC = "default.toml"
@@ -36,22 +36,23 @@ def nc_step(spec, built):
     return result, check
 
 
-def drawing_and_model(built, machining, name: str) -> tuple[dict, float | None, dict]:
-    """The program, the DXF (with the part outline) and the STL: ({file: bytes}, the part outline's
-    deviation from the design or None, the mesh's figures).  ezdxf and trimesh are imported (and the
-    mesh made) here: `camcam run` calls this in a child process."""
+def model(built, name: str) -> tuple[dict, dict]:
+    """The STL and the mesh's figures: ({file: bytes}, figures).  The mesh is made and trimesh
+    imported here: `camcam run` calls this in a child process while the NC step runs."""
     from camcam.export.cam_report import mesh_figures
     from camcam.export.stl import program_frame, stl_bytes
 
-    files, deviation = {}, None
-    if machining is not None:
-        from camcam.export.nc import nc_files, part_of
+    return {f"{name}.stl": stl_bytes(program_frame(built))}, mesh_figures(built)
 
-        part = part_of(built, machining)
-        files.update(nc_files(built, machining, part))
-        deviation = part.deviation_mm
-    files[f"{name}.stl"] = stl_bytes(program_frame(built))
-    return files, deviation, mesh_figures(built)
+
+def drawing(built, machining) -> tuple[dict, float | None]:
+    """The program and the DXF with the part outline: ({file: bytes}, the part outline's deviation
+    from the design or None).  ezdxf is imported here: `camcam run` calls this in a child process
+    while the material check runs in another."""
+    from camcam.export.nc import nc_files, part_of
+
+    part = part_of(built, machining)
+    return nc_files(built, machining, part), part.deviation_mm
 
 
 def nc_figures(report: dict, result, part_deviation_mm: float | None) -> None:
@@ -137,24 +138,25 @@ def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
         with progress.step("motion table and plot"):
             motion_outputs(out, spec.name, program, 0.5, svaj)
         summary = {"name": spec.name, "motion": motion_summary(program)}
-        report = cam_report(built, mesh=False)  # its "mesh" comes with the STL, from drawing_and_model
-        machining = check = None
+        model_files = later(model, built, spec.name)  # the mesh and STL need no NC: made beside it
+        report = cam_report(built, mesh=False)  # its "mesh" comes with the STL
+        machining = check = drawn = None
         if spec.machining is not None:
             with progress.step("NC second fitting and program"):
                 machining, check = nc_step(spec, built)
-        # beside the NC work that is left: the drawing and model in one child, the check in another
-        exported = later(drawing_and_model, built, machining, spec.name)
+            drawn = later(drawing, built, machining)  # beside the material check
         with progress.step("report analysis"):
             from camcam.report.job import job_report, report_analysis
 
             analysis = report_analysis(spec.name, built, machining, spec.report.inspection_step_deg, plots.submit)
         with progress.step("drawing, model and material check"):
-            files, part_deviation, report["mesh"] = resolve(exported)
+            files, report["mesh"] = resolve(model_files)
             if machining is not None:
                 from camcam.nc import with_removal
 
-                out.add(machining.program_filename, files.pop(machining.program_filename))
-                out.add(f"{spec.name}.dxf", files.pop(f"{spec.name}.dxf"))
+                nc, part_deviation = resolve(drawn)
+                for name, data in nc.items():
+                    out.add(name, data)
                 if check is not None:
                     machining = with_removal(machining, resolve(check))
                 nc_figures(report, machining, part_deviation)
