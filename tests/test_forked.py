@@ -110,3 +110,29 @@ def test_without_fork_everything_runs_in_process(monkeypatch):
     assert s.first == (5.0,)
     assert s.submit("math:sqrt", 9.0) == 3.0
     s.close()
+
+
+@needs_fork
+def test_parallel_map_keeps_order_and_values():
+    from camcam.forked import parallel_map
+
+    seen_pid = os.getpid()
+    # each item reports the process it ran in: two processes shared the work, the result is in order
+    out = parallel_map(lambda x: (x * x, os.getpid()), range(7), workers=2)
+    assert [v for v, _ in out] == [x * x for x in range(7)]
+    assert {p for _, p in out[0::2]} == {seen_pid} and seen_pid not in {p for _, p in out[1::2]}
+    assert parallel_map(lambda x: x + 1, [], workers=4) == []
+    assert parallel_map(lambda x: x + 1, [1], workers=4) == [2]  # one item: no child
+
+
+@needs_fork
+def test_parallel_map_raises_a_child_error_in_the_parent():
+    from camcam.forked import parallel_map
+
+    def f(x):
+        if x == 3:
+            raise ValueError("bad item 3")
+        return x
+
+    with pytest.raises(ValueError, match="bad item 3"):
+        parallel_map(f, range(5), workers=2)  # item 3 is the child's (odd places)

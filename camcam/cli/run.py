@@ -11,6 +11,7 @@ nothing.
 
 from __future__ import annotations
 
+import os
 import sys
 from importlib import resources
 
@@ -31,7 +32,8 @@ def nc_step(spec, built):
     from camcam.forked import later
     from camcam.nc import machine_program, material_check
 
-    result = machine_program(built, spec.machining, spec.name, spec.stock)
+    # a barrel cam's 3-D measurement shares its radii with a second process (same figures)
+    result = machine_program(built, spec.machining, spec.name, spec.stock, workers=min(2, os.cpu_count() or 1))
     check = later(material_check, result, built, spec.machining) if result.blank is not None else None
     return result, check
 

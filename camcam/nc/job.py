@@ -72,7 +72,8 @@ def _disc_plan(built: BuiltCam, r_t: float, stepover_mm: float):
             ("outer flank", cam.offset_flank(1, r_t), r_t, None, "finish")]
 
 
-def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK) -> MachiningResult:
+def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK,
+            workers: int = 1) -> MachiningResult:
     """Tool-centre curves, fitted contours, passes, program and its material check for ``built`` (no I/O).
 
     The same as :func:`machine_program` followed, for a disc or face-groove
@@ -90,6 +91,9 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEF
         The job name (program title and file names).
     stock : StockSpec
         The blank (``[stock]``; default: round, 2 mm over the cam's largest radius).
+    workers : int
+        Processes a barrel cam's 3-D groove measurement may share its work with
+        (:func:`camcam.nc.groove3d.measure_groove`; the same figures for any count).
 
     Returns
     -------
@@ -106,7 +110,7 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEF
     FitError, PostError
         Faults of the fitter or the writer on valid input.
     """
-    result = machine_program(built, m, name, stock)
+    result = machine_program(built, m, name, stock, workers)
     if result.blank is None:
         return result  # a barrel cam: measured in 3-D by its own job
     return with_removal(result, material_check(result, built, m))
@@ -122,16 +126,17 @@ def with_removal(result: MachiningResult, removal: RemovalReport) -> MachiningRe
     return replace(result, checks=result.checks + removal.checks(), removal=removal)
 
 
-def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK) -> MachiningResult:
+def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK,
+                    workers: int = 1) -> MachiningResult:
     """:func:`machine` without the material check of a disc or face-groove job (``removal`` is None)."""
     if built.spec.kind == "cylindrical":
         if m.axes == 5:
             from camcam.nc.fiveaxis import machine_five_axis
 
-            return machine_five_axis(built, m, name)
+            return machine_five_axis(built, m, name, workers)
         from camcam.nc.rotary import machine_cylindrical
 
-        return machine_cylindrical(built, m, name)
+        return machine_cylindrical(built, m, name, workers)
     post, r_t = m.post, m.tool_diameter_mm / 2
     title = job_title(name, built.spec.kind, built.cam.kind, m.tool_diameter_mm, m.mode, m.tolerance_mm, post.name)
     blank = blank_for(built, stock, m.tool_diameter_mm, m.bore)
