@@ -28,6 +28,7 @@ import importlib
 import os
 import pickle
 import select
+import signal
 import struct
 import sys
 import traceback
@@ -96,18 +97,34 @@ def _fork(child: Callable[[], None]) -> int:
 class Pending:
     """The result of a job running in a child process; :meth:`result` waits for it."""
 
-    def __init__(self, fetch: Callable[[], Any]) -> None:
-        self._fetch = fetch
+    def __init__(self, fetch: Callable[[], Any], cancel: Callable[[], None] | None = None) -> None:
+        self._fetch, self._cancel = fetch, cancel
         self._done = False
         self._value: Any = None
+        self._error: BaseException | None = None
 
     def result(self):
-        """The job's value (waits for the child the first time; raises :class:`ChildError` if it failed)."""
+        """The job's value (waits for the child the first time; raises :class:`ChildError` if it failed,
+        or the child's own exception, every time it is asked)."""
         if not self._done:
-            self._value = self._fetch()
+            if self._fetch is None:
+                raise ChildError("the job was cancelled")
+            fetch, self._fetch, self._cancel = self._fetch, None, None  # the fetch reaps the child
+            try:
+                self._value = fetch()
+            except BaseException as err:
+                self._error = err
             self._done = True
-            self._fetch = None
+        if self._error is not None:
+            raise self._error
         return self._value
+
+    def cancel(self) -> None:
+        """Stop a job whose result is no longer wanted (a run that failed): its child is killed and
+        reaped, so it neither lingers nor holds memory.  Nothing happens to a collected result."""
+        if not self._done and self._cancel is not None:
+            self._cancel()
+        self._fetch = self._cancel = None
 
 
 def resolve(data):
@@ -141,7 +158,12 @@ def later(fn: Callable, *args, **kwargs) -> Pending | Any:
         os.waitpid(pid, 0)
         return _decode(raw, getattr(fn, "__name__", "job"))
 
-    return Pending(fetch)
+    def cancel():
+        os.kill(pid, signal.SIGKILL)
+        os.close(read_fd)
+        os.waitpid(pid, 0)
+
+    return Pending(fetch, cancel)
 
 
 def _share(fn: Callable, items: list) -> list:
@@ -167,7 +189,12 @@ def parallel_map(fn: Callable, items, workers: int = 1) -> list:
     if workers == 1 or not hasattr(os, "fork"):
         return [fn(x) for x in items]
     children = [later(_share, fn, items[k::workers]) for k in range(1, workers)]
-    shares = [_share(fn, items[0::workers])] + [resolve(c) for c in children]
+    try:
+        shares = [_share(fn, items[0::workers])] + [resolve(c) for c in children]
+    except BaseException:
+        for c in children:
+            c.cancel()
+        raise
     out: list = [None] * len(items)
     for k, share in enumerate(shares):
         out[k::workers] = share
@@ -254,6 +281,8 @@ class Server:
         self._take(chunk)
 
     def _reply(self, index: int):
+        if self._pid is None and index >= self._next_reply:
+            raise ChildError(f"{self._names[index]} failed: the server was stopped before it replied")
         self._pump(until=index)
         return _decode(self._replies.pop(index), self._names[index])
 
@@ -287,6 +316,16 @@ class Server:
         pending = self._pending(target)
         self._pump()
         return pending
+
+    def kill(self) -> None:
+        """End the child at once (a run that failed): replies not yet read are lost (idempotent)."""
+        if self._pid is None:
+            return
+        os.kill(self._pid, signal.SIGKILL)
+        os.close(self._req_fd)
+        os.close(self._rep_fd)
+        os.waitpid(self._pid, 0)
+        self._pid = None
 
     def close(self) -> None:
         """Read every reply still due, end the child and wait for it (idempotent)."""

@@ -1,6 +1,7 @@
 """camcam.forked: jobs in forked children give the in-process results, in order, without deadlock."""
 
 import os
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -136,3 +137,50 @@ def test_parallel_map_raises_a_child_error_in_the_parent():
 
     with pytest.raises(ValueError, match="bad item 3"):
         parallel_map(f, range(5), workers=2)  # item 3 is the child's (odd places)
+
+
+def _children() -> set[int]:
+    """Live child processes of this process (Linux /proc)."""
+    out = set()
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                fields = (d / "stat").read_text().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            if int(fields[1]) == os.getpid() and fields[0] != "Z":
+                out.add(int(d.name))
+    return out
+
+
+needs_proc = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="counts children in /proc")
+
+
+@needs_fork
+@needs_proc
+def test_cancel_stops_a_child_that_nobody_collects():
+    import time
+
+    before = _children()
+    big = later(np.zeros, 1_000_000)  # its 8 MB reply fills the pipe: the child blocks until read
+    time.sleep(0.5)  # not a timing assertion: only gives the child time to reach the full pipe
+    big.cancel()  # killed and reaped: no process is left behind
+    with pytest.raises(ChildError, match="cancelled"):
+        big.result()
+    assert _children() <= before  # the child is gone (killed and reaped, no zombie)
+
+
+@needs_fork
+@needs_proc
+def test_a_failed_run_leaves_no_child_behind(tmp_path, monkeypatch):
+    from camcam.cli import main
+
+    def broken(*args, **kw):
+        raise ZeroDivisionError("a bug after the children started")
+
+    # the report analysis runs after the plot server, the model child and the NC children started
+    monkeypatch.setattr("camcam.report.job.report_analysis", broken)
+    before = _children()
+    code = main(["run", "samples/disc-translating-roller.toml", "-o", str(tmp_path / "out")])
+    assert code == 1
+    assert _children() <= before  # the plot server, the model child and the NC children were stopped
