@@ -34,6 +34,8 @@ import sys
 import traceback
 from typing import Any, Callable
 
+from camcam.interrupts import SIGNALS, Interrupted
+
 __all__ = ["ChildError", "Pending", "later", "resolve", "parallel_map", "Server", "call_target"]
 
 _OK, _FAILED = b"K", b"E"
@@ -52,9 +54,27 @@ def call_target(target: str, *args, **kwargs):
 
 def _payload(fn: Callable, args, kwargs) -> bytes:
     """_OK + the pickled result, or _FAILED + the pickled (exception or None, traceback text): every
-    failure goes back to the parent, the exception itself when it pickles (a user's error stays one)."""
+    failure goes back to the parent, the exception itself when it pickles (a user's error stays one).
+
+    A SIGINT, SIGTERM or SIGHUP the child receives is an :class:`~camcam.interrupts.Interrupted`
+    for the parent, also when the job swallowed it (trimesh imports its optional parts under
+    ``except BaseException``): the parent then stops as if it had been interrupted itself."""
+    came: list[int] = []
+
+    def handler(signum, frame):
+        came.append(int(signum))
+        raise Interrupted(signum)
+
     try:
-        return _OK + pickle.dumps(fn(*args, **kwargs), protocol=pickle.HIGHEST_PROTOCOL)
+        for s in SIGNALS:
+            try:
+                signal.signal(s, handler)
+            except ValueError:  # not the main thread (a process that forks from a worker thread)
+                break
+        value = fn(*args, **kwargs)
+        if came:
+            raise Interrupted(came[0])
+        return _OK + pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
     except BaseException as err:  # noqa: BLE001
         text = traceback.format_exc()
         try:
