@@ -40,6 +40,10 @@ class SpecError(CamcamError, ValueError):
         self.message = message
         super().__init__(f"{path}: {message}" if path else message)
 
+    def __reduce__(self):
+        # pickled as (path, message): a check run in a child process (camcam.forked) raises it in the parent
+        return (type(self), (self.path, self.message))
+
 
 class InputError(CamcamError, ValueError):
     """A data file (lift table, point cloud, post file) is malformed; the message names the row."""

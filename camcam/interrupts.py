@@ -54,6 +54,10 @@ class Interrupted(KeyboardInterrupt):
         super().__init__(signal_name(signum))
         self.signum = int(signum)
 
+    def __reduce__(self):
+        # pickled as its signal: an interrupt in a child process (camcam.forked) is raised in the parent
+        return (type(self), (self.signum,))
+
 
 class Watch:
     """Turn SIGINT/SIGTERM/SIGHUP into :class:`Interrupted` and remember that one came.

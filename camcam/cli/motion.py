@@ -10,7 +10,7 @@ from camcam.export.motion_table import motion_csv
 from camcam.motion.program import MotionProgram
 from camcam.spec import load_spec
 
-__all__ = ["register", "motion_summary", "motion_outputs"]
+__all__ = ["register", "motion_summary", "motion_outputs", "SVAJ_PLOT", "svaj_title"]
 
 
 def register(sub) -> None:
@@ -36,16 +36,28 @@ def motion_summary(program: MotionProgram) -> dict:
     return out
 
 
-def motion_outputs(out: OutputSet, name: str, program: MotionProgram, step_deg: float):
+def motion_outputs(out: OutputSet, name: str, program: MotionProgram, step_deg: float, svaj=None):
     """Add the motion table and the SVAJ plot to ``out``; returns the plot (the report shows it too),
-    a :class:`~camcam.plots.concurrent.PendingPNG` while it is drawn in a child process."""
-    from camcam.plots.concurrent import render_later
-    from camcam.plots.svaj import svaj_png  # plotting is loaded only when a plot is drawn
+    a :class:`~camcam.forked.Pending` while it is drawn in a child process.
+
+    ``svaj`` is the plot when a caller already has it being drawn (`camcam run`'s plot server);
+    otherwise it is drawn in a forked child that imports matplotlib itself.
+    """
+    from camcam.forked import call_target, later
 
     out.add(f"{name}-motion.csv", motion_csv(program, step_deg))
-    png = render_later(svaj_png, program, title=f"{name}: motion at {program.rpm:g} rpm")
-    out.add(f"{name}-svaj.png", png)
-    return png
+    if svaj is None:
+        svaj = later(call_target, SVAJ_PLOT, program, title=svaj_title(name, program))
+    out.add(f"{name}-svaj.png", svaj)
+    return svaj
+
+
+#: The SVAJ plot's function (imported where it is drawn: matplotlib is loaded only there).
+SVAJ_PLOT = "camcam.plots.svaj:svaj_png"
+
+
+def svaj_title(name: str, program: MotionProgram) -> str:
+    return f"{name}: motion at {program.rpm:g} rpm"
 
 
 def print_summary(summary: dict) -> None:

@@ -11,6 +11,7 @@ nothing.
 
 from __future__ import annotations
 
+import os
 import sys
 from importlib import resources
 
@@ -19,24 +20,50 @@ from camcam.cli.output import add_output_arguments, output_set, publish, to_json
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
 
-__all__ = ["register", "nc_step", "job_verdict", "design_and_drawing_checks", "job", "DEFAULT_SPEC"]
+__all__ = ["register", "nc_step", "model", "drawing", "nc_figures", "job_verdict", "design_and_drawing_checks", "job", "DEFAULT_SPEC"]
 
 #: The bundled job `camcam run` runs without a spec.
 DEFAULT_SPEC = "default.toml"
 
 
-def nc_step(out, spec, built, report: dict):
-    """The NC step's I/O half: run the job (:func:`camcam.nc.machine`), add the program and DXF to
-    ``out`` and the figures to ``report``; returns the :class:`~camcam.nc.MachiningResult`."""
-    from camcam.export.nc import nc_files, part_of
-    from camcam.nc import machine
+def nc_step(spec, built, later=None):
+    """Start the NC step: the program (:func:`camcam.nc.machine_program`), then its material check
+    (:func:`camcam.nc.material_check`) in a child process (``later``, default
+    :func:`camcam.forked.later`); (result without the check, pending check or None)."""
+    from camcam.nc import machine_program, material_check
 
-    result = machine(built, spec.machining, spec.name, spec.stock)
-    part = part_of(built, result)
-    for name, data in nc_files(built, result, part).items():
-        out.add(name, data)
+    if later is None:
+        from camcam.forked import later
+
+    # a barrel cam's 3-D measurement shares its radii with a second process (same figures)
+    result = machine_program(built, spec.machining, spec.name, spec.stock, workers=min(2, os.cpu_count() or 1))
+    check = later(material_check, result, built, spec.machining) if result.blank is not None else None
+    return result, check
+
+
+def model(built, name: str) -> tuple[dict, dict]:
+    """The STL and the mesh's figures: ({file: bytes}, figures).  The mesh is made and trimesh
+    imported here: `camcam run` calls this in a child process while the NC step runs."""
+    from camcam.export.cam_report import mesh_figures
+    from camcam.export.stl import program_frame, stl_bytes
+
+    return {f"{name}.stl": stl_bytes(program_frame(built))}, mesh_figures(built)
+
+
+def drawing(built, machining) -> tuple[dict, float | None]:
+    """The program and the DXF with the part outline: ({file: bytes}, the part outline's deviation
+    from the design or None).  ezdxf is imported here: `camcam run` calls this in a child process
+    while the material check runs in another."""
+    from camcam.export.nc import nc_files, part_of
+
+    part = part_of(built, machining)
+    return nc_files(built, machining, part), part.deviation_mm
+
+
+def nc_figures(report: dict, result, part_deviation_mm: float | None) -> None:
+    """Add the NC step's figures to ``report`` and print its notes as warnings."""
     nc = result.figures()
-    nc["dxf_part_deviation_mm"] = part.deviation_mm
+    nc["dxf_part_deviation_mm"] = part_deviation_mm
     for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks", "cycle_time_s"):
         report[key] = nc[key]
     report["machining"] = nc
@@ -44,7 +71,6 @@ def nc_step(out, spec, built, report: dict):
         report["material"] = nc["material"]
     for note in result.notes:
         warn(note)
-    return result
 
 
 def job_verdict(machining, machining_spec) -> Verdict:
@@ -91,49 +117,90 @@ def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
 
     `camcam run` and each spec of `camcam batch` go through here.
     """
-    from camcam.cli.motion import motion_outputs, motion_summary
+    from camcam.cli.motion import SVAJ_PLOT, motion_outputs, motion_summary, svaj_title
 
     verdict = Verdict(())
     program = spec.need("motion", "run").program(spec.unit)
     for j in program.joins:
         warn(j.describe())
-    with progress.step("motion table and plot"):
-        svaj = motion_outputs(out, spec.name, program, 0.5)
-    summary = {"name": spec.name, "motion": motion_summary(program)}
-    if spec.cam is not None:
-        from camcam.export.cam_report import cam_report
-        from camcam.export.stl import program_frame, stl_bytes
-        from camcam.geometry.build import build_cam
-        from camcam.plots.concurrent import render_later
-        from camcam.plots.profile import cam_png
-        from camcam.report.job import job_report
+    if spec.cam is None:
+        with progress.step("motion table and plot"):
+            motion_outputs(out, spec.name, program, 0.5)
+        return {"name": spec.name, "motion": motion_summary(program)}, verdict
+    from camcam.export.cam_report import cam_report
+    from camcam.forked import Pending, Server, resolve
+    from camcam.geometry.build import build_cam
 
-        with progress.step("cam geometry, analysis and mesh"):
-            built = build_cam(spec.cam, spec.follower, program)
-            # drawn in a child process while the NC step runs (camcam.plots.concurrent)
-            profile_png = render_later(cam_png, built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
-            report = cam_report(built)
-        machining = None
+    with progress.step("cam geometry and analysis"):
+        built = build_cam(spec.cam, spec.follower, program)
+    # one child process draws every plot while the NC step runs, and only it imports matplotlib
+    # (camcam.forked): the SVAJ and profile plots from the memory it inherits, the report's plots
+    # from the arrays sent to it
+    plots = Server([(SVAJ_PLOT, (program,), {"title": svaj_title(spec.name, program)}),
+                    (CAM_PLOT, (built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower"), {})])
+    children = []  # the run's other child processes: stopped if the run fails before it collects them
+
+    def later(fn, *args):
+        from camcam.forked import later as fork_later
+
+        children.append(fork_later(fn, *args))
+        return children[-1]
+
+    try:
+        svaj, profile_png = plots.first
+        with progress.step("motion table and plot"):
+            motion_outputs(out, spec.name, program, 0.5, svaj)
+        summary = {"name": spec.name, "motion": motion_summary(program)}
+        model_files = later(model, built, spec.name)  # the mesh and STL need no NC: made beside it
+        report = cam_report(built, mesh=False)  # its "mesh" comes with the STL
+        machining = check = drawn = None
         if spec.machining is not None:
             with progress.step("NC second fitting and program"):
-                machining = nc_step(out, spec, built, report)
+                machining, check = nc_step(spec, built, later)
+            drawn = later(drawing, built, machining)  # beside the material check
+        with progress.step("report analysis"):
+            from camcam.report.job import job_report, report_analysis
+
+            analysis = report_analysis(spec.name, built, machining, spec.report.inspection_step_deg, plots.submit)
+        with progress.step("drawing, model and material check"):
+            files, report["mesh"] = resolve(model_files)
+            if machining is not None:
+                from camcam.nc import with_removal
+
+                nc, part_deviation = resolve(drawn)
+                for name, data in nc.items():
+                    out.add(name, data)
+                if check is not None:
+                    machining = with_removal(machining, resolve(check))
+                nc_figures(report, machining, part_deviation)
         verdict = job_verdict(machining, spec.machining)
         verdict = Verdict(verdict.checks + design_and_drawing_checks(
             built, machining, spec.machining, spec.report.strict,
             report.get("machining", {}).get("dxf_part_deviation_mm")), verdict.accepted)
         report["verdict"] = verdict.as_dict()
-        with progress.step("drawing, model and report"):
-            out.add(f"{spec.name}.stl", stl_bytes(program_frame(built)))
+        with progress.step("report"):
+            out.add(f"{spec.name}.stl", files.pop(f"{spec.name}.stl"))
             out.add(f"{spec.name}-profile.png", profile_png)
             page = job_report(spec.name, spec, program, svaj, built, report, profile_png, machining,
-                              spec.report.inspection_step_deg, verdict)
+                              spec.report.inspection_step_deg, verdict, render=plots.submit, analysis=analysis)
             for name, data in page.files.items():
                 out.add(name, data)
             report.update(page.figures)
             out.add(f"{spec.name}-report.html", page.html)
             out.add(f"{spec.name}-report.json", to_json(report) + "\n")
         summary["cam"] = report
+    except BaseException:
+        for child in children:
+            if isinstance(child, Pending):
+                child.cancel()
+        plots.kill()
+        raise
+    plots.close()
     return summary, verdict
+
+
+#: The cam profile plot's function (drawn in the plot server, camcam.forked).
+CAM_PLOT = "camcam.plots.profile:cam_png"
 
 
 def run(args) -> int:

@@ -6,7 +6,7 @@ import math
 
 from camcam.geometry.build import BuiltCam
 
-__all__ = ["cam_report"]
+__all__ = ["cam_report", "mesh_figures"]
 
 
 def _curv(c):
@@ -20,8 +20,18 @@ def _curv(c):
     }
 
 
-def cam_report(built: BuiltCam) -> dict:
-    """Pressure angle, curvature and sizes, with the program cam angles (deg) where they occur."""
+def mesh_figures(built: BuiltCam) -> dict:
+    """The watertight check, volume and triangle count of the cam's mesh (makes the trimesh)."""
+    return {"watertight": bool(built.mesh.is_watertight), "volume_mm3": float(built.mesh.volume),
+            "triangles": int(len(built.mesh.faces))}
+
+
+def cam_report(built: BuiltCam, mesh: bool = True) -> dict:
+    """Pressure angle, curvature and sizes, with the program cam angles (deg) where they occur.
+
+    ``mesh=False`` leaves ``"mesh"`` None, for a caller that fills in :func:`mesh_figures` later
+    (`camcam run` makes the mesh in the child process that writes the STL).
+    """
     cam, an, spec = built.cam, built.analysis, built.spec
     out = {
         "cam_kind": spec.kind,
@@ -35,8 +45,7 @@ def cam_report(built: BuiltCam) -> dict:
         "min_curvature_radius_at_deg": an.profile.angle_deg,
         "profile_curvature": _curv(an.profile),
         "pitch_curvature": _curv(an.pitch),
-        "mesh": {"watertight": bool(built.mesh.is_watertight), "volume_mm3": float(built.mesh.volume),
-                 "triangles": int(len(built.mesh.faces))},
+        "mesh": mesh_figures(built) if mesh else None,
     }
     if an.face is not None:
         out["face"] = {"min_mm": an.face.min_mm.value, "min_at_deg": an.face.min_mm.angle_deg,

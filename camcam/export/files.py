@@ -46,7 +46,7 @@ from camcam import __version__
 from camcam.errors import OutputError
 from camcam.inputs import os_reason
 from camcam.interrupts import deferred
-from camcam.plots.concurrent import PendingPNG, resolve
+from camcam.forked import Pending, resolve
 
 __all__ = ["OutputSet", "DiskLog", "atomic_write", "MANIFEST", "read_manifest"]
 
@@ -250,12 +250,12 @@ class OutputSet:
         self._files: dict[str, bytes] = {}
         self.log.target = str(self.directory)
 
-    def add(self, name: str, data: bytes | str | PendingPNG) -> None:
-        """Add a file; a plot still being drawn (:class:`PendingPNG`) is collected at :meth:`commit`."""
+    def add(self, name: str, data: bytes | str | Pending) -> None:
+        """Add a file; a plot still being drawn (:class:`Pending`) is collected at :meth:`commit`."""
         if not _output_name(name) or name.split("/")[0] == MANIFEST:
             raise ValueError(f"output name must be a plain file name (or folder/file) other than {MANIFEST}, "
                              f"got {name!r}")
-        self._files[name] = data.encode("utf-8") if isinstance(data, str) else data if isinstance(data, PendingPNG) \
+        self._files[name] = data.encode("utf-8") if isinstance(data, str) else data if isinstance(data, Pending) \
             else bytes(data)
 
     @property

@@ -87,7 +87,7 @@ def _disc_extras(built: BuiltCam, r: MachiningResult) -> dict:
     extras: dict = {"PROFILE": [ExactCurve(cam.profile)]}
     if spec.kind == "disc-groove":
         extras["PROFILE"].append(ExactCurve(cam.flanks[1]))
-        v = built.mesh.vertices
+        v = built.mesh_parts.vertices
         extras["OUTER-CIRCLE"] = [Circle((0.0, 0.0), float(np.hypot(v[:, 0], v[:, 1]).max()))]
     extras["TOOLPATH-EXACT"] = [ExactCurve(c.curve) for c in r.contours]
     extras["BASE-CIRCLE"] = [Circle((0.0, 0.0), cam.base_radius)]

@@ -18,7 +18,6 @@ import math
 from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy.optimize import brentq
 
 from camcam.errors import GeometryError
 from camcam.geometry.extrema import extreme, negative_ranges
@@ -183,6 +182,8 @@ def smallest_base_radius_without_undercut(cam) -> float:
         lo, hi = hi, hi * 2.0
         if hi > 1e5:
             raise GeometryError("no base radius up to 100 m avoids the undercut; the motion is too steep for this follower")
+    from scipy.optimize import brentq  # only sizing asks this: a run need not import scipy.optimize
+
     r = brentq(m, lo, hi, xtol=1e-6) if m(lo) < 0 else lo
     return math.ceil(r * 100.0 + 1e-9) / 100.0
 

@@ -3,30 +3,43 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
-import trimesh
 
 from camcam.geometry.analysis import DiscAnalysis, analyse, analyse_cylindrical, check_undercut
 from camcam.geometry.cylindrical import BarrelOscillatingRoller, BarrelTranslatingRoller, CylindricalCam
 from camcam.geometry.disc import DiscCam
 from camcam.geometry.followers import OscillatingFlat, OscillatingRoller, TranslatingFlat, TranslatingRoller
 from camcam.geometry.groove import GrooveCam
-from camcam.geometry.mesh import cylinder_mesh, disc_mesh, groove_mesh, ring_points
+from camcam.geometry.mesh import MeshParts, cylinder_parts, disc_parts, groove_parts, ring_points
 from camcam.motion.program import MotionProgram
 from camcam.geometry.params import CamSpec, FollowerSpec
+
+if TYPE_CHECKING:
+    import trimesh
 
 __all__ = ["BuiltCam", "build_cam", "disc_follower", "groove_outer_radius"]
 
 
 @dataclass(frozen=True)
 class BuiltCam:
-    """The cam value object, its analysis and its watertight mesh."""
+    """The cam value object, its analysis and its watertight mesh.
+
+    ``mesh_parts`` are the triangles (numpy); ``mesh`` is the watertight trimesh, made from them
+    the first time it is asked for (trimesh is imported then, and :class:`GeometryError` raised if
+    the triangles close no solid).
+    """
 
     cam: DiscCam | GrooveCam | CylindricalCam
     analysis: DiscAnalysis
-    mesh: trimesh.Trimesh
+    mesh_parts: MeshParts
     spec: CamSpec
+
+    @cached_property
+    def mesh(self) -> "trimesh.Trimesh":
+        return self.mesh_parts.solid()
 
 
 def disc_follower(f: FollowerSpec):
@@ -76,14 +89,14 @@ def build_cam(c: CamSpec, f: FollowerSpec, program: MotionProgram) -> BuiltCam:
             else BarrelOscillatingRoller(f.roller_radius, f.pivot_distance, f.arm_length)
         )
         cam = CylindricalCam(fol, program, c.base_radius, c.length, c.groove_depth, c.rotation, c.bore)
-        return BuiltCam(cam, analyse_cylindrical(cam), cylinder_mesh(cam), c)
+        return BuiltCam(cam, analyse_cylindrical(cam), cylinder_parts(cam), c)
     disc = DiscCam(disc_follower(f), program, c.base_radius, c.rotation)
     if c.kind == "disc":
         check_undercut(disc)
-        return BuiltCam(disc, analyse(disc), disc_mesh(disc, c.thickness, c.bore), c)
+        return BuiltCam(disc, analyse(disc), disc_parts(disc, c.thickness, c.bore), c)
     cam = GrooveCam(disc, c.groove_depth)
     check_undercut(cam)
-    return BuiltCam(cam, analyse(cam), groove_mesh(cam, c.thickness, c.bore, groove_outer_radius(cam, c)), c)
+    return BuiltCam(cam, analyse(cam), groove_parts(cam, c.thickness, c.bore, groove_outer_radius(cam, c)), c)
 
 
 def groove_outer_radius(cam: GrooveCam, c: CamSpec) -> float:

@@ -16,7 +16,6 @@ from dataclasses import dataclass
 from typing import Callable, Protocol, runtime_checkable
 
 import numpy as np
-from scipy.integrate import quad
 
 __all__ = [
     "PlanarCurve",
@@ -25,6 +24,7 @@ __all__ = [
     "left_normal",
     "curvature",
     "curvature_rate",
+    "derivatives",
     "speed",
     "arc_length",
 ]
@@ -92,6 +92,16 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
+def derivatives(curve: PlanarCurve, t, order: int) -> list[np.ndarray]:
+    """[P′, P″, …, P^(order)] at ``t``, each shape (n, 2): one evaluation of the jets when the curve
+    has them (a jet of order k carries every lower derivative), else one ``evaluate`` per order."""
+    jets = getattr(curve, "jets", None)
+    if jets is None:
+        return [curve.evaluate(t, k) for k in range(1, order + 1)]
+    js = jets(t, order)
+    return [np.stack([j.d[k] for j in js], axis=-1) for k in range(1, order + 1)]
+
+
 def speed(curve: PlanarCurve, t) -> np.ndarray:
     """|dP/dt|, shape (n,)."""
     return np.hypot(*curve.evaluate(t, 1).T)
@@ -110,13 +120,13 @@ def left_normal(curve: PlanarCurve, t) -> np.ndarray:
 
 def curvature(curve: PlanarCurve, t) -> np.ndarray:
     """Signed curvature κ (1/mm), positive turning left."""
-    d1, d2 = curve.evaluate(t, 1), curve.evaluate(t, 2)
+    d1, d2 = derivatives(curve, t, 2)
     return _cross(d1, d2) / np.hypot(d1[:, 0], d1[:, 1]) ** 3
 
 
 def curvature_rate(curve: PlanarCurve, t) -> np.ndarray:
     """dκ/ds (1/mm²), exact from the third derivative."""
-    d1, d2, d3 = (curve.evaluate(t, k) for k in (1, 2, 3))
+    d1, d2, d3 = derivatives(curve, t, 3)
     v = np.hypot(d1[:, 0], d1[:, 1])
     c = _cross(d1, d2)
     dc = _cross(d1, d3)  # d/dt (d1 × d2) = d1 × d3
@@ -127,6 +137,8 @@ def curvature_rate(curve: PlanarCurve, t) -> np.ndarray:
 
 def arc_length(curve: PlanarCurve, a: float, b: float) -> float:
     """Length of the curve between parameters a and b (adaptive quadrature, per analytic piece)."""
+    from scipy.integrate import quad  # imported here: the rest of this module needs only numpy
+
     edges = [a, *[x for x in curve.breaks if a < x < b], b]
     total = 0.0
     for lo, hi in zip(edges, edges[1:]):

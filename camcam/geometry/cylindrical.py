@@ -151,9 +151,11 @@ class CylindricalCam(CamBasics):
         return float(xs.min()), float(xs.max())
 
     # -- fixed-frame pieces -------------------------------------------------
-    def _axis_point(self, theta, K, piece, rho):
-        """Roller-axis point C, motion direction n, speed v along n, distance R of C from the axis."""
-        s = self.lift(theta, K + 1, piece)
+    def _axis_point(self, theta, K, piece, rho, lift=None):
+        """Roller-axis point C, motion direction n, speed v along n, distance R of C from the axis.
+
+        ``lift`` is ``self.lift(theta, K + 1, piece)`` when the caller has it already."""
+        s = self.lift(theta, K + 1, piece) if lift is None else lift
         n = s.d.shape[1]
         one = Jet.constant(1.0, n, K)
         rho = np.broadcast_to(np.asarray(rho, float), (n,))
@@ -167,9 +169,9 @@ class CylindricalCam(CamBasics):
         C = (0.5 * self.length - sn * ell, one * 0.0, d - c * ell)
         return C, (-c, one * 0.0, sn), s.derivative() * ell, d - c * ell
 
-    def _contact(self, theta, K, piece, rho, side):
+    def _contact(self, theta, K, piece, rho, side, lift=None):
         """Fixed-frame contact point jets on flank ``side`` (0: −X wall, 1: +X wall) at radius ρ."""
-        C, nvec, v, R = self._axis_point(theta, K, piece, rho)
+        C, nvec, v, R = self._axis_point(theta, K, piece, rho, lift)
         alpha = Jet.atan2(v * (-self.sigma), R)
         ca, sa = alpha.cos(), alpha.sin()
         m = (nvec[0] * ca, sa, nvec[2] * ca)
@@ -238,12 +240,13 @@ class CylindricalCam(CamBasics):
         theta = np.atleast_1d(np.asarray(theta, float))
         lo = np.full(theta.shape, rho - 2 * self.roller_radius)
         hi = np.full(theta.shape, rho + 2 * self.roller_radius)
+        lift = self.lift(theta, 1, None)  # the same at every step: only the radius is bisected
         for _ in range(iterations):
             mid = 0.5 * (lo + hi)
-            p = self._contact(theta, 0, None, mid, index)
+            p = self._contact(theta, 0, None, mid, index, lift)
             r = np.hypot(p[1].value, p[2].value)
             outside = r > rho
             hi = np.where(outside, mid, hi)
             lo = np.where(outside, lo, mid)
-        p = self._to_cam(theta, self._contact(theta, 0, None, 0.5 * (lo + hi), index))
+        p = self._to_cam(theta, self._contact(theta, 0, None, 0.5 * (lo + hi), index, lift))
         return np.stack([j.value for j in p], axis=-1)

@@ -14,7 +14,7 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["Candidate", "stationary_candidates", "negative_ranges", "extreme"]
+__all__ = ["Candidate", "roots", "roots_in", "stationary_candidates", "negative_ranges", "extreme"]
 
 #: Samples per piece used to bracket roots (the roots themselves are bisected to
 #: ROOT_XTOL), and at least one per BRACKET_MAX_RAD of cam angle: a lift table's
@@ -39,39 +39,55 @@ class Candidate:
     piece: int
 
 
-def _roots(g: Callable[[np.ndarray], np.ndarray], a: float, b: float) -> list[float]:
-    """Roots of g in [a, b]: sign changes on a grid bracket them, then every bracket is cut into
-    :data:`SECTIONS` parts at once (all brackets in one call of ``g``) and the part holding the
-    sign change kept, until narrower than :data:`ROOT_XTOL`."""
-    n = max(BRACKETS_PER_PIECE, int(math.ceil((b - a) / BRACKET_MAX_RAD)))
-    ts = np.linspace(a, b, n + 1)
-    vs = g(ts)
-    exact = [float(ts[i]) for i in range(1, len(ts) - 1) if vs[i] == 0.0]
-    idx = np.flatnonzero(vs[:-1] * vs[1:] < 0)
-    if idx.size == 0:
-        return exact
-    lo, hi = ts[idx].copy(), ts[idx + 1].copy()
-    s_lo = np.sign(vs[idx])
-    frac = np.arange(1, SECTIONS) / SECTIONS
-    rows = np.arange(len(lo))
-    # each round shrinks every bracket by SECTIONS: from (b − a)/48 to 1e-13 rad takes < 13 rounds
-    rounds = max(1, int(math.ceil(math.log(max((b - a) / n, ROOT_XTOL) / ROOT_XTOL, SECTIONS))) + 1)
-    for _ in range(rounds):
-        pts = lo[:, None] + (hi - lo)[:, None] * frac[None, :]
-        fm = g(pts.ravel()).reshape(pts.shape)
-        # the first cut whose sign differs from the bracket's low end (hi's own sign differs: a sentinel)
-        changed = np.concatenate([np.sign(fm) != s_lo[:, None], np.ones((len(lo), 1), bool)], axis=1)
-        j = np.argmax(changed, axis=1)
-        ends = np.concatenate([lo[:, None], pts, hi[:, None]], axis=1)
-        lo, hi = ends[rows, j], ends[rows, j + 1]
-    return sorted(exact + [float(x) for x in 0.5 * (lo + hi)])
+def roots(g: Callable[[np.ndarray], np.ndarray], a: float, b: float, xtol: float = ROOT_XTOL) -> list[float]:
+    """Roots of g in [a, b] (:func:`roots_in` on one interval)."""
+    return roots_in(g, [(a, b)], xtol)[0]
+
+
+def roots_in(g: Callable[[np.ndarray], np.ndarray], intervals, xtol: float = ROOT_XTOL) -> list[list[float]]:
+    """Roots of g in each interval [a, b], ascending: sign changes on a grid bracket them, then every
+    bracket is cut into :data:`SECTIONS` parts at once (all brackets of all intervals in one call of
+    ``g``) and the part holding the sign change kept, until narrower than ``xtol``.
+
+    The grid has at least :data:`BRACKETS_PER_PIECE` cells per interval and one per
+    :data:`BRACKET_MAX_RAD`; a pair of roots closer than a cell is not seen.
+    """
+    cells = [max(BRACKETS_PER_PIECE, int(math.ceil((b - a) / BRACKET_MAX_RAD))) for a, b in intervals]
+    grids = [np.linspace(a, b, n + 1) for (a, b), n in zip(intervals, cells)]
+    vals = np.split(g(np.concatenate(grids)), np.cumsum([len(ts) for ts in grids])[:-1])
+    found: list[list[float]] = []
+    lo_l, hi_l, s_l, owner_l = [], [], [], []
+    widest = xtol
+    for k, (ts, vs, (a, b), n) in enumerate(zip(grids, vals, intervals, cells)):
+        found.append([float(ts[i]) for i in range(1, len(ts) - 1) if vs[i] == 0.0])
+        idx = np.flatnonzero(vs[:-1] * vs[1:] < 0)
+        lo_l.append(ts[idx]), hi_l.append(ts[idx + 1]), s_l.append(np.sign(vs[idx]))
+        owner_l.append(np.full(idx.size, k))
+        widest = max(widest, (b - a) / n)
+    lo, hi, s_lo, owner = (np.concatenate(x) for x in (lo_l, hi_l, s_l, owner_l))
+    if lo.size:
+        frac = np.arange(1, SECTIONS) / SECTIONS
+        rows = np.arange(len(lo))
+        # each round shrinks every bracket by SECTIONS: from a grid cell to 1e-13 rad takes < 13 rounds
+        rounds = max(1, int(math.ceil(math.log(widest / xtol, SECTIONS))) + 1)
+        for _ in range(rounds):
+            pts = lo[:, None] + (hi - lo)[:, None] * frac[None, :]
+            fm = g(pts.ravel()).reshape(pts.shape)
+            # the first cut whose sign differs from the bracket's low end (hi's own sign differs: a sentinel)
+            changed = np.concatenate([np.sign(fm) != s_lo[:, None], np.ones((len(lo), 1), bool)], axis=1)
+            j = np.argmax(changed, axis=1)
+            ends = np.concatenate([lo[:, None], pts, hi[:, None]], axis=1)
+            lo, hi = ends[rows, j], ends[rows, j + 1]
+        for k, x in zip(owner, 0.5 * (lo + hi)):
+            found[int(k)].append(float(x))
+    return [sorted(f) for f in found]
 
 
 def stationary_candidates(f: PieceFunc, breaks: np.ndarray) -> list[Candidate]:
     """Piece ends and roots of f′ in every piece; ``f(t, piece)`` → (value, derivative)."""
     out = []
     for i, (a, b) in enumerate(zip(breaks, breaks[1:])):
-        ts = [a, b, *_roots(lambda t: f(t, i)[1], a, b)]
+        ts = [a, b, *roots(lambda t: f(t, i)[1], a, b)]
         vals = f(np.array(ts), i)[0]
         out += [Candidate(float(t), float(v), i) for t, v in zip(ts, vals)]
     return out
@@ -90,7 +106,7 @@ def negative_ranges(f: Callable[[np.ndarray, int], np.ndarray], breaks: np.ndarr
     spans: list[list[float]] = []
     for i, (a, b) in enumerate(zip(breaks, breaks[1:])):
         g = lambda t, i=i: f(t, i)  # noqa: E731
-        edges = [a, *_roots(g, a, b), b]
+        edges = [a, *roots(g, a, b), b]
         for lo, hi in zip(edges, edges[1:]):
             if hi - lo <= 0:
                 continue

@@ -20,13 +20,18 @@ monotone), which every practical disc cam is; otherwise :class:`GeometryError`.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import trimesh
 
 from camcam.errors import GeometryError
 
-__all__ = ["disc_mesh", "groove_mesh", "cylinder_mesh", "ring_points"]
+if TYPE_CHECKING:
+    import trimesh
+
+__all__ = ["MeshParts", "disc_parts", "groove_parts", "cylinder_parts", "disc_mesh", "groove_mesh", "cylinder_mesh",
+           "ring_points"]
 
 #: Points per analytic piece of a curve in the mesh rings.
 POINTS_PER_PIECE = 180
@@ -60,6 +65,35 @@ def _fan(ring: np.ndarray, centre: int, first: bool = True) -> np.ndarray:
     return tri if first else tri[:, ::-1]
 
 
+@dataclass(frozen=True, eq=False)
+class MeshParts:
+    """A cam's triangles before trimesh sees them: ``vertices`` (n, 3) mm, ``faces`` (m, 3) indices.
+
+    Cheap to make (numpy only); :meth:`solid` makes the watertight trimesh (and imports trimesh:
+    a `camcam run` does that in the child process that writes the STL, camcam.forked).
+    """
+
+    vertices: np.ndarray
+    faces: np.ndarray
+
+    def solid(self) -> "trimesh.Trimesh":
+        """The watertight, consistently wound trimesh with positive volume.
+
+        Raises
+        ------
+        GeometryError
+            The triangles do not close a solid (a groove or profile that intersects itself).
+        """
+        import trimesh
+
+        m = trimesh.Trimesh(self.vertices, self.faces, process=True)
+        if m.volume < 0:
+            m.invert()
+        if not (m.is_watertight and m.is_winding_consistent and m.volume > 0):
+            raise GeometryError("the cam mesh is not a closed solid (the groove or profile intersects itself)")
+        return m
+
+
 class _Builder:
     def __init__(self) -> None:
         self.vertices: list[np.ndarray] = []
@@ -73,13 +107,8 @@ class _Builder:
         self.count += len(pts)
         return idx
 
-    def mesh(self) -> trimesh.Trimesh:
-        m = trimesh.Trimesh(np.concatenate(self.vertices), np.concatenate(self.faces), process=True)
-        if m.volume < 0:
-            m.invert()
-        if not (m.is_watertight and m.is_winding_consistent and m.volume > 0):
-            raise GeometryError("the cam mesh is not a closed solid (the groove or profile intersects itself)")
-        return m
+    def parts(self) -> MeshParts:
+        return MeshParts(np.concatenate(self.vertices), np.concatenate(self.faces))
 
 
 def _xy(points: np.ndarray, z: float) -> np.ndarray:
@@ -101,7 +130,7 @@ def _annulus_prism(b: _Builder, outer: np.ndarray, inner_r: float, phi: np.ndarr
         b.faces += [_fan(o0, c0[0], first=False), _fan(o1, c1[0])]
 
 
-def disc_mesh(cam, thickness: float, bore: float, per_piece: int = POINTS_PER_PIECE) -> trimesh.Trimesh:
+def disc_parts(cam, thickness: float, bore: float, per_piece: int = POINTS_PER_PIECE) -> MeshParts:
     """The disc cam extruded from z = 0 to ``thickness`` with a bore of diameter ``bore``."""
     _, pts = ring_points(cam.profile, per_piece)
     phi = _polar(pts, "profile")
@@ -109,10 +138,10 @@ def disc_mesh(cam, thickness: float, bore: float, per_piece: int = POINTS_PER_PI
         raise GeometryError(f"cam.bore {bore:g} mm does not fit inside the profile")
     b = _Builder()
     _annulus_prism(b, pts, bore / 2, phi, 0.0, thickness)
-    return b.mesh()
+    return b.parts()
 
 
-def groove_mesh(cam, thickness: float, bore: float, outer_radius: float, per_piece: int = POINTS_PER_PIECE) -> trimesh.Trimesh:
+def groove_parts(cam, thickness: float, bore: float, outer_radius: float, per_piece: int = POINTS_PER_PIECE) -> MeshParts:
     """A face-groove cam: disc of ``outer_radius``, groove ``cam.groove_depth`` deep in the top face."""
     h = cam.groove_depth
     if not h < thickness:
@@ -138,10 +167,10 @@ def groove_mesh(cam, thickness: float, bore: float, outer_radius: float, per_pie
     else:
         top, bot = b.add([0.0, 0.0, thickness]), b.add([0.0, 0.0, 0.0])
         b.faces += [_fan(i_t, top[0]), _fan(c0, bot[0], first=False)]
-    return b.mesh()
+    return b.parts()
 
 
-def cylinder_mesh(cam, per_piece: int = POINTS_PER_PIECE, levels: int = 6) -> trimesh.Trimesh:
+def cylinder_parts(cam, per_piece: int = POINTS_PER_PIECE, levels: int = 6) -> MeshParts:
     """A :class:`~camcam.geometry.cylindrical.CylindricalCam` as a solid with its groove cut."""
     br = cam.breaks
     t = np.concatenate([np.linspace(a, b, per_piece, endpoint=False) for a, b in zip(br, br[1:])])
@@ -171,7 +200,23 @@ def cylinder_mesh(cam, per_piece: int = POINTS_PER_PIECE, levels: int = 6) -> tr
             b.faces.append(_fan(rim, c[0], first=side == 0))
     if cam.bore > 0:
         b.faces.append(_band(ends[0], ends[1]))
-    return b.mesh()
+    return b.parts()
+
+
+def disc_mesh(cam, thickness: float, bore: float, per_piece: int = POINTS_PER_PIECE) -> "trimesh.Trimesh":
+    """:func:`disc_parts` as a solid."""
+    return disc_parts(cam, thickness, bore, per_piece).solid()
+
+
+def groove_mesh(cam, thickness: float, bore: float, outer_radius: float,
+                per_piece: int = POINTS_PER_PIECE) -> "trimesh.Trimesh":
+    """:func:`groove_parts` as a solid."""
+    return groove_parts(cam, thickness, bore, outer_radius, per_piece).solid()
+
+
+def cylinder_mesh(cam, per_piece: int = POINTS_PER_PIECE, levels: int = 6) -> "trimesh.Trimesh":
+    """:func:`cylinder_parts` as a solid."""
+    return cylinder_parts(cam, per_piece, levels).solid()
 
 
 def _check_monotone(phi: np.ndarray, side: int) -> None:

@@ -27,7 +27,7 @@ from camcam.lazy import lazy_exports
 
 # lazy (camcam.lazy): the spec reader needs only the settings; the job pulls in shapely and the geometry
 __getattr__, __dir__, __all__ = lazy_exports(__name__, {
-    "machine": "camcam.nc.job",
+    **dict.fromkeys(("machine", "machine_program", "material_check", "with_removal"), "camcam.nc.job"),
     **dict.fromkeys(("Move", "read_program"), "camcam.nc.readback"),
     **dict.fromkeys(("RemovalReport", "check_moves", "check_program", "design_keep"), "camcam.nc.removal"),
     **dict.fromkeys(("MachiningResult", "Program", "deviation_checks"), "camcam.nc.result"),

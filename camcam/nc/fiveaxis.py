@@ -328,7 +328,7 @@ def _pass_moves(nodes: np.ndarray, raise_mm: float, m: MachiningSpec, outer: flo
     return moves
 
 
-def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
+def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int = 1) -> MachiningResult:
     """The 5-axis program of a cylindrical cam with an oscillating roller (see the module notes)."""
     cam, post = built.cam, m.post
     r_t = m.tool_diameter_mm / 2
@@ -372,7 +372,7 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
     measured = post.write_program(toolpath, name, m.setup)
     poses = poses_from_program(klartext_as_gcode(measured.text) if post.dialect == "heidenhain" else measured.text,
                                m.a_axis)
-    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses)
+    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers)
     value, tol = groove.max_deviation_mm, m.tolerance_mm
     holds = math.ceil(value * 1e4) / 1e4
     check = Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(),

@@ -61,6 +61,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from camcam.forked import parallel_map
 from camcam.geometry.cylindrical import CylindricalCam
 from camcam.nc.groove_motion import Motion, ProgramMotion, RollerMotion, follower_poses, section_interval, side_extent
 from camcam.nc.toolposes import CylinderTool, ToolPoses, frozen_array
@@ -411,7 +412,7 @@ def _refine(setup: _Setup, side: int, rho0: float, th0: float, sign: float, rho_
 
 
 def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *, radii: int | np.ndarray = 11,
-                   angle_step_deg: float = 0.25, pose_step_mm: float = 0.1) -> GrooveMeasurement:
+                   angle_step_deg: float = 0.25, pose_step_mm: float = 0.1, workers: int = 1) -> GrooveMeasurement:
     """Measure the groove the poses cut against the designed groove: both walls, all radii, all angles.
 
     Parameters
@@ -427,6 +428,9 @@ def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *,
         Cam-angle step of the map (must divide 360).
     pose_step_mm : float
         Largest step of a tool section between motion samples before refinement.
+    workers : int
+        Processes that share the map's radii and the four refinements
+        (:func:`camcam.forked.parallel_map`; the same figures for any count).
 
     Returns
     -------
@@ -456,30 +460,34 @@ def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *,
     rad = np.linspace(rb, R, int(radii)) if np.ndim(radii) == 0 else np.asarray(radii, float)
     th = np.radians(np.arange(n_ang) * angle_step_deg)
     setup = _Setup(cam, tool, poses, pose_step_mm)
+    rows = parallel_map(lambda rho: setup.deviations(float(rho), th), rad, workers)
     dev = np.empty((2, len(rad), n_ang))
     uncut = 0
-    for i, rho in enumerate(rad):
-        (d0, d1), u = setup.deviations(float(rho), th)  # wall 0 = −X (flank 0), wall 1 = +X (flank 1)
+    for i, ((d0, d1), u) in enumerate(rows):  # wall 0 = −X (flank 0), wall 1 = +X (flank 1)
         dev[0, i], dev[1, i] = d0, d1
         uncut += int(u.sum())
     d_rho = (rad[-1] - rad[0]) / max(len(rad) - 1, 1)
     d_th = math.radians(angle_step_deg)
-    walls = []
+    found = []  # per (wall, sign): the grid extreme and whether it is refined
     for side in (0, 1):
-        ext = []
         for sign in (1.0, -1.0):
             flat = int(np.argmax(sign * dev[side]))
             i, j = np.unravel_index(flat, dev[side].shape)
             grid_v = float(dev[side, i, j])
-            if np.isfinite(grid_v) and abs(grid_v) < 0.5 * cam.roller_radius:
-                rho, t, v = _refine(setup, side, float(rad[i]), float(th[j]), sign, float(rad[0]), float(rad[-1]),
-                                    d_rho, d_th)
-                if sign * grid_v > sign * v:  # the refined figure never reports less than the grid found
-                    rho, t, v = float(rad[i]), float(th[j]), grid_v
-            else:  # nothing cut there: the figure is the groove width, no refinement
-                rho, t, v = float(rad[i]), float(th[j]), grid_v
-            ext.append(WallExtreme(float(v), float(rho), float(math.degrees(t) % 360.0)))
-        walls.append(WallDeviation(side, ext[0], ext[1]))
+            # nothing cut there (the figure is the groove width): no refinement
+            found.append((side, sign, float(rad[i]), float(th[j]), grid_v,
+                          bool(np.isfinite(grid_v) and abs(grid_v) < 0.5 * cam.roller_radius)))
+    refined = parallel_map(
+        lambda f: _refine(setup, f[0], f[2], f[3], f[1], float(rad[0]), float(rad[-1]), d_rho, d_th) if f[5] else None,
+        found, workers)
+    ext = []
+    for (side, sign, rho_g, t_g, grid_v, _), r in zip(found, refined):
+        if r is None or sign * grid_v > sign * r[2]:  # the refined figure never reports less than the grid found
+            rho, t, v = rho_g, t_g, grid_v
+        else:
+            rho, t, v = r
+        ext.append(WallExtreme(float(v), float(rho), float(math.degrees(t) % 360.0)))
+    walls = [WallDeviation(0, ext[0], ext[1]), WallDeviation(1, ext[2], ext[3])]
     bound = pose_step_mm**2 / (8.0 * tool.radius_mm)
     return GrooveMeasurement(frozen_array(rad), frozen_array(np.degrees(th)), frozen_array(dev), (walls[0], walls[1]),
                              float(bound), float(pose_step_mm), uncut)

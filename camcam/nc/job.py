@@ -33,7 +33,7 @@ from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
 from camcam.nc.bore import bore_circle_radius, bore_curve, bore_passes
 from camcam.nc.passes import finish_moves, ramp_loop_passes, spiral_moves, with_markers
-from camcam.nc.removal import check_program
+from camcam.nc.removal import RemovalReport, check_program
 from camcam.nc.result import MachiningResult, deviation_checks
 from camcam.nc.roughing import RING_STEP_FRACTION, disc_spiral
 from camcam.nc.settings import MachiningSpec
@@ -43,7 +43,7 @@ from camcam.nc.tools import check_profile_tool, groove_passes, job_title
 from camcam.toolpath.contours import CutContour, fit_printed
 from camcam.toolpath.path import Pass, Rapid, Toolpath, depth_levels
 
-__all__ = ["machine"]
+__all__ = ["machine", "machine_program", "material_check", "with_removal"]
 
 
 def _stock_side(curve, free_dir: np.ndarray) -> str:
@@ -72,8 +72,14 @@ def _disc_plan(built: BuiltCam, r_t: float, stepover_mm: float):
             ("outer flank", cam.offset_flank(1, r_t), r_t, None, "finish")]
 
 
-def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK) -> MachiningResult:
-    """Tool-centre curves, fitted contours, passes and program for ``built`` (no I/O).
+def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK,
+            workers: int = 1) -> MachiningResult:
+    """Tool-centre curves, fitted contours, passes, program and its material check for ``built`` (no I/O).
+
+    The same as :func:`machine_program` followed, for a disc or face-groove
+    job, by :func:`material_check` and :func:`with_removal` (`camcam run`
+    calls them one by one, to check the material in a child process while it
+    writes the drawing).
 
     Parameters
     ----------
@@ -85,6 +91,9 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEF
         The job name (program title and file names).
     stock : StockSpec
         The blank (``[stock]``; default: round, 2 mm over the cam's largest radius).
+    workers : int
+        Processes a barrel cam's 3-D groove measurement may share its work with
+        (:func:`camcam.nc.groove3d.measure_groove`; the same figures for any count).
 
     Returns
     -------
@@ -101,14 +110,33 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEF
     FitError, PostError
         Faults of the fitter or the writer on valid input.
     """
+    result = machine_program(built, m, name, stock, workers)
+    if result.blank is None:
+        return result  # a barrel cam: measured in 3-D by its own job
+    return with_removal(result, material_check(result, built, m))
+
+
+def material_check(result: MachiningResult, built: BuiltCam, m: MachiningSpec) -> RemovalReport:
+    """The material-removal check of ``result``'s printed program against its blank (:mod:`camcam.nc.removal`)."""
+    return check_program(result.program.text, result.post, result.blank, m, built)
+
+
+def with_removal(result: MachiningResult, removal: RemovalReport) -> MachiningResult:
+    """``result`` with its material check: the report and its checks added to the job's."""
+    return replace(result, checks=result.checks + removal.checks(), removal=removal)
+
+
+def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK,
+                    workers: int = 1) -> MachiningResult:
+    """:func:`machine` without the material check of a disc or face-groove job (``removal`` is None)."""
     if built.spec.kind == "cylindrical":
         if m.axes == 5:
             from camcam.nc.fiveaxis import machine_five_axis
 
-            return machine_five_axis(built, m, name)
+            return machine_five_axis(built, m, name, workers)
         from camcam.nc.rotary import machine_cylindrical
 
-        return machine_cylindrical(built, m, name)
+        return machine_cylindrical(built, m, name, workers)
     post, r_t = m.post, m.tool_diameter_mm / 2
     title = job_title(name, built.spec.kind, built.cam.kind, m.tool_diameter_mm, m.mode, m.tolerance_mm, post.name)
     blank = blank_for(built, stock, m.tool_diameter_mm, m.bore)
@@ -145,11 +173,9 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEF
     notes = ()
     if m.finish_allowance_mm > 0 and built.spec.kind != "disc":
         notes = ("finish_allowance does not apply to groove passes (the flanks have their own passes)",)
-    removal = check_program(program.text, post, blank, m, built)
     return MachiningResult(name, built.spec.kind, built.cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, m.mode,
                            tuple(contours), toolpath, program, None, notes,
-                           deviation_checks(contours, m.tolerance_mm) + removal.checks(), blank=blank,
-                           removal=removal)
+                           deviation_checks(contours, m.tolerance_mm), blank=blank)
 
 
 def _profile_passes(k: int, elements, blank, m: MachiningSpec, cs, side: str, levels) -> list[Pass]:

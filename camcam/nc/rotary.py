@@ -124,7 +124,7 @@ def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool
     return Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(), advice)
 
 
-def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
+def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: int = 1) -> MachiningResult:
     """The 4-axis program of a cylindrical cam and its 3-D measurement (see the module notes)."""
     cam, post = built.cam, m.post
     if not post.inverse_time:
@@ -164,7 +164,7 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str) -> Machini
     toolpath = dataclasses.replace(join_toolpaths(title, paths), comments=comments)
     measured = post.write_program(toolpath, name, m.setup)
     poses = poses_from_program(measured.text, m.a_axis)
-    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses)
+    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers)
     smallest = None
     if cam.kind == "translating-roller" and r_t < cam.roller_radius - SAME_TOOL_MM:
         smallest = 2 * smallest_tool_radius(cam, 0.5 * m.tolerance_mm, rho_d)

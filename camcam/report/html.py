@@ -11,7 +11,7 @@ import html
 from dataclasses import dataclass
 from typing import Sequence, Union
 
-from camcam.plots.concurrent import PendingPNG, resolve
+from camcam.forked import Pending, resolve
 from camcam.verdict import Verdict
 
 __all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Code", "VerdictBlock", "Section", "render_html"]
@@ -21,7 +21,7 @@ __all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Code", "VerdictBloc
 class Figure:
     """A PNG plot with a caption."""
 
-    png: bytes | PendingPNG  # a plot still being drawn is collected when the page is rendered
+    png: bytes | Pending  # a plot still being drawn is collected when the page is rendered
     caption: str
 
 

@@ -35,7 +35,7 @@ def length_offset_text(post: Post, tool: int) -> str:
 
 def _blank_and_zero(built, r: MachiningResult) -> list[tuple[str, str]]:
     spec, cam = built.spec, built.cam
-    v = built.mesh.vertices
+    v = built.mesh_parts.vertices
     if r.rotary:
         return [("part", f"cylinder Ø{2 * cam.base_radius:g} × {cam.length:g} mm"
                  + (f", bore Ø{spec.bore:g} mm" if spec.bore else "")),

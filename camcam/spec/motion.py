@@ -39,18 +39,20 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from camcam.errors import InputError, MotionError
-from camcam.lifttable.fairing import DEFAULT_MAX_ITERATIONS, METHODS
-from camcam.lifttable.interpolate import FITS, default_fit
-from camcam.lifttable.law import table_law, table_program
-from camcam.lifttable.process import FairingOptions, FittedTable, fit_table
-from camcam.lifttable.table import LiftTable, load_lift_table
 from camcam.motion.catalog import LAWS, make_law
 from camcam.motion.law import MotionLaw
 from camcam.motion.program import TILE_ATOL_DEG, MotionProgram, Segment
 from camcam.motion.standard import dwell
 from camcam.spec.reader import MISSING, Table, fmt
+
+if TYPE_CHECKING:
+    from camcam.lifttable.process import FairingOptions, FittedTable
+    from camcam.lifttable.table import LiftTable
+
+# camcam.lifttable (scipy's splines and optimisers) is imported only by a spec that has a lift table
 
 __all__ = ["SegmentSpec", "TableMotionSpec", "MotionSpec", "read_motion"]
 
@@ -92,6 +94,8 @@ class MotionSpec:
     def program(self, unit: str = "mm") -> MotionProgram:
         """The motion program; with ``strict`` a jump at a join raises :class:`MotionError`."""
         if self.lift_table is not None:
+            from camcam.lifttable.law import table_program
+
             program = table_program(self.lift_table.fitted.law, self.rpm, unit)
             if self.strict:
                 program.check_strict()
@@ -108,6 +112,8 @@ class MotionSpec:
 
 
 def _load_table(t: Table, key: str, base_dir: Path) -> tuple[Path, LiftTable]:
+    from camcam.lifttable.table import load_lift_table
+
     rel = t.string(key)
     path = (base_dir / rel) if not Path(rel).is_absolute() else Path(rel)
     try:
@@ -118,6 +124,9 @@ def _load_table(t: Table, key: str, base_dir: Path) -> tuple[Path, LiftTable]:
 
 def _read_table_law(t: Table, base_dir: Path) -> tuple[MotionLaw, float]:
     """A rise-only table as a segment law: (normalised law, the table's rise)."""
+    from camcam.lifttable.interpolate import FITS
+    from camcam.lifttable.law import table_law
+
     _, table = _load_table(t, "table", base_dir)
     t.check("table", not table.full_revolution, "a full-revolution table goes in [motion] lift_table, not in a segment")
     fit = t.string("fit", "clamped", choices=[f for f in FITS if f != "periodic"])
@@ -129,6 +138,9 @@ def _read_table_law(t: Table, base_dir: Path) -> tuple[MotionLaw, float]:
 
 
 def _read_fairing(t: Table) -> FairingOptions:
+    from camcam.lifttable.fairing import DEFAULT_MAX_ITERATIONS, METHODS
+    from camcam.lifttable.process import FairingOptions
+
     opts = FairingOptions(
         method=t.string("method", FairingOptions.method, choices=METHODS),
         xi=t.number("xi", FairingOptions.xi, minimum=0, inclusive=False, unit="mm"),
@@ -142,6 +154,9 @@ def _read_fairing(t: Table) -> FairingOptions:
 
 
 def _read_lift_table(t: Table, base_dir: Path) -> TableMotionSpec:
+    from camcam.lifttable.interpolate import FITS, default_fit
+    from camcam.lifttable.process import fit_table
+
     path, table = _load_table(t, "lift_table", base_dir)
     t.check(
         "lift_table",

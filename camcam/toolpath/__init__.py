@@ -2,7 +2,8 @@
 numbers), the printed rounding, the tolerance budget, two-sided deviation measurement, and the
 neutral :class:`Toolpath` of :class:`Pass` records the posts print."""
 
-from camcam.toolpath.arcfit import FitResult, fit_contour, lower_bound_blocks, line_estimate_blocks
+from camcam.toolpath.arcfit import FitResult, fit_contour
+from camcam.toolpath.lowerbound import line_estimate_blocks, lower_bound_blocks
 from camcam.toolpath.budget import FitBudget, DEFAULT_BUDGET
 from camcam.toolpath.quantizer import Quantizer
 from camcam.toolpath.contours import CutContour, fit_printed

@@ -28,15 +28,15 @@ from dataclasses import dataclass
 from typing import Callable
 
 import numpy as np
-from scipy.integrate import simpson
 
 from camcam.errors import FitError, InputError
-from camcam.geometry.curve import PlanarCurve, curvature, curvature_rate, speed
+from camcam.geometry.curve import PlanarCurve, curvature, speed
 from camcam.toolpath.arcspline import fit_arc_spline, g1_sections
 from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.toolpath.deviation import Deviation, measure_deviation
 from camcam.toolpath.elements import Arc, Line
 from camcam.toolpath.fitcore import Piece, dev, greedy, pieces
+from camcam.toolpath.lowerbound import line_estimate_blocks, line_estimate_pieces, lower_bound_blocks, lower_bound_pieces
 from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["FitResult", "fit_contour", "lower_bound_blocks", "line_estimate_blocks"]
@@ -69,25 +69,6 @@ class FitResult:
     @property
     def max_deviation_mm(self) -> float:
         return self.deviation.max_deviation_mm
-
-
-def _integral(curve, a, b, f, n: int = 20001) -> float:
-    """∫ f ds over [a, b] by Simpson's rule on ``n`` parameter points (vectorised)."""
-    t = np.linspace(a, b, n)
-    return float(simpson(f(t) * speed(curve, t), x=t))
-
-
-def lower_bound_blocks(curve: PlanarCurve, tolerance_mm: float, a=None, b=None) -> float:
-    """N_lb = ∫ (|dκ/ds| / (192 δ))^(1/3) ds: fewest arcs any arc spline can use (asymptotically)."""
-    edges = pieces(curve, a, b)
-    return sum(_integral(curve, lo, hi, lambda t: np.cbrt(np.abs(curvature_rate(curve, t)) / (192 * tolerance_mm)))
-               for lo, hi in edges)
-
-
-def line_estimate_blocks(curve: PlanarCurve, tolerance_mm: float, a=None, b=None) -> float:
-    """∫ √(|κ| / (8 δ)) ds: chords needed by the chordal method (δ = L²/8ρ)."""
-    return sum(_integral(curve, lo, hi, lambda t: np.sqrt(np.abs(curvature(curve, t)) / (8 * tolerance_mm)))
-               for lo, hi in pieces(curve, a, b))
 
 
 def _fit_lines_piece(piece, tol):
@@ -146,7 +127,7 @@ def _fit_arcs(curve, tolerance_mm, band, quantizer, max_sweep, a, b, exact, prin
     last = edges[-1][1]
     blocks = [int(np.count_nonzero((starts >= lo) & ((starts < hi) | (hi == last))))
               for lo, hi in edges]  # each arc counts on the piece its start joint lies on
-    lbs = [lower_bound_blocks(exact, tolerance_mm, lo, hi) for lo, hi in edges]
+    lbs = lower_bound_pieces(exact, tolerance_mm, edges)
     measured_whole = len(sections) == 1 and sections[0] == (exact.t_start, exact.t_end)
     return FitResult(tuple(elems), "arcs", tolerance_mm, quantizer.decimals, worst, float(sum(lbs)),
                      tuple(blocks), tuple(lbs), measured_whole)
@@ -224,9 +205,10 @@ def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",
                          budget)
     targets = tuple(budget.targets(band, quantizer))  # lines: the sag and sweep limits concern arcs only
     margin = budget.margin_mm(tolerance_mm)
-    all_elems, blocks, lbs = [], [], []
+    all_elems, blocks = [], []
     worst = None
-    for lo, hi in pieces(curve, a, b):
+    edges = pieces(curve, a, b)
+    for lo, hi in edges:
         piece = Piece(curve, lo, hi)
         for target in targets:
             raw = _fit_lines_piece(piece, target)
@@ -239,8 +221,8 @@ def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",
                            f"path stays {dev.max_deviation_mm:.4g} mm off after {budget.attempts} attempts")
         all_elems.extend(elems)
         blocks.append(len(elems))
-        lbs.append(line_estimate_blocks(exact, tolerance_mm, lo, hi))
         if worst is None or dev.max_deviation_mm > worst.max_deviation_mm:
             worst = dev
+    lbs = line_estimate_pieces(exact, tolerance_mm, edges)
     return FitResult(tuple(all_elems), mode, tolerance_mm, quantizer.decimals, worst, float(sum(lbs)),
                      tuple(blocks), tuple(lbs))

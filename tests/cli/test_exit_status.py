@@ -78,7 +78,7 @@ def test_internal_fault_is_exit_1_with_details_in_a_file(tmp_path, monkeypatch):
     def broken(*args, **kw):
         raise FitError("profile: cannot fit the curve within 0.01 mm")
 
-    monkeypatch.setattr("camcam.nc.machine", broken)
+    monkeypatch.setattr("camcam.nc.machine_program", broken)  # the first NC step `camcam run` takes
     out = tmp_path / "job" / "out"
     out.parent.mkdir()  # the parent exists (the output folder does not yet): the details go there
     code, _, err = cli("run", str(SAMPLE), "-o", str(out))

@@ -65,11 +65,15 @@ def test_interrupt_before_anything_is_written(tmp_path, monkeypatch):
 
 @pytest.mark.parametrize("command,module", [
     ("motion", "camcam.cli.motion"),   # the command's module, loaded while the parser is built
-    ("motion", "scipy.interpolate"),   # loaded inside the command
-    ("run", "trimesh.path"),           # swallowed by trimesh's own ``except BaseException``
+    ("motion", "camcam.spec.motion"),  # loaded inside the command
+    ("motion", "matplotlib.pyplot"),   # loaded by the child process that draws the plot (camcam.forked)
+    ("run", "shapely"),                # loaded inside the command, by the NC stage
+    ("run", "trimesh.path"),           # in the model child, swallowed by trimesh's own ``except BaseException``
 ])
 def test_ctrl_c_while_importing(tmp_path, command, module):
-    """Ctrl-C while a module loads: one line, 130, nothing written — also when a library swallows it."""
+    """Ctrl-C while a module loads: one line, 130, nothing written — also when a library swallows it,
+    and also when the process that gets it is one of the run's children (the signal goes to that one
+    process only here; a terminal's Ctrl-C goes to the whole process group)."""
     spec = DEMO if command == "motion" else SAMPLES / "disc-groove.toml"
     r = run_sub([command, spec, "-o", tmp_path / "out"], inject=["sigint-on-import", module])
     line = assert_clean_error(r.returncode, r.stderr, status=130, prefix="camcam: ")

@@ -76,9 +76,39 @@ def test_lower_bound_by_quadrature():
 
     E = ellipse()
     f = lambda t: (abs(curvature_rate(E, [t])[0]) / (192 * 0.01)) ** (1 / 3) * speed(E, [t])[0]
-    ref = sum(quad(f, a, b, limit=200)[0] for a, b in zip(E.breaks, E.breaks[1:]))
-    # Simpson on 20001 points vs adaptive quadrature: the cube-root cusps limit agreement to ~1e-4
-    assert abs(lower_bound_blocks(E, 0.01) - ref) < 1e-3 * ref
+    # κ′ = 0 at the ellipse's four vertices, which are its breaks here: quad needs no cusp inside a piece
+    ref = sum(quad(f, a, b, limit=200, epsabs=1e-13, epsrel=1e-13)[0] for a, b in zip(E.breaks, E.breaks[1:]))
+    # the mapped Gauss rule is exact to rounding on an analytic piece (12.835 020 279 6 both; Simpson on
+    # 20 001 points gave 12.835 008, 1e-6 off)
+    assert abs(lower_bound_blocks(E, 0.01) - ref) < 1e-10 * ref
+
+
+def test_lower_bound_cuts_at_the_cusps():
+    from scipy.integrate import quad
+
+    # the same ellipse without breaks at the vertices: the rule finds κ′'s roots itself
+    E = ellipse(quarter_breaks=False)
+    f = lambda t: (abs(curvature_rate(E, [t])[0]) / (192 * 0.001)) ** (1 / 3) * speed(E, [t])[0]
+    vertices = [0.0, math.pi / 2, math.pi, 1.5 * math.pi, 2 * math.pi]
+    ref = sum(quad(f, a, b, limit=200, epsabs=1e-13, epsrel=1e-13)[0] for a, b in zip(vertices, vertices[1:]))
+    # roots to 1e-10 rad leave ~1e-13 relative; 1e-10 allows for the rule on 4 parts instead of 4 pieces
+    assert abs(lower_bound_blocks(E, 0.001) - ref) < 1e-10 * ref
+    # and per piece in one batch: the halves add up to the whole
+    from camcam.toolpath.lowerbound import lower_bound_pieces
+
+    halves = lower_bound_pieces(E, 0.001, [(0.0, 1.0), (1.0, 2 * math.pi)])
+    assert abs(sum(halves) - ref) < 1e-10 * ref  # 1.0 rad is no root: the two parts are smooth
+
+
+def test_line_estimate_closed_form_on_a_circle():
+    from camcam.toolpath.lowerbound import line_estimate_blocks as estimate
+
+    R, tol = 10.0, 0.01
+    C = ellipse(R, R)
+    # κ = 1/R: ∫√(κ/8δ) ds = 2πR·√(1/(8Rδ)); the rule is exact to rounding on a constant
+    assert abs(estimate(C, tol) - 2 * math.pi * R * math.sqrt(1 / (8 * R * tol))) < 1e-12 * 50
+    # and κ′ = 0: no arc spline needs more than the circle's own arcs, N_lb = 0 (up to the rounding of κ′)
+    assert lower_bound_blocks(C, tol) < 1e-3
 
 
 def test_lines_mode_chordal():

@@ -1,0 +1,364 @@
+"""Work done in forked child processes while the run goes on.
+
+A `camcam run` has three kinds of work that nothing else waits for until the
+files are written: drawing the plots (matplotlib: importing it alone costs
+about as much as the NC fitting), writing the DXF and STL (ezdxf, trimesh), and
+the material-removal check of the printed program.  On a machine with two or
+more cores they can run beside the NC work:
+
+* :func:`later` forks the process; the child, which shares every array the
+  parent has computed (nothing is pickled on the way in), calls the function
+  and sends its result back pickled through a pipe; the parent goes on at once
+  and collects the result with :meth:`Pending.result`.
+* :class:`Server` forks one child that runs a first batch of jobs on the
+  memory it inherited, then serves later jobs sent to it (pickled), one at a
+  time, importing the modules they name itself.  So the parent never imports
+  matplotlib: the server imports it once, on the other core.
+
+The child runs the very same function on the very same data as an in-process
+call would, so the results are the same.  Fork is what makes this cheap, so it
+is used where the platform has it (Linux, the BSDs, macOS); elsewhere every job
+runs at once, in process.  A failure in a child raises :class:`ChildError`
+with the child's traceback when the result is collected.
+"""
+
+from __future__ import annotations
+
+import importlib
+import os
+import pickle
+import select
+import signal
+import struct
+import sys
+import traceback
+from typing import Any, Callable
+
+from camcam.interrupts import SIGNALS, Interrupted
+
+__all__ = ["ChildError", "Pending", "later", "resolve", "parallel_map", "Server", "call_target"]
+
+_OK, _FAILED = b"K", b"E"
+_FRAME = struct.Struct("<Q")  # the length of one server reply
+
+
+class ChildError(RuntimeError):
+    """A job failed in the child process that ran it (not a user's input error)."""
+
+
+def call_target(target: str, *args, **kwargs):
+    """Call the function named ``"package.module:function"`` (imported here, in whichever process runs it)."""
+    module, _, name = target.partition(":")
+    return getattr(importlib.import_module(module), name)(*args, **kwargs)
+
+
+def _payload(fn: Callable, args, kwargs) -> bytes:
+    """_OK + the pickled result, or _FAILED + the pickled (exception or None, traceback text): every
+    failure goes back to the parent, the exception itself when it pickles (a user's error stays one).
+
+    A SIGINT, SIGTERM or SIGHUP the child receives is an :class:`~camcam.interrupts.Interrupted`
+    for the parent, also when the job swallowed it (trimesh imports its optional parts under
+    ``except BaseException``): the parent then stops as if it had been interrupted itself."""
+    came: list[int] = []
+
+    def handler(signum, frame):
+        came.append(int(signum))
+        raise Interrupted(signum)
+
+    try:
+        for s in SIGNALS:
+            try:
+                signal.signal(s, handler)
+            except ValueError:  # not the main thread (a process that forks from a worker thread)
+                break
+        value = fn(*args, **kwargs)
+        if came:
+            raise Interrupted(came[0])
+        return _OK + pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+    except BaseException as err:  # noqa: BLE001
+        text = traceback.format_exc()
+        try:
+            data = pickle.dumps(err, protocol=pickle.HIGHEST_PROTOCOL)
+            pickle.loads(data)  # an exception whose arguments do not rebuild it travels as text only
+        except Exception:  # noqa: BLE001
+            data = None
+        return _FAILED + pickle.dumps((data, text), protocol=pickle.HIGHEST_PROTOCOL)
+
+
+def _decode(raw: bytes, what: str):
+    """The child's result, or its failure raised here: the child's own exception (chained to a
+    :class:`ChildError` with its traceback) when it pickled, else a :class:`ChildError`."""
+    if raw[:1] == _OK:
+        return pickle.loads(raw[1:])
+    if raw[:1] != _FAILED:
+        raise ChildError(f"{what} failed: the child process ended without a result")
+    data, text = pickle.loads(raw[1:])
+    where = ChildError(f"{what} failed: {text.strip()}")
+    if data is not None:
+        raise pickle.loads(data) from where
+    raise where
+
+
+def _fork(child: Callable[[], None]) -> int:
+    """Fork; the child runs ``child()`` and leaves without running the parent's exit handlers."""
+    for stream in (sys.stdout, sys.stderr):  # nothing buffered may be written twice
+        stream.flush()
+    pid = os.fork()
+    if pid == 0:
+        status = 1
+        try:
+            child()
+            status = 0
+        finally:
+            os._exit(status)
+    return pid
+
+
+class Pending:
+    """The result of a job running in a child process; :meth:`result` waits for it."""
+
+    def __init__(self, fetch: Callable[[], Any], cancel: Callable[[], None] | None = None) -> None:
+        self._fetch, self._cancel = fetch, cancel
+        self._done = False
+        self._value: Any = None
+        self._error: BaseException | None = None
+
+    def result(self):
+        """The job's value (waits for the child the first time; raises :class:`ChildError` if it failed,
+        or the child's own exception, every time it is asked)."""
+        if not self._done:
+            if self._fetch is None:
+                raise ChildError("the job was cancelled")
+            fetch, self._fetch, self._cancel = self._fetch, None, None  # the fetch reaps the child
+            try:
+                self._value = fetch()
+            except BaseException as err:
+                self._error = err
+            self._done = True
+        if self._error is not None:
+            raise self._error
+        return self._value
+
+    def cancel(self) -> None:
+        """Stop a job whose result is no longer wanted (a run that failed): its child is killed and
+        reaped, so it neither lingers nor holds memory.  Nothing happens to a collected result."""
+        if not self._done and self._cancel is not None:
+            self._cancel()
+        self._fetch = self._cancel = None
+
+
+def resolve(data):
+    """``data`` itself, or the result of a :class:`Pending`."""
+    return data.result() if isinstance(data, Pending) else data
+
+
+def later(fn: Callable, *args, **kwargs) -> Pending | Any:
+    """``fn(*args, **kwargs)`` in a forked child (its result must pickle); the value itself without fork.
+
+    Examples
+    --------
+    >>> resolve(later(sum, [2, 3]))
+    5
+    """
+    if not hasattr(os, "fork"):
+        return fn(*args, **kwargs)
+    read_fd, write_fd = os.pipe()
+
+    def child():
+        os.close(read_fd)
+        with os.fdopen(write_fd, "wb") as fh:
+            fh.write(_payload(fn, args, kwargs))
+
+    pid = _fork(child)
+    os.close(write_fd)
+
+    def fetch():
+        with os.fdopen(read_fd, "rb") as fh:
+            raw = fh.read()
+        os.waitpid(pid, 0)
+        return _decode(raw, getattr(fn, "__name__", "job"))
+
+    def cancel():
+        os.kill(pid, signal.SIGKILL)
+        os.close(read_fd)
+        os.waitpid(pid, 0)
+
+    return Pending(fetch, cancel)
+
+
+def _share(fn: Callable, items: list) -> list:
+    return [fn(x) for x in items]
+
+
+def parallel_map(fn: Callable, items, workers: int = 1) -> list:
+    """``[fn(x) for x in items]``, the items dealt round-robin to ``workers`` processes.
+
+    The calling process works through its own share while ``workers − 1``
+    forked children work through theirs (they read ``fn`` and the items from
+    the memory they inherited; only their results are pickled back).  Each
+    ``fn(x)`` is the same call as in a plain loop, so the results are the same;
+    with ``workers`` ≤ 1, one item, or no fork, it is a plain loop.
+
+    Examples
+    --------
+    >>> parallel_map(lambda x: x * x, range(5), workers=2)
+    [0, 1, 4, 9, 16]
+    """
+    items = list(items)
+    workers = max(1, min(int(workers), len(items)))
+    if workers == 1 or not hasattr(os, "fork"):
+        return [fn(x) for x in items]
+    children = [later(_share, fn, items[k::workers]) for k in range(1, workers)]
+    try:
+        shares = [_share(fn, items[0::workers])] + [resolve(c) for c in children]
+    except BaseException:
+        for c in children:
+            c.cancel()
+        raise
+    out: list = [None] * len(items)
+    for k, share in enumerate(shares):
+        out[k::workers] = share
+    return out
+
+
+class Server:
+    """One forked child that runs jobs for the parent, in the order they are given.
+
+    ``Server(first)`` forks at once; the child runs each ``(target, args,
+    kwargs)`` of ``first`` on the memory it inherited (nothing pickled), then
+    waits for :meth:`submit` jobs, whose arguments are pickled to it.  A target
+    is ``"package.module:function"``, imported in the child (:func:`call_target`).
+    :meth:`close` ends the child once every reply was read; without fork every
+    job runs at once, in process.
+
+    Examples
+    --------
+    >>> s = Server([("operator:add", (1, 2), {})])
+    >>> first = s.first[0]
+    >>> later_job = s.submit("operator:mul", 3, 4)
+    >>> resolve(first), resolve(later_job)
+    (3, 12)
+    >>> s.close()
+    """
+
+    def __init__(self, first=()) -> None:
+        first = [(t, tuple(a), dict(k)) for t, a, k in first]
+        self._replies: dict[int, bytes] = {}
+        self._names: list[str] = []
+        self._next_reply = 0
+        self._pid: int | None = None
+        if not hasattr(os, "fork"):
+            self.first = tuple(call_target(t, *a, **k) for t, a, k in first)
+            return
+        req_r, req_w = os.pipe()
+        rep_r, rep_w = os.pipe()
+
+        def child():
+            os.close(req_w), os.close(rep_r)
+            with os.fdopen(req_r, "rb") as requests, os.fdopen(rep_w, "wb") as replies:
+                def reply(data: bytes) -> None:
+                    replies.write(_FRAME.pack(len(data)) + data)
+                    replies.flush()
+
+                for t, a, k in first:
+                    reply(_payload(call_target, (t, *a), k))
+                while True:
+                    head = requests.read(_FRAME.size)
+                    if len(head) < _FRAME.size or _FRAME.unpack(head)[0] == 0:
+                        return  # an empty frame (or the pipe closed): done
+                    t, a, k = pickle.loads(requests.read(_FRAME.unpack(head)[0]))
+                    reply(_payload(call_target, (t, *a), k))
+
+        self._pid = _fork(child)
+        os.close(req_r), os.close(rep_w)
+        self._req_fd, self._rep_fd = req_w, rep_r
+        os.set_blocking(req_w, False)  # a request is written as far as the pipe takes it (see submit)
+        self._buffer = bytearray()
+        self._out = bytearray()  # requests not yet taken by the pipe
+        self.first = tuple(self._pending(t) for t, _, _ in first)
+
+    def _pending(self, target: str) -> Pending:
+        index = len(self._names)
+        self._names.append(target)
+        return Pending(lambda: self._reply(index))
+
+    def _take(self, chunk: bytes) -> None:
+        """Add bytes read from the server; file every whole reply frame."""
+        self._buffer += chunk
+        while len(self._buffer) >= _FRAME.size:
+            n = _FRAME.unpack_from(self._buffer)[0]
+            if len(self._buffer) < _FRAME.size + n:
+                break
+            self._replies[self._next_reply] = bytes(self._buffer[_FRAME.size:_FRAME.size + n])
+            del self._buffer[:_FRAME.size + n]
+            self._next_reply += 1
+
+    def _read_some(self) -> None:
+        chunk = os.read(self._rep_fd, 1 << 20)
+        if not chunk:
+            what = self._names[self._next_reply] if self._next_reply < len(self._names) else "the plot server"
+            raise ChildError(f"{what} failed: the server process ended without a reply")
+        self._take(chunk)
+
+    def _reply(self, index: int):
+        if self._pid is None and index >= self._next_reply:
+            raise ChildError(f"{self._names[index]} failed: the server was stopped before it replied")
+        self._pump(until=index)
+        return _decode(self._replies.pop(index), self._names[index])
+
+    def _pump(self, until: int | None = None) -> None:
+        """Write queued requests as far as the pipe takes them and read the replies that are in; with
+        ``until``, go on (blocking) until reply ``until`` is in.  The parent never blocks on a full
+        request pipe while the server blocks on a full reply pipe: both are served in one loop."""
+        while self._out or (until is not None and until >= self._next_reply):
+            wait = until is not None and until >= self._next_reply
+            readable, writable, _ = select.select([self._rep_fd], [self._req_fd] if self._out else [], [],
+                                                  None if wait else 0)
+            if readable:
+                self._read_some()
+            if writable:
+                try:
+                    del self._out[:os.write(self._req_fd, self._out)]
+                except BlockingIOError:
+                    pass
+            if not wait and not readable and not writable:
+                return  # nothing can move now: the rest is written later
+
+    def submit(self, target: str, *args, **kwargs) -> Pending | Any:
+        """Run ``target(*args, **kwargs)`` in the server (arguments and result must pickle).
+
+        Returns at once: what the request pipe does not take now is written when the parent next
+        submits or waits for a reply."""
+        if self._pid is None:
+            return call_target(target, *args, **kwargs)
+        data = pickle.dumps((target, args, kwargs), protocol=pickle.HIGHEST_PROTOCOL)
+        self._out += _FRAME.pack(len(data)) + data
+        pending = self._pending(target)
+        self._pump()
+        return pending
+
+    def kill(self) -> None:
+        """End the child at once (a run that failed): replies not yet read are lost (idempotent)."""
+        if self._pid is None:
+            return
+        os.kill(self._pid, signal.SIGKILL)
+        os.close(self._req_fd)
+        os.close(self._rep_fd)
+        os.waitpid(self._pid, 0)
+        self._pid = None
+
+    def close(self) -> None:
+        """Read every reply still due, end the child and wait for it (idempotent)."""
+        if self._pid is None:
+            return
+        self._out += _FRAME.pack(0)  # the server's signal to end (not EOF: other children hold the pipe too)
+        try:
+            if self._names:
+                self._pump(until=len(self._names) - 1)
+            self._pump()
+        except ChildError:
+            pass  # the missing replies raise when their results are asked for
+        os.close(self._req_fd)
+        os.close(self._rep_fd)
+        os.waitpid(self._pid, 0)
+        self._pid = None

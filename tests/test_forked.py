@@ -1,0 +1,186 @@
+"""camcam.forked: jobs in forked children give the in-process results, in order, without deadlock."""
+
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from camcam.forked import ChildError, Server, call_target, later, resolve
+
+needs_fork = pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork on this platform: jobs run in process")
+
+
+def _boom(message):
+    raise ValueError(message)
+
+
+@needs_fork
+def test_later_returns_the_child_result():
+    a = np.arange(10.0)
+    pending = later(np.cumsum, a)  # the child reads ``a`` from the memory it inherited
+    assert np.array_equal(resolve(pending), np.cumsum(a))
+    assert resolve(pending) is resolve(pending)  # collected once, kept
+
+
+class _Unpicklable(Exception):
+    def __init__(self, a, b):
+        super().__init__(f"{a}/{b}")
+
+
+def _unpicklable():
+    raise _Unpicklable(1, 2)
+
+
+def _bad_spec():
+    from camcam.errors import SpecError
+
+    raise SpecError("machining.stock", "blank smaller than the cam")
+
+
+@needs_fork
+def test_later_failure_is_the_child_exception_with_its_traceback():
+    pending = later(_boom, "no such cam")
+    with pytest.raises(ValueError, match="no such cam") as info:
+        pending.result()
+    # the child's traceback rides along as the cause
+    assert isinstance(info.value.__cause__, ChildError) and "in _boom" in str(info.value.__cause__)
+
+
+@needs_fork
+def test_a_user_error_in_a_child_stays_a_user_error():
+    from camcam.errors import SpecError
+
+    # a bad-input error must still exit 2 with its one line, not become an internal fault
+    with pytest.raises(SpecError) as info:
+        later(_bad_spec).result()
+    assert str(info.value) == "machining.stock: blank smaller than the cam" and info.value.path == "machining.stock"
+
+
+@needs_fork
+def test_an_exception_that_does_not_pickle_becomes_a_child_error():
+    with pytest.raises(ChildError, match="(?s)_unpicklable failed: .*_Unpicklable: 1/2"):
+        later(_unpicklable).result()
+
+
+@needs_fork
+def test_server_first_jobs_and_submitted_jobs_in_order():
+    s = Server([("numpy:arange", (5,), {}), ("numpy:ones", (3,), {})])
+    try:
+        jobs = [s.submit("numpy:full", 2, k) for k in range(4)]
+        # asked in reverse order: replies come in order and wait in the parent until asked for
+        assert [resolve(j).tolist() for j in reversed(jobs)] == [[k, k] for k in reversed(range(4))]
+        assert resolve(s.first[1]).tolist() == [1.0, 1.0, 1.0]
+        assert resolve(s.first[0]).tolist() == [0, 1, 2, 3, 4]
+    finally:
+        s.close()
+
+
+@needs_fork
+def test_server_big_requests_and_replies_do_not_deadlock():
+    # each request and reply is far larger than a pipe's 64 KiB buffer, and replies are not read until the end
+    s = Server([("numpy:zeros", (500_000,), {})])
+    big = np.arange(300_000.0)
+    jobs = [s.submit("numpy:negative", big) for _ in range(6)]
+    s.close()  # reads what is still due before ending the child
+    assert all(np.array_equal(resolve(j), -big) for j in jobs)
+    assert resolve(s.first[0]).shape == (500_000,)
+
+
+@needs_fork
+def test_server_failure_is_reported_on_its_own_job():
+    s = Server()
+    try:
+        bad = s.submit("math:sqrt", -1.0)
+        good = s.submit("math:sqrt", 4.0)
+        with pytest.raises(ValueError, match="math domain error"):
+            bad.result()
+        assert resolve(good) == 2.0  # the server goes on after a failed job
+    finally:
+        s.close()
+
+
+def test_call_target_imports_by_name():
+    assert call_target("math:hypot", 3.0, 4.0) == 5.0
+
+
+def test_without_fork_everything_runs_in_process(monkeypatch):
+    monkeypatch.delattr(os, "fork")
+    assert later(sum, [1, 2]) == 3
+    s = Server([("math:hypot", (3.0, 4.0), {})])
+    assert s.first == (5.0,)
+    assert s.submit("math:sqrt", 9.0) == 3.0
+    s.close()
+
+
+@needs_fork
+def test_parallel_map_keeps_order_and_values():
+    from camcam.forked import parallel_map
+
+    seen_pid = os.getpid()
+    # each item reports the process it ran in: two processes shared the work, the result is in order
+    out = parallel_map(lambda x: (x * x, os.getpid()), range(7), workers=2)
+    assert [v for v, _ in out] == [x * x for x in range(7)]
+    assert {p for _, p in out[0::2]} == {seen_pid} and seen_pid not in {p for _, p in out[1::2]}
+    assert parallel_map(lambda x: x + 1, [], workers=4) == []
+    assert parallel_map(lambda x: x + 1, [1], workers=4) == [2]  # one item: no child
+
+
+@needs_fork
+def test_parallel_map_raises_a_child_error_in_the_parent():
+    from camcam.forked import parallel_map
+
+    def f(x):
+        if x == 3:
+            raise ValueError("bad item 3")
+        return x
+
+    with pytest.raises(ValueError, match="bad item 3"):
+        parallel_map(f, range(5), workers=2)  # item 3 is the child's (odd places)
+
+
+def _children() -> set[int]:
+    """Live child processes of this process (Linux /proc)."""
+    out = set()
+    for d in Path("/proc").iterdir():
+        if d.name.isdigit():
+            try:
+                fields = (d / "stat").read_text().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            if int(fields[1]) == os.getpid() and fields[0] != "Z":
+                out.add(int(d.name))
+    return out
+
+
+needs_proc = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="counts children in /proc")
+
+
+@needs_fork
+@needs_proc
+def test_cancel_stops_a_child_that_nobody_collects():
+    import time
+
+    before = _children()
+    big = later(np.zeros, 1_000_000)  # its 8 MB reply fills the pipe: the child blocks until read
+    time.sleep(0.5)  # not a timing assertion: only gives the child time to reach the full pipe
+    big.cancel()  # killed and reaped: no process is left behind
+    with pytest.raises(ChildError, match="cancelled"):
+        big.result()
+    assert _children() <= before  # the child is gone (killed and reaped, no zombie)
+
+
+@needs_fork
+@needs_proc
+def test_a_failed_run_leaves_no_child_behind(tmp_path, monkeypatch):
+    from camcam.cli import main
+
+    def broken(*args, **kw):
+        raise ZeroDivisionError("a bug after the children started")
+
+    # the report analysis runs after the plot server, the model child and the NC children started
+    monkeypatch.setattr("camcam.report.job.report_analysis", broken)
+    before = _children()
+    code = main(["run", "samples/disc-translating-roller.toml", "-o", str(tmp_path / "out")])
+    assert code == 1
+    assert _children() <= before  # the plot server, the model child and the NC children were stopped
