@@ -34,8 +34,10 @@ def test_boundary_conditions_hold_for_any_free_points(degree, segments, symmetri
     sp = BSplineSpace(degree, segments, symmetric)
     x = sp.initial_free() + np.random.default_rng(seed).uniform(-0.2, 0.2, sp.n_free)
     law = BSplineLaw.from_free(sp, x)
-    # 1e-12: the conditions are solved exactly; only float rounding of O(1) values remains.
-    assert law.boundary_residual() <= 1e-12
+    # The conditions are solved exactly; only float rounding remains, of the acceleration at the ends, which
+    # grows like (2·segments)² × the control points (≈ 500 at 11 segments): 1e-11 (hypothesis found 1.02e-12
+    # at degree 5, 11 segments, seed 504, past the earlier 1e-12).
+    assert law.boundary_residual() <= 1e-11
     assert sp.n_free == segments + degree - (5 if symmetric else 6)
 
 
