@@ -102,7 +102,7 @@ one-step-lookahead march split at every break).  The remaining gap to
 an arc each), and the beam's myopia in smooth stretches (arcs reach
 0.85–0.97 of the optimum's length there).  The further starts cost time only
 where the first misses the goal: up to ``tries`` marches (≈ 3 s each at
-0.001 mm), e.g. 29–35 s of fit on the contours that need many.
+0.001 mm), 6–40 s of fit on the contours that need further starts.
 
 Vectorised.  The curve (the Chebyshev copy) is tabulated once; a joint is a
 table row, and every candidate arc of every state in a pass is built, put on
