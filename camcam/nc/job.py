@@ -92,8 +92,11 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEF
     stock : StockSpec
         The blank (``[stock]``; default: round, 2 mm over the cam's largest radius).
     workers : int
-        Processes a barrel cam's 3-D groove measurement may share its work with
-        (:func:`camcam.nc.groove3d.measure_groove`; the same figures for any count).
+        Processes the work may be shared with where it splits into independent
+        parts: the further starts of a closed contour's arc spline
+        (:func:`camcam.toolpath.arcspline.fit_arc_spline`) and a barrel cam's 3-D
+        groove measurement (:func:`camcam.nc.groove3d.measure_groove`); the same
+        result for any count.
 
     Returns
     -------
@@ -148,7 +151,7 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
     contours, passes = [], []
     for k, (label, curve, offset, free, kind) in enumerate(plan):
         fit, printed, dev, segs = fit_printed(curve, m.tolerance_mm, m.mode, post.quantizer, post.max_arc_sweep_deg,
-                                              post.quantizer.printed_elements, f"{name} {label}")
+                                              post.quantizer.printed_elements, f"{name} {label}", workers=workers)
         side = _stock_side(curve, free) if free is not None else "both"
         cs = replace(m.cut_settings(side if free is not None else "right"), clearance_z_mm=z_clear,
                      safe_z_mm=max(m.safe_z_mm, z_clear))

@@ -129,6 +129,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from camcam.forked import parallel_map
 from camcam.errors import InputError
 from camcam.toolpath.arcbatch import arc_batch, candidate_deviation, grid_joint, peak_deviation, unit_rows
 from camcam.toolpath.elements import Arc, Line, element_distance, element_tangent
@@ -588,7 +589,8 @@ def _frontier(m: _March, children: list, W: int, bins: tuple[int, int]) -> list:
 
 
 def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer: Quantizer, max_sweep: float,
-                   sag: float, closed: bool = False, budget: SplineBudget = SplineBudget()) -> ArcSpline:
+                   sag: float, closed: bool = False, budget: SplineBudget = SplineBudget(),
+                   workers: int = 1) -> ArcSpline:
     """A near-minimal printed G1 arc spline over [a, b] within ``tolerance_mm`` (sampled).
 
     Parameters
@@ -607,6 +609,12 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
         The section is a whole closed curve: the spline closes G1 onto its own
         first joint (whose offset and tangent are then free).  Otherwise it
         starts and ends on the curve with the curve's exact tangents.
+    budget : SplineBudget
+        The search's sizes, start shifts and goal.
+    workers : int
+        Processes the further starts of a closed section are marched in, that
+        many at a time (:func:`camcam.forked.parallel_map`); taken in the same
+        order as one by one, so the spline is the same for any count.
 
     Examples
     --------
@@ -627,14 +635,23 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
     goal = budget.goal[0] * integral / np.cbrt(192.0 * tolerance_mm) + budget.goal[1]
     # the longest stretch first; then the others at least half as long, each start shift in turn
     stretches = [st for st in stretches if st[1] >= 0.5 * stretches[0][1]][:budget.stretches]
+    starts = [a + (mid - a + shift * half) % (b - a)
+              for shift, (mid, half) in [(sh, st) for sh in budget.start_shifts for st in stretches][:budget.tries]]
+
+    def march_from(start):
+        return _march(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, True, budget, start)
+
+    # the first start alone (most contours meet the goal there); then rounds of ``workers`` starts at once
+    # (camcam.forked.parallel_map), taken in the same order as one after the other: the same spline
     best = None
-    for shift, (mid, half) in [(sh, st) for sh in budget.start_shifts for st in stretches][:budget.tries]:
-        start = a + (mid - a + shift * half) % (b - a)
-        spline = _march(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, True, budget, start)
-        if best is None or len(spline.elements) < len(best.elements):
-            best = spline
-        if len(best.elements) <= goal:
-            break
+    k, n = 0, 1
+    while k < len(starts):
+        for spline in parallel_map(march_from, starts[k:k + n], n):
+            if best is None or len(spline.elements) < len(best.elements):
+                best = spline
+            if len(best.elements) <= goal:
+                return best
+        k, n = k + n, max(1, workers)
     return best
 
 

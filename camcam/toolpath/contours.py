@@ -70,7 +70,7 @@ class CutContour:
 
 
 def fit_printed(curve, tolerance_mm: float, mode: str, quantizer: Quantizer, max_sweep_deg: float,
-                printed: Callable[[tuple], tuple], label: str, budget: FitBudget = DEFAULT_BUDGET):
+                printed: Callable[[tuple], tuple], label: str, budget: FitBudget = DEFAULT_BUDGET, workers: int = 1):
     """Fit ``curve``; return (fit, printed elements, deviation on the printed path, segments).
 
     ``printed(elements)`` rebuilds the path the program prints from the fitted
@@ -87,7 +87,7 @@ def fit_printed(curve, tolerance_mm: float, mode: str, quantizer: Quantizer, max
     fast = chebyshev_curve(curve)
     try:
         fit = fit_contour(fast, tolerance_mm, mode=mode, quantizer=quantizer, max_sweep_deg=max_sweep_deg,
-                          exact=curve, printed=printed, budget=budget)
+                          exact=curve, printed=printed, budget=budget, workers=workers)
     except FitError as err:
         raise FitError(f"{label}: {err}") from None
     except InputError as err:

@@ -233,3 +233,20 @@ def test_further_starts_keep_the_fewest_and_stop_at_the_goal():
     assert len(never.elements) == min(alone), (alone, len(never.elements))
     always = fit(start_shifts=shifts, stretches=1, goal=(100.0, 0.0))  # met at once: the first start only
     assert len(always.elements) == alone[0]
+
+
+def test_further_starts_in_two_processes_give_the_same_spline():
+    import dataclasses
+
+    from camcam.toolpath.arcspline import SplineBudget
+
+    # a goal no spline meets: every start is marched (4 of them), one by one or two at a time
+    curve = polar_cam()
+    budget = dataclasses.replace(SplineBudget(), goal=(0.0, 0.0), tries=4)
+    q = Quantizer(4)
+    one = fit_arc_spline(curve, curve.t_start, curve.t_end, 0.0095, quantizer=q, max_sweep=math.pi / 2, sag=1e-4,
+                         closed=True, budget=budget, workers=1)
+    two = fit_arc_spline(curve, curve.t_start, curve.t_end, 0.0095, quantizer=q, max_sweep=math.pi / 2, sag=1e-4,
+                         closed=True, budget=budget, workers=2)
+    # the same marches in the same order of choice: the very same elements (no tolerance)
+    assert one.elements == two.elements
