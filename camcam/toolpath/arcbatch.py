@@ -5,16 +5,20 @@ here as the post prints it (joint and centre on the grid,
 :func:`grid_joint`, :func:`grid_centre`; :func:`arc_batch`) and measured
 against curve samples (:func:`candidate_deviation`, the controller's
 spiral included; :func:`peak_deviation` sharpens the sampled maximum).
-Rows are candidates: arrays in, arrays out.
+Rows are candidates: arrays in, arrays out.  :func:`printed_element` turns a
+row into the :class:`~camcam.toolpath.elements.Arc` or ``Line`` it prints, and
+:func:`touch` finds the one arc from a joint that lands tangentially on a circle.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from camcam.toolpath.elements import Arc, Line
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["grid_near", "unit_rows", "grid_joint", "grid_centre", "arc_batch", "candidate_deviation", "peak_deviation"]
+__all__ = ["grid_near", "unit_rows", "grid_joint", "grid_centre", "arc_batch", "candidate_deviation", "peak_deviation",
+           "MIN_CHORD_STEPS", "plain_element", "printed_element", "touch"]
 
 
 def grid_near(p, weight, q: Quantizer) -> np.ndarray:
@@ -139,3 +143,43 @@ def peak_deviation(d: np.ndarray) -> np.ndarray:
     curv = y0 - 2 * y1 + y2
     bump = np.where(inner & (curv < 0), -(y2 - y0) ** 2 / (8 * np.where(curv < 0, curv, -1.0)), 0.0)
     return y1 + np.minimum(bump, 0.5 * y1)
+
+
+#: Shortest chord of an arc or line, in grid steps (a shorter one would print a direction of its own).
+MIN_CHORD_STEPS = 50
+
+
+def plain_element(e):
+    """An element with plain-float coordinates."""
+    f = lambda p: tuple(float(x) + 0.0 for x in p)  # noqa: E731
+    if isinstance(e, Line):
+        return Line(f(e.start), f(e.end))
+    return Arc(f(e.start), f(e.end), f(e.centre), bool(e.ccw))
+
+
+def printed_element(p0, p1, centre, ccw, is_line):
+    """A candidate row as the element it prints (a line where ``is_line``), plain floats."""
+    if is_line:
+        return plain_element(Line(tuple(p0), tuple(p1)))
+    return plain_element(Arc(tuple(p0), tuple(p1), tuple(centre), bool(ccw)))
+
+
+def touch(p, t, c, Rs):
+    """Where the one arc leaving p (N, 2) along t (N, 2) touches the circle (centre c, signed radius Rs), same travel.
+
+    Signed radii (positive: centre on the left): the arc's centre q = p + ρ n
+    and the circle's centre both lie on the common normal at the touch point,
+    |q − c| = |ρ − Rs|, so ρ = (Rs² − |p − c|²) / (2 (n·(p − c) + Rs)).
+    Returns the touch points and which rows have one (not a line, not the
+    circle itself, not a point).
+    """
+    n = np.stack([-t[:, 1], t[:, 0]], -1)
+    d = p - c
+    den = 2.0 * (np.einsum("ij,ij->i", d, n) + Rs)
+    rho = (Rs * Rs - np.einsum("ij,ij->i", d, d)) / np.where(np.abs(den) > 1e-300, den, 1.0)
+    # no touch point: the arc is a line (den = 0), the circle itself (ρ = Rs) or shrinks to p (ρ = 0, p on the
+    # circle travelled the other way)
+    good = (np.abs(den) > 1e-300) & (np.abs(rho - Rs) > 1e-9 * np.abs(Rs)) & (np.abs(rho) > 1e-9 * np.abs(Rs))
+    qc = p + rho[:, None] * n
+    x = c - (Rs / np.where(good, rho - Rs, 1.0))[:, None] * (qc - c)
+    return x, good

@@ -53,7 +53,7 @@ in δ/h, the optimum's joints sit at ±10.4), then the ``beam`` whose next arc
 reaches farthest (one-step lookahead).
 
 Closing a closed contour.  The march starts at the middle of a stretch of
-near-constant curvature (a dwell, :func:`_quiet_stretches`) with its first
+near-constant curvature (a dwell, :func:`~camcam.toolpath.arcclose.quiet_stretches`) with its first
 joint's offset and tangent free, runs on past the start by a third of a
 turn, and closes in one of two ways, whichever spends fewer arcs:
 
@@ -62,10 +62,10 @@ turn, and closes in one of two ways, whichever spends fewer arcs:
   dropped (two arcs for the closure);
 * one arc that *lands* on the circle of the j-th arc: from a state's joint and
   tangent exactly one arc touches a given circle with the same direction of
-  travel (:func:`_touch`, signed radii ρ = (R² − |p − c|²) / (2 (n·(p − c) + R))),
+  travel (:func:`~camcam.toolpath.arcbatch.touch`, signed radii ρ = (R² − |p − c|²) / (2 (n·(p − c) + R))),
   so where the touch point lies on the j-th arc's circle ahead of its end,
   that arc is drawn back to it and arcs 1 … j−1 drop out
-  (:meth:`_March.landings`): one arc for the closure.  The touch point is
+  (:func:`~camcam.toolpath.arcclose.landings`): one arc for the closure.  The touch point is
   rounded to the grid, and the closure is kept only if the kink it leaves is
   no more than rounding makes (≤ 0.71·step·(2/chord + 1/R)) and the two arcs
   stay within the band on the curve samples.
@@ -131,8 +131,9 @@ import numpy as np
 
 from camcam.forked import parallel_map
 from camcam.errors import InputError
-from camcam.toolpath.arcbatch import arc_batch, candidate_deviation, grid_joint, peak_deviation, unit_rows
-from camcam.toolpath.elements import Arc, Line, element_distance, element_tangent
+from camcam.toolpath.arcbatch import (MIN_CHORD_STEPS, arc_batch, candidate_deviation, grid_joint, peak_deviation,
+                                      printed_element, unit_rows)
+from camcam.toolpath.arcclose import BIARC_RATIOS, closing_biarcs, landings, quiet_stretches
 from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["SplineBudget", "ArcSpline", "fit_arc_spline", "g1_sections"]
@@ -297,117 +298,6 @@ class _March:
                 r.feasible.sort(key=lambda c: c[0])
             s.reach = max((r.feasible[-1][0] for r in s.rays if r.feasible), default=s.i)
 
-    def biarcs(self, st, p1, t1, ratios, row: int) -> list:
-        """Closing biarcs from state ``st`` onto the point ``p1`` with tangent ``t1`` at table ``row``; the feasible ones."""
-        p0, tan0 = st.p, st.tan
-        v = p1 - p0
-        out = []
-        rows = np.unique(np.rint(np.linspace(st.i, row, 4 * self.budget.samples)).astype(int))
-        q = self.P[rows]
-        c = 1.0 - float(tan0 @ t1)
-        vt = float(v @ (tan0 + t1))
-        if c < 1e-12:
-            den = 4.0 * float(v @ tan0)
-            if abs(den) < 1e-300:
-                return out
-            alpha_eq = float(v @ v) / den
-        else:
-            alpha_eq = (-vt + math.sqrt(vt * vt + 2.0 * c * float(v @ v))) / (2.0 * c)
-        for k in ratios:
-            # tangent lengths α (from p0) and β (into p1) of a G1 biarc: |v − α t0 − β t1| = α + β
-            alpha = k * alpha_eq
-            w = v - alpha * tan0
-            den = 2.0 * (float(w @ t1) + alpha)
-            if not alpha > 0 or abs(den) < 1e-300:
-                continue
-            beta = (float(w @ w) - alpha * alpha) / den
-            if not beta > 0:
-                continue
-            A, B = p0 + alpha * tan0, p1 - beta * t1
-            gap = np.hypot(*(B - A))
-            if gap <= 0:
-                continue
-            joint = self.q.snap(A + alpha * (B - A) / gap)
-            chord2 = float(np.hypot(*(p1 - joint)))
-            if min(float(np.hypot(*(joint - p0))), chord2) < MIN_CHORD_STEPS * self.q.step_mm:
-                continue
-            c1, w1, l1, te1, _, s1 = (x[0] for x in arc_batch(p0[None], tan0[None], joint[None], self.q, self.sag))
-            c2, w2, l2, _, _, s2 = (x[0] for x in arc_batch(joint[None], te1[None], p1[None], self.q, self.sag))
-            if (not l1 and s1 > self.max_sweep) or (not l2 and s2 > self.max_sweep):
-                continue
-            e1 = _element(p0, joint, c1, w1, l1)
-            e2 = _element(joint, p1, c2, w2, l2)
-            t_end = element_tangent(e2, True)
-            # the rounded joint turns the second arc's end tangent a little; more than rounding can is no G1
-            if abs(math.atan2(t_end[0] * t1[1] - t_end[1] * t1[0], float(t_end @ t1))) > \
-                    2 * 0.71 * self.q.step_mm / chord2 + 1e-9:
-                continue
-            dev_c = float(np.minimum(element_distance(e1, q), element_distance(e2, q)).max())
-            # the joint is off the curve: the path → curve direction there as well
-            dev_j = float(np.hypot(*(q - joint).T).min())
-            dev = max(dev_c, dev_j)
-            if dev <= self.tol:
-                out.append((dev, e1, e2))
-        return out
-
-
-    def landings(self, st, chain, jmax: int, row_cap: int) -> list:
-        """Closing arcs from state ``st`` that land tangentially on the circle of the spline's j-th arc, j ≤ ``jmax``.
-
-        One arc from the state's joint and tangent touches a given circle
-        with the same direction of travel at exactly one point (:func:`_touch`).
-        Where that point lies on
-        the j-th arc's circle ahead of its end, the spline closes with this one
-        arc and the j-th arc drawn back to the touch point: arcs 1 … j−1 drop
-        out.  A biarc onto the j-th joint spends two arcs for the same; the
-        feasible landings (printed, G1 up to the rounding, within the band)
-        are returned as (j, deviation, closing arc, lengthened j-th arc).
-        """
-        out = []
-        p, t = st.p, st.tan
-        step = self.q.step_mm
-        for j in range(1, jmax + 1):
-            jt = chain[j - 1]
-            row = jt.i + self.last
-            if not st.i < row <= row_cap:
-                continue
-            p_s, p_e, c, ccw, is_line = jt.arc
-            if is_line:
-                continue
-            c = np.asarray(c, float)
-            R = float(np.hypot(*(p_e - c)))
-            x, good = _touch(p[None], t[None], c[None], np.array([R if ccw else -R]))
-            if not good[0]:
-                continue
-            x = self.q.snap(x[0])
-            chord1 = float(np.hypot(*(x - p)))
-            if min(chord1, float(np.hypot(*(p_e - x)))) < MIN_CHORD_STEPS * step:
-                continue
-            # the lengthened arc: from x round to the j-th joint, forward and within the sweep limit
-            a_x = math.atan2(x[1] - c[1], x[0] - c[0])
-            a_e = math.atan2(p_e[1] - c[1], p_e[0] - c[0])
-            sweep2 = (a_e - a_x if ccw else a_x - a_e) % (2 * math.pi)
-            if not 0 < sweep2 <= self.max_sweep:
-                continue
-            c1, w1, l1, _, _, s1 = (v[0] for v in arc_batch(p[None], t[None], x[None], self.q, self.sag))
-            if (not l1 and s1 > self.max_sweep) or float((x - p) @ t) <= 0:
-                continue
-            e1 = _element(p, x, c1, w1, l1)
-            e2 = _plain(Arc(tuple(x), tuple(p_e), tuple(c), bool(ccw)))
-            t_end, t_start = element_tangent(e1, True), element_tangent(e2, False)
-            kink = abs(math.atan2(t_end[0] * t_start[1] - t_end[1] * t_start[0], float(t_end @ t_start)))
-            # both rounded: the touch point turns the closing arc's end tangent by ≤ 2·0.71·step/chord and the
-            # lengthened arc's start tangent by ≤ 0.71·step/R; more than that is no G1
-            if kink > 0.71 * step * (2.0 / chord1 + 1.0 / R) + 1e-12:
-                continue
-            rows = np.unique(np.rint(np.linspace(st.i, row, 4 * self.budget.samples)).astype(int))
-            qs = self.P[rows]
-            dev_c = float(np.minimum(element_distance(e1, qs), element_distance(e2, qs)).max())
-            dev = max(dev_c, float(np.hypot(*(qs - x).T).min()))
-            if dev <= self.tol:
-                out.append((j, dev, e1, e2))
-        return out
-
 
 class _State:
     """A joint of a partial spline: table row, printed point, tangent, last step (rows), parent, element to it.
@@ -427,7 +317,7 @@ class _State:
 
     @property
     def element(self):
-        return _element(*self.arc)
+        return printed_element(*self.arc)
 
 
 class _Ray:
@@ -438,27 +328,6 @@ class _Ray:
     def __init__(self, state, offset, h):
         self.state, self.offset, self.h = state, offset, h
         self.feasible: list = []
-
-
-def _plain(e):
-    """An element with plain-float coordinates."""
-    f = lambda p: tuple(float(x) + 0.0 for x in p)  # noqa: E731
-    if isinstance(e, Line):
-        return Line(f(e.start), f(e.end))
-    return Arc(f(e.start), f(e.end), f(e.centre), bool(e.ccw))
-
-
-def _element(p0, p1, centre, ccw, is_line):
-    if is_line:
-        return _plain(Line(tuple(p0), tuple(p1)))
-    return _plain(Arc(tuple(p0), tuple(p1), tuple(centre), bool(ccw)))
-
-
-#: Shortest chord of an arc or line, in grid steps (a shorter one would print a direction of its own).
-MIN_CHORD_STEPS = 50
-
-#: Join parameters of the closing biarcs tried: tangent length α from the start over the equal-length biarc's.
-BIARC_RATIOS = (1.0, 0.7, 1.4, 0.5, 2.0)
 
 
 @functools.lru_cache(maxsize=None)
@@ -491,68 +360,6 @@ def _start_states(m: _March, closed: bool, budget: SplineBudget) -> list:
             tan = np.array([c * m.T[0, 0] - s * m.T[0, 1], s * m.T[0, 0] + c * m.T[0, 1]])
             states.append(_State(0, m.q.snap(m.P[0] + o * m.tol * m.N[0]), tan, h0, None, None))
     return states
-
-
-def _touch(p, t, c, Rs):
-    """Where the one arc leaving p (N, 2) along t (N, 2) touches the circle (centre c, signed radius Rs), same travel.
-
-    Signed radii (positive: centre on the left): the arc's centre q = p + ρ n
-    and the circle's centre both lie on the common normal at the touch point,
-    |q − c| = |ρ − Rs|, so ρ = (Rs² − |p − c|²) / (2 (n·(p − c) + Rs)).
-    Returns the touch points and which rows have one (not a line, not the
-    circle itself, not a point).
-    """
-    n = np.stack([-t[:, 1], t[:, 0]], -1)
-    d = p - c
-    den = 2.0 * (np.einsum("ij,ij->i", d, n) + Rs)
-    rho = (Rs * Rs - np.einsum("ij,ij->i", d, d)) / np.where(np.abs(den) > 1e-300, den, 1.0)
-    # no touch point: the arc is a line (den = 0), the circle itself (ρ = Rs) or shrinks to p (ρ = 0, p on the
-    # circle travelled the other way)
-    good = (np.abs(den) > 1e-300) & (np.abs(rho - Rs) > 1e-9 * np.abs(Rs)) & (np.abs(rho) > 1e-9 * np.abs(Rs))
-    qc = p + rho[:, None] * n
-    x = c - (Rs / np.where(good, rho - Rs, 1.0))[:, None] * (qc - c)
-    return x, good
-
-
-def _quiet_stretches(curve, a: float, b: float, n: int = 2048) -> tuple[list, float]:
-    """A closed curve's stretches of near-constant curvature, longest first, as (middle, half length); and ∫|κ′|^⅓ ds.
-
-    A stretch's middle is where the spline may start and close: there (a
-    dwell's circle, for a cam) the curve's own tangent is the optimal joint
-    state, so neither the first arc nor the closing arc is cut short.  The
-    integral (periodic trapezoid rule on the ``n`` samples) gives the march
-    its N_lb.  A curve without such a stretch starts where κ′ is least.
-    """
-    t = np.linspace(a, b, n, endpoint=False)
-    d1, d2, d3 = (curve.evaluate(t, k) for k in (1, 2, 3))
-    v = np.hypot(d1[:, 0], d1[:, 1])
-    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
-    dot12 = d1[:, 0] * d2[:, 0] + d1[:, 1] * d2[:, 1]
-    cross3 = d1[:, 0] * d3[:, 1] - d1[:, 1] * d3[:, 0]
-    dk = (cross3 * v * v - 3.0 * cross * dot12) / v**6  # dκ/dt / |P′|
-    dens = np.cbrt(np.abs(dk)) * v  # the N_lb integrand per unit parameter (× (192 δ)^⅓)
-    integral = float(dens.sum() * (b - a) / n)
-    quiet = dens <= 0.05 * dens.mean()
-    if not quiet.any() or quiet.all():
-        return [(float(t[int(np.argmin(dens))]), 0.0)], integral
-    # cyclic runs of quiet samples
-    k0 = int(np.argmin(quiet))  # a loud sample: runs do not wrap past it
-    q = np.roll(quiet, -k0)
-    runs, run = [], 0
-    for k, flag in enumerate(q):
-        if flag:
-            run += 1
-        elif run:
-            runs.append((run, k - 1))
-            run = 0
-    if run:
-        runs.append((run, n - 1))
-    runs.sort(key=lambda r: -r[0])
-    out = []
-    for length, end in runs:
-        mid = (end - (length - 1) / 2.0 + k0) % n
-        out.append((float(a + (b - a) * mid / n), (b - a) * length / (2.0 * n)))
-    return out, integral
 
 
 #: Tangent errors the frontier tells apart, in units of δ/h (the optimum sits at ±10.4).
@@ -631,7 +438,7 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
     """
     if not closed:
         return _march(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, False, budget, None)
-    stretches, integral = _quiet_stretches(curve, a, b)
+    stretches, integral = quiet_stretches(curve, a, b)
     goal = budget.goal[0] * integral / np.cbrt(192.0 * tolerance_mm) + budget.goal[1]
     # the longest stretch first; then the others at least half as long, each start shift in turn
     stretches = [st for st in stretches if st[1] >= 0.5 * stretches[0][1]][:budget.stretches]
@@ -682,7 +489,7 @@ def _march(curve, a, b, tol, quantizer, max_sweep, sag, closed, budget, start) -
                     targets.append((jt.p, jt.tan, jt.i + m.last, j))
             if closed:
                 cap = min(st.i + 2.0 * (st.reach - st.i) + 1, len(m.P) - 1)
-                for j, dev, e1, e2 in m.landings(st, chain, min(budget.wrap_joints, len(chain) - 1), cap):
+                for j, dev, e1, e2 in landings(m, st, chain, min(budget.wrap_joints, len(chain) - 1), cap):
                     total = level_no + 2 - j  # one closing arc; arcs 1 … j−1 drop out, the j-th is lengthened
                     if best is None or (total, dev) < (best[5], best[0]):
                         best, best_level = (dev, st, e1, e2, j, total), level_no
@@ -692,7 +499,7 @@ def _march(curve, a, b, tol, quantizer, max_sweep, sag, closed, budget, start) -
                 total = level_no + 2 - saved
                 if best is not None and total > best[5]:  # more arcs than the best closure: cannot win
                     continue
-                for dev, e1, e2 in m.biarcs(st, p1, t1, BIARC_RATIOS, row):
+                for dev, e1, e2 in closing_biarcs(m, st, p1, t1, BIARC_RATIOS, row):
                     if best is None or (total, dev) < (best[5], best[0]):
                         best, best_level = (dev, st, e1, e2, saved, total), level_no
         if best is not None and (not closed or level_no - best_level >= 2):

@@ -27,6 +27,7 @@ import numpy as np
 
 from camcam.geometry.curve import PlanarCurve, curvature, curvature_rate, speed
 from camcam.geometry.extrema import roots_in
+from camcam.toolpath.fitcore import pieces
 
 __all__ = ["lower_bound_blocks", "line_estimate_blocks", "lower_bound_pieces", "line_estimate_pieces",
            "power_integral", "power_integrals", "NODES", "PANEL_MAX_RAD", "ROOT_XTOL"]
@@ -48,14 +49,6 @@ def _rule(panels: int) -> tuple[np.ndarray, np.ndarray]:
     s = ((np.arange(panels)[:, None] + 0.5 * (_X[None, :] + 1.0)) / panels).ravel()
     w = np.tile(_W / (2.0 * panels), panels)
     return s**3 * (10.0 - 15.0 * s + 6.0 * s**2), w * 30.0 * s**2 * (1.0 - s) ** 2
-
-
-def _pieces(curve: PlanarCurve, a, b) -> list[tuple[float, float]]:
-    br = np.asarray(curve.breaks, float)
-    a = float(br[0]) if a is None else float(a)
-    b = float(br[-1]) if b is None else float(b)
-    edges = [a, *[float(x) for x in br if a < x < b], b]
-    return list(zip(edges, edges[1:]))
 
 
 def power_integral(curve: PlanarCurve, g, scale: float, power: float, a=None, b=None) -> float:
@@ -89,7 +82,7 @@ def power_integral(curve: PlanarCurve, g, scale: float, power: float, a=None, b=
     >>> round(power_integral(circle, curvature, 8 * 0.01, 0.5) / (20 * math.pi * math.sqrt(1.25)), 12)
     1.0
     """
-    return float(np.sum(power_integrals(curve, g, scale, power, _pieces(curve, a, b))))
+    return float(np.sum(power_integrals(curve, g, scale, power, pieces(curve, a, b))))
 
 
 def power_integrals(curve: PlanarCurve, g, scale: float, power: float, edges) -> np.ndarray:

@@ -12,7 +12,8 @@ from scipy.spatial import cKDTree
 from camcam.geometry.curve import FunctionCurve
 from camcam.toolpath.arcfit import fit_contour, lower_bound_blocks
 from camcam.toolpath.arcbatch import candidate_deviation, grid_centre
-from camcam.toolpath.arcspline import SplineBudget, _touch, fit_arc_spline, g1_sections
+from camcam.toolpath.arcbatch import touch
+from camcam.toolpath.arcspline import SplineBudget, fit_arc_spline, g1_sections
 from camcam.toolpath.deviation import closest_params
 from camcam.toolpath.elements import Arc, element_distance, element_points, element_tangent
 from camcam.toolpath.quantizer import Quantizer
@@ -203,7 +204,7 @@ def test_touching_arc_is_tangent_to_the_circle_with_the_same_travel(px, py, ang,
     """The landing closure's arc: leaves p along t and meets the circle at x G1, travelling the circle's way."""
     p, t, c = np.array([[px, py]]), np.array([[math.cos(ang), math.sin(ang)]]), np.array([[cx, cy]])
     Rs = R if ccw else -R
-    x, good = _touch(p, t, c, np.array([Rs]))
+    x, good = touch(p, t, c, np.array([Rs]))
     n = np.array([-t[0, 1], t[0, 0]])
     d = p[0] - c[0]
     # the arc is (nearly) a line, the circle itself or a point: no touch point, the closure skips these
