@@ -25,7 +25,9 @@ Keys (all required unless a default is given):
 ``inverse_time``              the controller has G93 (needed for 4-axis programs)
 ``header``, ``footer``        lists of lines; ``{title}``, ``{name}``, ``{units}``, ``{tool}``,
                               ``{spindle}``, ``{program_number}`` are filled in (checked
-                              whole at load time: :mod:`camcam.post.template`)
+                              whole at load time: :mod:`camcam.post.template`; in
+                              G-code a line's code text, filled in, must be words such
+                              as ``G21``, ``T1`` or ``TRAORI``, or ``%``)
 ``program_number``            default 1 (Fanuc O-number); 1 up to the width the header
                               prints it with (``{program_number:04d}``: 9999); a spec's
                               ``[machining] program_number`` replaces it
@@ -64,7 +66,7 @@ from pathlib import Path
 
 from camcam.errors import InputError
 from camcam.inputs import os_reason, read_limited
-from camcam.post.template import TemplateError, parse_template
+from camcam.post.template import SAMPLE_VALUES, TemplateError, check_gcode_words, parse_template
 from camcam.nc.result import Program
 from camcam.nc.settings import WORK_OFFSETS, ProgramSetup
 from camcam.post.gcode import write_program
@@ -240,9 +242,12 @@ def parse_post(data: dict, name: str) -> Post:
     for k, text in enumerate(offsets):
         for j, line in enumerate(text.split("\n")):
             lines[("work_offsets", f"{k}:{j}" if "\n" in text else k)] = line
+    values = dict(SAMPLE_VALUES, units=data["units"])
     for (key, i), line in lines.items():
         try:
             templates[(key, i)] = parse_template(line, comment)
+            if dialect == "gcode":
+                check_gcode_words(templates[(key, i)], values)
         except TemplateError as err:
             fail(key if i is None else f"{key}[{i}]", str(err))
     units = data["units"]

@@ -21,7 +21,8 @@ from dataclasses import dataclass
 
 from camcam.post.text import encode_comment, program_name
 
-__all__ = ["FIELDS", "Template", "parse_template", "MAX_WIDTH", "TemplateError"]
+__all__ = ["FIELDS", "Template", "parse_template", "MAX_WIDTH", "TemplateError", "check_gcode_words",
+           "SAMPLE_VALUES"]
 
 #: Field name → kind: ``comment`` (free text, only inside a comment), ``name`` (a program
 #: name), ``word`` (a word camcam checked, e.g. the units word), ``int`` (a whole number).
@@ -32,6 +33,18 @@ FIELDS = {"title": "comment", "name": "name", "units": "word", "tool": "int", "s
 MAX_WIDTH = 9
 
 _INT_SPEC = re.compile(r"(0?[1-9])?d?")
+
+#: Field values a template is rendered with when its code words are checked (an integer
+#: field prints its digits whatever the value; a name prints as a program name).
+SAMPLE_VALUES = {"title": "t", "name": "camcam", "units": "G21", "tool": 1, "spindle": 1000, "program_number": 1}
+
+#: One G-code word: an address letter and a number (``G21``, ``Z-5.``, ``G43.4``), or a
+#: controller keyword of capitals (Sinumerik's ``TRAORI``).  Words are separated by one space;
+#: ``%`` (tape start/end) stands alone.  Lowercase, bare numbers, ``#`` parameters, ``=``
+#: assignments and block-skip ``/`` are refused: rs274ngc, Fanuc and Sinumerik either reject
+#: them or read them as something a header line must not do.
+_GCODE_WORD = r"(?:[A-Z][+-]?[0-9]+\.?[0-9]*|[A-Z]{2,}[A-Z0-9_]*)"
+_GCODE_LINE = re.compile(rf"{_GCODE_WORD}(?: {_GCODE_WORD})*|%|")
 
 
 class TemplateError(ValueError):
@@ -83,6 +96,30 @@ class Template:
             else:
                 out.append(str(v))
         return "".join(out)
+
+
+def check_gcode_words(template: Template, values: dict = SAMPLE_VALUES) -> None:
+    """Raise :class:`TemplateError` unless ``template``'s code text, rendered with ``values``,
+    is G-code words only.
+
+    Examples
+    --------
+    >>> check_gcode_words(parse_template("O{program_number:04d} ({title})", "parentheses"))
+    >>> check_gcode_words(parse_template("0", "parentheses"))
+    Traceback (most recent call last):
+    ...
+    camcam.post.template.TemplateError: '0' is not G-code words (expected words such as G21 or T1 separated by one space, or %)
+    """
+    text = template.render(values)
+    code = "".join(p for p in _COMMENT[template.comment].split(text)).strip()
+    if not _GCODE_LINE.fullmatch(code):
+        raise TemplateError(f"{code!r} is not G-code words (expected words such as G21 or T1 separated by one "
+                            "space, or %)")
+
+
+#: What a comment looks like on a rendered line, per comment style (templates are checked
+#: closed and unnested before they are rendered).
+_COMMENT = {"parentheses": re.compile(r"\([^()]*\)"), "semicolon": re.compile(r";.*")}
 
 
 def _bad_char(text: str) -> str | None:

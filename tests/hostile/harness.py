@@ -70,7 +70,8 @@ def snapshot(folder: Path) -> dict[str, bytes | None]:
 
 _CODE = {
     # the words a camcam program is made of (motion, setup, the header/footer words of the bundled posts)
-    "gcode": re.compile(r"(?:[A-Z]-?[0-9]+\.?[0-9]*)(?: [A-Z]-?[0-9]+\.?[0-9]*)*|%|"),
+    # address words (G21, Z-5.) and capital controller keywords (Sinumerik's TRAORI)
+    "gcode": re.compile(r"(?:[A-Z]-?[0-9]+\.?[0-9]*|[A-Z]{2,}[A-Z0-9_]*)(?: (?:[A-Z]-?[0-9]+\.?[0-9]*|[A-Z]{2,}[A-Z0-9_]*))*|%|"),
     "heidenhain": re.compile(r"(?:BEGIN PGM [A-Za-z0-9_-]+ MM|END PGM [A-Za-z0-9_-]+ MM|TOOL CALL [0-9]+ Z S[0-9]+|"
                              r"STOP M5|CC X[+-][0-9.]+ Y[+-][0-9.]+|C X[+-][0-9.]+ Y[+-][0-9.]+ DR[+-] R0 F[0-9.]+|"
                              r"L(?: [XYZ][+-][0-9.]+)+ R0 F(?:MAX|[0-9.]+)(?: M3)?(?: M[789])?|"

@@ -92,7 +92,24 @@ BAD_TEMPLATES = {
     "G21)": "closes no comment",
     "G21; G0 Z-50": "ends a block",
     "G20": "inches",
+    # code text that is no G-code words; "0" is the footer a hypothesis draw of
+    # test_broken_post_files found printed as a program line (2026-12-01, linuxcnc post)
+    "0": "not G-code words",
+    "g21": "not G-code words",
+    "G21  G17": "not G-code words",
+    "#1=5": "not G-code words",
+    "/M1": "not G-code words",
+    "X": "not G-code words",
+    "T{tool}{spindle}M3": "not G-code words",
 }
+
+
+def test_footer_that_is_no_program_line_is_refused():
+    # the failing example itself: a footer line "0" used to load and print a bare "0"
+    data = tomllib.loads((SAMPLES.parent / "post" / "linuxcnc.toml").read_text())
+    data["footer"] = ["0"]
+    with pytest.raises(InputError, match=r"^post mill: footer\[0\]: '0' is not G-code words"):
+        parse_post(data, "mill")
 
 
 @pytest.mark.parametrize("line,why", list(BAD_TEMPLATES.items()))
