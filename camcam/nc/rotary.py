@@ -40,6 +40,7 @@ import math
 import numpy as np
 
 from camcam.errors import GeometryError, InputError, PostError
+from camcam.forked import parallel_map
 from camcam.geometry.build import BuiltCam
 from camcam.nc.flank import DisplacedCurve, plan_flank, smallest_tool_radius
 from camcam.nc.toolposes import A_AXIS_SENSE, CylinderTool, poses_from_program
@@ -141,15 +142,24 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     cs = dataclasses.replace(cs0, depth_mm=m.depth_mm + corner, stepdown_mm=m.stepdown_mm * scale)
     plan, flank_err = _plan(cam, r_t, rho_d)
     fit_tol = m.tolerance_mm - flank_err if flank_err < 0.5 * m.tolerance_mm else m.tolerance_mm / 2
-    contours, paths = [], []
-    for k, (label, curve, offset, kind) in enumerate(plan):
+    def printed(elements):
+        return developed_printed(printed_axes(elements, post.quantizer, rho_d, turn), rho_d, turn)
+
+    def job(item):
+        """A pass's fit as printed, or (the last item) the smallest tool that holds half the tolerance."""
+        if item is None:
+            return 2 * smallest_tool_radius(cam, 0.5 * m.tolerance_mm, rho_d)
+        label, curve = item[0], item[1]
         tol = fit_tol if label.startswith("flank") else m.tolerance_mm
+        return fit_printed(curve, tol, "lines", post.quantizer, post.max_arc_sweep_deg, printed, f"{name} {label}")
 
-        def printed(elements):
-            return developed_printed(printed_axes(elements, post.quantizer, rho_d, turn), rho_d, turn)
-
-        fit, path, dev, segs = fit_printed(curve, tol, "lines", post.quantizer, post.max_arc_sweep_deg,
-                                           printed, f"{name} {label}")
+    # the passes' fits and the smallest-tool search are independent: they share the workers (the same
+    # results as one by one, camcam.forked.parallel_map); the search is only needed for a thinner tool
+    thinner = cam.kind == "translating-roller" and r_t < cam.roller_radius - SAME_TOOL_MM
+    done = parallel_map(job, list(plan) + ([None] if thinner else []), workers)
+    smallest = done.pop() if thinner else None
+    contours, paths = [], []
+    for k, ((label, curve, offset, kind), (fit, path, dev, segs)) in enumerate(zip(plan, done)):
         pts = np.array([fit.elements[0].start] + [e.end for e in fit.elements])
         pts = np.stack([pts[:, 1], turn * pts[:, 0]], axis=-1)  # (x, turn·u): A = turn·θ
         try:
@@ -165,9 +175,6 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     measured = post.write_program(toolpath, name, m.setup)
     poses = poses_from_program(measured.text, m.a_axis)
     groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers)
-    smallest = None
-    if cam.kind == "translating-roller" and r_t < cam.roller_radius - SAME_TOOL_MM:
-        smallest = 2 * smallest_tool_radius(cam, 0.5 * m.tolerance_mm, rho_d)
     check = groove_check(cam, m, groove, smallest)
     # the same moves, with the check's result in the header
     verdict = "within" if check.ok else "OUT OF TOLERANCE"
