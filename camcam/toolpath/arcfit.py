@@ -38,7 +38,7 @@ from camcam.toolpath.arcspline import fit_arc_spline, g1_sections
 from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.toolpath.deviation import Deviation, measure_deviation
 from camcam.toolpath.elements import Arc, Line
-from camcam.toolpath.fitcore import Piece, dev, greedy, pieces
+from camcam.toolpath.fitcore import Piece, greedy, lines_fit, pieces
 from camcam.toolpath.lowerbound import line_estimate_blocks, line_estimate_pieces, lower_bound_blocks, lower_bound_pieces
 from camcam.toolpath.quantizer import Quantizer
 
@@ -79,11 +79,8 @@ def _fit_lines_piece(piece, tol):
     k = np.abs(curvature(piece.curve, piece.grid))
     v = speed(piece.curve, piece.grid)
 
-    def ok(t0, t1):
-        q0, q1 = piece.point(t0)[0], piece.point(t1)[0]
-        if np.hypot(*(q1 - q0)) == 0:
-            return False
-        return dev(piece, [Line(tuple(q0), tuple(q1))], t0, t1) <= tol
+    def ok(t0, ts):
+        return lines_fit(piece, t0, ts, tol)
 
     nodes = [a]
     while nodes[-1] < b:

@@ -6,7 +6,7 @@ import numpy as np
 
 from camcam.toolpath.elements import element_distance
 
-__all__ = ["pieces", "Piece", "dev", "greedy"]
+__all__ = ["pieces", "Piece", "dev", "lines_fit", "greedy", "GREEDY_BATCH", "GREEDY_LEVELS"]
 
 
 def pieces(curve, a=None, b=None):
@@ -71,40 +71,135 @@ def dev(piece, elems, t0, t1) -> float:
     return float(max(d1, d2))
 
 
-def greedy(t0, b, ok, guess):
-    """Largest t1 in (t0, b] with ok(t0, t1), by expansion from ``guess`` then bisection."""
-    if ok(t0, b):
+#: Polyline segments on each side of a chord point's own place that :func:`lines_fit` looks
+#: at first (the chord point at fraction w of the chord is compared with the whole polyline
+#: only when these leave it outside the tolerance).
+WINDOW = 6
+
+
+def _point_polyline(ep: np.ndarray, a: np.ndarray, e: np.ndarray, e2: np.ndarray) -> np.ndarray:
+    """Distances of points ``ep`` (k, n, 2) to the segments a + [0, 1]·e (k, n, m, 2 or broadcast), min over m."""
+    rel = ep[:, :, None, :] - a
+    v = np.clip(np.einsum("knmj,knmj->knm", rel, np.broadcast_to(e, rel.shape)) / e2, 0.0, 1.0)
+    return np.hypot(*(rel - v[..., None] * e).transpose(3, 0, 1, 2)).min(axis=2)
+
+
+def lines_fit(piece, t0: float, ts, tol: float) -> np.ndarray:
+    """Whether the chord from t0 to each of ``ts`` (k,) is within ``tol``: ``dev(chord) <= tol``, (k,) bool.
+
+    The same samples as :func:`dev` (41 curve points to the chord, the chord's 9
+    points to the 81-point curve polyline), for a batch of candidate ends at
+    once; a chord of length 0 never fits.  A chord point's distance to the
+    polyline is first taken over the :data:`WINDOW` segments on each side of
+    its own place: that is never below the distance to the whole polyline, so
+    it decides every chord it leaves within ``tol``; the others are measured
+    against the whole polyline.
+    """
+    ts = np.atleast_1d(np.asarray(ts, float))
+    k = len(ts)
+    q0 = piece.point(t0)[0]
+    q1 = piece.point(ts)
+    cp = piece.point(np.linspace(t0, ts, 41, axis=1).ravel()).reshape(k, 41, 2)
+    dense = piece.point(np.linspace(t0, ts, 81, axis=1).ravel()).reshape(k, 81, 2)
+    d = q1 - q0
+    L2 = np.einsum("kj,kj->k", d, d)
+    safe = np.where(L2 > 0, L2, 1.0)
+    u = np.where(L2[:, None] > 0, np.clip(np.einsum("knj,kj->kn", cp - q0, d) / safe[:, None], 0.0, 1.0), 0.0)
+    d1 = np.hypot(*(cp - q0 - u[..., None] * d[:, None]).transpose(2, 0, 1)).max(axis=1)
+    fits = (np.hypot(d[:, 0], d[:, 1]) > 0) & (d1 <= tol)  # as dev's caller: a chord of length 0 never fits
+    if not fits.any():
+        return fits
+    w = np.linspace(0.0, 1.0, 9)[None, :, None]
+    ep = ((1 - w) * q0 + w * q1[:, None])[fits]  # (k', 9, 2): Line.points(9)
+    a, e = dense[fits, :-1], dense[fits, 1:] - dense[fits, :-1]  # (k', 80, 2) polyline segments
+    e2 = np.maximum(np.einsum("kmj,kmj->km", e, e), 1e-300)
+    kk = np.arange(len(ep))[:, None, None]
+    near = np.clip(np.arange(9)[:, None] * 10 + np.arange(-WINDOW, WINDOW)[None, :], 0, 79)[None]  # (1, 9, 2W)
+    d2 = _point_polyline(ep, a[kk, near], e[kk, near], e2[kk, near]).max(axis=1)
+    wide = d2 > tol
+    if wide.any():
+        d2[wide] = _point_polyline(ep[wide], a[wide][:, None], e[wide][:, None], e2[wide][:, None]).max(axis=1)
+    fits[fits] = d2 <= tol
+    return fits
+
+
+#: Candidate ends tried at once by :func:`greedy`: expansion steps a batch, and bisection
+#: levels a batch (2**levels − 1 midpoints).
+GREEDY_BATCH = 8
+GREEDY_LEVELS = 4
+
+
+def greedy(t0, b, ok_many, guess):
+    """Largest t1 in (t0, b] with ok(t0, t1), by expansion from ``guess`` then bisection.
+
+    ``ok_many(t0, ts)`` judges a batch of candidate ends (bool array).  The
+    search is the one-at-a-time one (expand by 1.6 from ``guess`` until a
+    candidate fails, halve if the first fails, bisect to 1e-6 of the span),
+    with the candidates it may need next judged ahead in one batch: the
+    expansion's next :data:`GREEDY_BATCH` steps, the next
+    :data:`GREEDY_LEVELS` bisection levels.  So each decision, and the result,
+    is that of the sequential search.
+    """
+    if ok_many(t0, np.array([b]))[0]:
         return b
     span = b - t0
     lo, hi = t0, None
     step = min(guess, span)
-    while True:
-        t = t0 + step
-        if t >= b:
-            hi = b
-            break
-        if ok(t0, t):
-            lo = t
-            step *= 1.6
+    while hi is None:  # expansion
+        steps, s = [], step
+        while len(steps) < GREEDY_BATCH and t0 + s < b:
+            steps.append(s)
+            s *= 1.6
+        ok = ok_many(t0, t0 + np.array(steps)) if steps else np.zeros(0, bool)
+        for s, good in zip(steps, ok):
+            if good:
+                lo = t0 + s
+                step = s * 1.6
+            else:
+                hi, step = t0 + s, s
+                break
         else:
-            hi = t
-            break
+            if len(steps) < GREEDY_BATCH:  # the next step reaches b
+                hi = b
     if lo == t0:  # shrink until something works
         while True:
-            step *= 0.5
-            if step < span * 1e-9:
-                return t0 + step * 2
-            if ok(t0, t0 + step):
-                lo, hi = t0 + step, t0 + 2 * step
-                break
-    for _ in range(30):
-        if hi - lo <= 1e-6 * span:
+            steps, s = [], step
+            for _ in range(GREEDY_BATCH):
+                s *= 0.5
+                steps.append(s)
+            for s, good in zip(steps, ok_many(t0, t0 + np.array([x for x in steps if x >= span * 1e-9]))):
+                if good:
+                    lo, hi = t0 + s, t0 + 2 * s
+                    break
+            else:
+                if steps[-1] >= span * 1e-9:
+                    step = steps[-1]
+                    continue
+                first_small = next(x for x in steps if x < span * 1e-9)
+                return t0 + first_small * 2
             break
-        mid = 0.5 * (lo + hi)
-        if ok(t0, mid):
-            lo = mid
-        else:
-            hi = mid
+    levels = 0
+    while levels < 30 and hi - lo > 1e-6 * span:  # bisection, GREEDY_LEVELS levels judged at once
+        mids = {}
+
+        def plan(lo_, hi_, depth):
+            if depth == 0 or levels + (GREEDY_LEVELS - depth) >= 30 or hi_ - lo_ <= 1e-6 * span:
+                return
+            mid = 0.5 * (lo_ + hi_)
+            mids[(lo_, hi_)] = mid
+            plan(mid, hi_, depth - 1)
+            plan(lo_, mid, depth - 1)
+
+        plan(lo, hi, GREEDY_LEVELS)
+        keys = list(mids)
+        verdict = dict(zip(keys, ok_many(t0, np.array([mids[k] for k in keys]))))
+        for _ in range(GREEDY_LEVELS):
+            if levels >= 30 or hi - lo <= 1e-6 * span:
+                break
+            mid = mids[(lo, hi)]
+            if verdict[(lo, hi)]:
+                lo = mid
+            else:
+                hi = mid
+            levels += 1
     return lo
-
-

@@ -1,0 +1,86 @@
+"""The lines fitting's batched check and search against their one-at-a-time definitions."""
+
+import math
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from camcam.geometry.jet import Jet
+from camcam.geometry.jetcurve import JetCurve
+from camcam.toolpath.elements import Line
+from camcam.toolpath.fitcore import Piece, dev, greedy, lines_fit
+
+ELLIPSE = JetCurve(lambda t, K, piece=None: (Jet.variable(t, K).cos() * 30.0, Jet.variable(t, K).sin() * 20.0),
+                   np.array([0.0, np.pi, 2 * np.pi]))
+PIECE = Piece(ELLIPSE, 0.0, np.pi)
+
+
+def sequential_greedy(t0, b, ok, guess):
+    """The search as it was written before it judged candidates in batches (the reference)."""
+    if ok(t0, b):
+        return b
+    span = b - t0
+    lo, hi = t0, None
+    step = min(guess, span)
+    while True:
+        t = t0 + step
+        if t >= b:
+            hi = b
+            break
+        if ok(t0, t):
+            lo = t
+            step *= 1.6
+        else:
+            hi = t
+            break
+    if lo == t0:
+        while True:
+            step *= 0.5
+            if step < span * 1e-9:
+                return t0 + step * 2
+            if ok(t0, t0 + step):
+                lo, hi = t0 + step, t0 + 2 * step
+                break
+    for _ in range(30):
+        if hi - lo <= 1e-6 * span:
+            break
+        mid = 0.5 * (lo + hi)
+        if ok(t0, mid):
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@settings(max_examples=60, deadline=None)
+@given(t0=st.floats(0.0, 3.0), frac=st.lists(st.floats(0.0, 1.0), min_size=1, max_size=12),
+       tol=st.sampled_from([1e-3, 1e-2, 0.1, 1.0]))
+def test_batched_check_is_the_single_check(t0, frac, tol):
+    ts = t0 + np.array(frac) * (math.pi - t0)
+    got = lines_fit(PIECE, t0, ts, tol)
+    for t1, g in zip(ts, got):
+        q0, q1 = PIECE.point(t0)[0], PIECE.point(t1)[0]
+        want = bool(np.hypot(*(q1 - q0)) > 0) and dev(PIECE, [Line(tuple(q0), tuple(q1))], t0, t1) <= tol
+        assert bool(g) == want, (t0, t1, tol)
+
+
+@settings(max_examples=60, deadline=None)
+@given(t0=st.floats(0.0, 3.0), guess=st.floats(1e-6, 4.0), cut=st.floats(0.0, 1.0), holes=st.integers(0, 3))
+def test_batched_search_makes_the_sequential_decisions(t0, guess, cut, holes):
+    # a feasibility that need not be monotone (holes), so every branch of the search is exercised
+    b = math.pi
+    edge = t0 + cut * (b - t0)
+
+    def ok1(a, t):
+        return t <= edge and not (holes and math.sin(holes * 40.0 * t) > 0.95)
+
+    def ok_many(a, ts):
+        return np.array([ok1(a, float(t)) for t in ts], bool)
+
+    # the same floats, so the same answer bit for bit
+    assert greedy(t0, b, ok_many, guess) == sequential_greedy(t0, b, ok1, guess)
+
+
+def test_chord_of_length_zero_never_fits():
+    assert not lines_fit(PIECE, 1.0, np.array([1.0]), 1.0)[0]
