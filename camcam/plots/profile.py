@@ -12,7 +12,10 @@ from camcam.geometry.build import BuiltCam
 from camcam.geometry.cylindrical import CylindricalCam
 from camcam.plots.render import plt, png_bytes
 
-__all__ = ["cam_png"]
+__all__ = ["cam_png", "LAYOUT"]
+
+#: Figure margins (fractions): the cam drawing left, pressure angle and radius of curvature right.
+LAYOUT = dict(left=0.065, right=0.975, bottom=0.10, top=0.885, hspace=0.3, wspace=0.17)
 
 #: Plotted radii of curvature are clipped to this multiple of the base radius (flat parts are infinite).
 RHO_CLIP = 4.0
@@ -89,5 +92,6 @@ def cam_png(built: BuiltCam, title: str = "") -> bytes:
         ax.set_xticks(np.arange(0, 361, 60))
     ax2.set_xlabel("cam angle [deg]")
     fig.suptitle(title)
-    fig.tight_layout()
+    # fixed margins, not tight_layout (a second draw); tests/plots check nothing is cut off
+    fig.subplots_adjust(**LAYOUT)
     return png_bytes(fig)
