@@ -46,6 +46,9 @@ __all__ = ["RemovalReport", "check_moves", "check_program", "SAMPLE_MM", "PROBE_
 SAMPLE_MM = 0.5
 #: Spacing of path samples for the material-left / overcut distances (mm): error (h/2)²/(2 r_t), < 1e-5 mm.
 DENSE_MM = 0.02
+#: The material-left search looks first at path points this far beyond the tool radius from the part (mm):
+#: a finishing pass; the boundary points it leaves farther are searched among all (the same figure).
+LEFT_FIRST_MM = 0.1
 #: The engagement probe runs this far inside the tool's edge (mm): the swept regions are polygons within
 #: 2.4e-3 mm of their circles, so a probe on the edge would find slivers that are not there.
 PROBE_INSET_MM = 0.01
@@ -210,18 +213,20 @@ def _front_extent(slab, pts: np.ndarray, tangents: np.ndarray, r_probe: float) -
     k_hi = np.where(inside, idx, -1).max(axis=1)
     p, tt, nn = pts[hit], t[hit], n[hit]
     k_lo, k_hi = k_lo[hit], k_hi[hit]
-    ends = []
-    for k, outward in ((k_lo, -1), (k_hi, 1)):
-        at_edge = (k == 0) if outward < 0 else (k == len(v) - 1)
-        good = v[k].copy()  # in material
-        bad = np.where(at_edge, good, v[np.clip(k + outward, 0, len(v) - 1)])  # out of material
-        for _ in range(6):
-            mid = 0.5 * (good + bad)
-            ins = _probe(slab, p, tt, nn, r_probe, mid[:, None])[:, 0]
-            good, bad = np.where(ins, mid, good), np.where(ins, bad, mid)
-        ends.append(np.where(at_edge, good + outward * PROBE_INSET_MM, good))
+    # both ends of the span bisected at once: rows [0, m) the low end, [m, 2m) the high end
+    k = np.concatenate([k_lo, k_hi])
+    outward = np.repeat([-1, 1], len(k_lo))
+    at_edge = np.where(outward < 0, k == 0, k == len(v) - 1)
+    good = v[k].copy()  # in material
+    bad = np.where(at_edge, good, v[np.clip(k + outward, 0, len(v) - 1)])  # out of material
+    p2, t2, n2 = (np.concatenate([x, x]) for x in (p, tt, nn))
+    for _ in range(6):
+        mid = 0.5 * (good + bad)
+        ins = _probe(slab, p2, t2, n2, r_probe, mid[:, None])[:, 0]
+        good, bad = np.where(ins, mid, good), np.where(ins, bad, mid)
+    ends = np.where(at_edge, good + outward * PROBE_INSET_MM, good)
     width = np.zeros(len(pts))
-    width[hit] = ends[1] - ends[0]
+    width[hit] = ends[len(k_lo):] - ends[:len(k_lo)]
     return width
 
 
@@ -320,6 +325,17 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
                          clearance, clear_at)
 
 
+def _tree(points: np.ndarray) -> cKDTree:
+    """A k-d tree of ``points`` (n, 2) split at sliding midpoints, not medians.
+
+    The points lie along curves (the boundary, the passes, often two passes on
+    one path); median splits cut such sets into long thin cells, and a query
+    about a tool radius away visits many of them: 0.25 s against 0.03 s for the
+    material-left query of the default sample.  The distances found are the same.
+    """
+    return cKDTree(points, balanced_tree=False, compact_nodes=False)
+
+
 def _finish_figures(moves, levels, top_z, keep, boundary, r_t):
     """Material left at the final depth, overcut anywhere below the top, and the roughing's distance from the part.
 
@@ -336,7 +352,7 @@ def _finish_figures(moves, levels, top_z, keep, boundary, r_t):
         return math.inf, "nothing is cut", 0.0, "", None, ""
     final = levels[-1]
     near = r_t + 1.0
-    tree = cKDTree(boundary)
+    tree = _tree(boundary)
     far = _far_moves(moves, tree, keep, near, top_z)
     none = np.empty((0, 3))
     dense = [none if f else m.samples(DENSE_MM) for m, f in zip(moves, far)]
@@ -357,14 +373,22 @@ def _finish_figures(moves, levels, top_z, keep, boundary, r_t):
         elif len(dense[i]) and np.all(dense[i][:, 2] <= final + 1e-6):
             at_final[ends[i]:ends[i + 1]] = True
     if at_final.any() or final_far:
-        # a boundary point's nearest path point is within ``near`` whenever any is: search those first
+        # a boundary point's nearest path point is within ``near`` whenever any is: search those first, and
+        # among them first those within ``tight`` of the boundary.  A boundary point b whose nearest of
+        # those is within ``tight`` has its true nearest p* among them: d(p*) ≤ |p* − b| ≤ ``tight``.
         close = at_final & np.isfinite(d)
-        d_left, _ = cKDTree(q[close, :2]).query(boundary, distance_upper_bound=near, workers=-1) if close.any() else (
-            np.full(len(boundary), np.inf), None)
+        tight = r_t + LEFT_FIRST_MM
+        first = close & (d <= tight)
+        d_left = np.full(len(boundary), np.inf)
+        if first.any():
+            d_left, _ = _tree(q[first, :2]).query(boundary, distance_upper_bound=tight, workers=-1)
+        again = ~np.isfinite(d_left)
+        if again.any() and close.any():
+            d_left[again], _ = _tree(q[close, :2]).query(boundary[again], distance_upper_bound=near, workers=-1)
         beyond = ~np.isfinite(d_left)
         if beyond.any():
             pts = np.concatenate([q[at_final, :2], *(m.samples(DENSE_MM)[:, :2] for m in final_far)])
-            d_left[beyond], _ = cKDTree(pts).query(boundary[beyond])
+            d_left[beyond], _ = _tree(pts).query(boundary[beyond])
         k = int(np.argmax(d_left))
         left, left_at = float(d_left[k] - r_t), f"design boundary at X{boundary[k, 0]:.3f} Y{boundary[k, 1]:.3f}"
     else:
