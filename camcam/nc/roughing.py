@@ -29,7 +29,7 @@ from shapely.geometry import Polygon
 from camcam.errors import GeometryError
 from camcam.toolpath.elements import Arc, Line
 
-__all__ = ["Spiral", "disc_spiral", "polyline_elements", "polar_radii", "cut_cyclic", "ROUGH_FIT_MM",
+__all__ = ["Spiral", "disc_spiral", "polygon_distance", "polyline_elements", "polar_radii", "cut_cyclic", "ROUGH_FIT_MM",
            "ROUGH_MARGIN_MM", "RING_STEP_FRACTION"]
 
 #: Fit tolerance of roughing paths (mm): they need not meet the finish tolerance, only stay off the part.
@@ -83,6 +83,33 @@ class Spiral:
     clearance_mm: float
 
 
+def polygon_distance(poly: Polygon, xy: np.ndarray) -> np.ndarray:
+    """``shapely.distance(poly, shapely.points(xy))``, (n,) for points (n, 2), through an R-tree of its edges.
+
+    GEOS measures a point against every edge of a polygon; an offset blank has
+    10 000 edges, so 10 000 points took 2.3 s.  The nearest edge from the tree
+    gives the same distance (GEOS's point-to-segment distance either way); a
+    point inside the polygon is at 0.
+
+    Examples
+    --------
+    >>> square = shapely.box(0.0, 0.0, 2.0, 2.0)
+    >>> polygon_distance(square, np.array([[3.0, 1.0], [1.0, 1.0], [3.0, 3.0]])).round(6).tolist()
+    [1.0, 0.0, 1.414214]
+    """
+    xy = np.asarray(xy, float)
+    segments = []
+    for ring in (poly.exterior, *poly.interiors):
+        c = np.asarray(ring.coords)
+        segments.append(np.stack([c[:-1], c[1:]], axis=1))
+    tree = shapely.STRtree(shapely.linestrings(np.concatenate(segments)))
+    (which, _), dist = tree.query_nearest(shapely.points(xy), return_distance=True, all_matches=False)
+    out = np.empty(len(xy))
+    out[which] = dist
+    out[shapely.contains_xy(poly, xy[:, 0], xy[:, 1])] = 0.0
+    return out
+
+
 def disc_spiral(part: Polygon, blank: Polygon, tool_radius_mm: float, allowance_mm: float, stepover_mm: float,
                 clockwise: bool, max_sweep_deg: float) -> Spiral | None:
     """The roughing spiral from ``blank`` to ``allowance_mm`` (+ margin) around ``part``; ``None`` if nothing to rough.
@@ -93,7 +120,7 @@ def disc_spiral(part: Polygon, blank: Polygon, tool_radius_mm: float, allowance_
     step = RING_STEP_FRACTION * stepover_mm
     keep = allowance_mm + ROUGH_MARGIN_MM
     edge = np.asarray(blank.exterior.coords)
-    far = float(shapely.distance(part, shapely.points(edge)).max())  # blank reaches this far from the part
+    far = float(polygon_distance(part, edge).max())  # blank reaches this far from the part
     k_air = int(math.ceil((far - keep) / step - 1e-9))
     if k_air <= 0:
         return None
@@ -103,7 +130,7 @@ def disc_spiral(part: Polygon, blank: Polygon, tool_radius_mm: float, allowance_
              for k in range(k_air + 1)]
     # start where the air ring is farthest outside the blank
     air = np.column_stack([radii[k_air] * np.cos(th), radii[k_air] * np.sin(th)])
-    j0 = int(np.argmax(shapely.distance(blank, shapely.points(air))))
+    j0 = int(np.argmax(polygon_distance(blank, air)))
     order = (j0 + s * np.arange(SPIRAL_SAMPLES)).astype(int) % SPIRAL_SAMPLES
     th_o = th[order]
     f = np.arange(SPIRAL_SAMPLES) / SPIRAL_SAMPLES
