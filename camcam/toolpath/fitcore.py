@@ -98,9 +98,11 @@ def lines_fit(piece, t0: float, ts, tol: float) -> np.ndarray:
     ts = np.atleast_1d(np.asarray(ts, float))
     k = len(ts)
     q0 = piece.point(t0)[0]
-    q1 = piece.point(ts)
-    cp = piece.point(np.linspace(t0, ts, 41, axis=1).ravel()).reshape(k, 41, 2)
-    dense = piece.point(np.linspace(t0, ts, 81, axis=1).ravel()).reshape(k, 81, 2)
+    # one evaluation for both sample sets (the curve is evaluated point by point, so the values are those
+    # of separate calls); a linspace ends exactly at its stop, so the chords' ends are cp[:, -1]
+    both = piece.point(np.concatenate([np.linspace(t0, ts, 41, axis=1).ravel(), np.linspace(t0, ts, 81, axis=1).ravel()]))
+    cp, dense = both[:41 * k].reshape(k, 41, 2), both[41 * k:].reshape(k, 81, 2)
+    q1 = cp[:, -1]
     d = q1 - q0
     L2 = np.einsum("kj,kj->k", d, d)
     safe = np.where(L2 > 0, L2, 1.0)

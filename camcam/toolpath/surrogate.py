@@ -45,17 +45,18 @@ class ChebyshevCurve:
         idx = np.clip(np.searchsorted(self.knots, t, side="right") - 1, 0, len(self.series) - 1)
         lo, hi = self.knots[idx], self.knots[idx + 1]
         u = ((2.0 * t - lo - hi) / (hi - lo))[:, None]
-        c = self._tables[order][idx]  # (m, n+1, 2): every sub-interval at once
+        c = self._tables[order][:, idx]  # (n+1, m, 2): every sub-interval at once, one term per contiguous slab
         # Clenshaw's recurrence for Σ c_k T_k(u), vectorised over the points
+        u2 = 2.0 * u
         b1 = np.zeros((t.size, 2))
         b2 = np.zeros((t.size, 2))
-        for k in range(c.shape[1] - 1, 0, -1):
-            b1, b2 = c[:, k] + 2.0 * u * b1 - b2, b1
-        return c[:, 0] + u * b1 - b2
+        for k in range(c.shape[0] - 1, 0, -1):
+            b1, b2 = c[k] + u2 * b1 - b2, b1
+        return c[0] + u * b1 - b2
 
     @property
     def _tables(self) -> tuple:
-        """Per derivative order: the series of all sub-intervals padded to one length, (n_sub, n+1, 2)."""
+        """Per derivative order: the series of all sub-intervals padded to one length, (n+1, n_sub, 2)."""
         cached = self.__dict__.get("_tables_cache")
         if cached is None:
             width = max(len(ser[0]) for ser in self.series)
@@ -64,7 +65,7 @@ class ChebyshevCurve:
                 arr = np.zeros((len(self.series), width, 2))
                 for i, ser in enumerate(self.series):
                     arr[i, : len(ser[order])] = ser[order]
-                cached.append(arr)
+                cached.append(np.ascontiguousarray(arr.transpose(1, 0, 2)))
             cached = tuple(cached)
             object.__setattr__(self, "_tables_cache", cached)
         return cached
