@@ -36,7 +36,7 @@ from typing import Any, Callable
 
 from camcam.interrupts import SIGNALS, Interrupted
 
-__all__ = ["ChildError", "Pending", "later", "resolve", "parallel_map", "Server", "call_target"]
+__all__ = ["ChildError", "Pending", "later", "resolve", "ChildGroup", "parallel_map", "Server", "call_target"]
 
 _OK, _FAILED = b"K", b"E"
 _FRAME = struct.Struct("<Q")  # the length of one server reply
@@ -186,6 +186,42 @@ def later(fn: Callable, *args, **kwargs) -> Pending | Any:
     return Pending(fetch, cancel)
 
 
+class ChildGroup:
+    """Jobs started in child processes that stop together: used as a ``with`` block, an exception
+    leaving it kills and reaps every child of the group whose result was not collected.
+
+    Examples
+    --------
+    >>> with ChildGroup() as group:
+    ...     job = group.later(sum, [1, 2, 3])
+    ...     resolve(job)
+    6
+    """
+
+    def __init__(self) -> None:
+        self._jobs: list[Pending] = []
+
+    def later(self, fn: Callable, *args, **kwargs) -> Pending | Any:
+        """:func:`later`, in this group."""
+        job = later(fn, *args, **kwargs)
+        if isinstance(job, Pending):
+            self._jobs.append(job)
+        return job
+
+    def cancel(self) -> None:
+        """Kill and reap every child of the group whose result was not collected."""
+        for job in self._jobs:
+            job.cancel()
+
+    def __enter__(self) -> "ChildGroup":
+        return self
+
+    def __exit__(self, kind, err, tb) -> bool:
+        if kind is not None:
+            self.cancel()
+        return False
+
+
 def _share(fn: Callable, items: list) -> list:
     return [fn(x) for x in items]
 
@@ -208,13 +244,9 @@ def parallel_map(fn: Callable, items, workers: int = 1) -> list:
     workers = max(1, min(int(workers), len(items)))
     if workers == 1 or not hasattr(os, "fork"):
         return [fn(x) for x in items]
-    children = [later(_share, fn, items[k::workers]) for k in range(1, workers)]
-    try:
+    with ChildGroup() as group:
+        children = [group.later(_share, fn, items[k::workers]) for k in range(1, workers)]
         shares = [_share(fn, items[0::workers])] + [resolve(c) for c in children]
-    except BaseException:
-        for c in children:
-            c.cancel()
-        raise
     out: list = [None] * len(items)
     for k, share in enumerate(shares):
         out[k::workers] = share

@@ -26,16 +26,14 @@ __all__ = ["register", "nc_step", "model", "drawing", "nc_figures", "job_verdict
 DEFAULT_SPEC = "default.toml"
 
 
-def nc_step(spec, built, later=None):
+def nc_step(spec, built, later):
     """Start the NC step: the program (:func:`camcam.nc.machine_program`), then its material check
-    (:func:`camcam.nc.material_check`) in a child process (``later``, default
-    :func:`camcam.forked.later`); (result without the check, pending check or None)."""
+    (:func:`camcam.nc.material_check`) in a child process started by ``later`` (the run's
+    :meth:`camcam.forked.ChildGroup.later`); (result without the check, pending check or None)."""
     from camcam.nc import machine_program, material_check
 
-    if later is None:
-        from camcam.forked import later
-
-    # a barrel cam's 3-D measurement shares its radii with a second process (same figures)
+    # work that splits into independent parts (a closed contour's further arc starts, a barrel cam's passes
+    # and 3-D measurement) is shared with a second process: the same results
     result = machine_program(built, spec.machining, spec.name, spec.stock, workers=min(2, os.cpu_count() or 1))
     check = later(material_check, result, built, spec.machining) if result.blank is not None else None
     return result, check
@@ -128,7 +126,7 @@ def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
             motion_outputs(out, spec.name, program, 0.5)
         return {"name": spec.name, "motion": motion_summary(program)}, verdict
     from camcam.export.cam_report import cam_report
-    from camcam.forked import Pending, Server, resolve
+    from camcam.forked import ChildGroup, Server, resolve
     from camcam.geometry.build import build_cam
 
     with progress.step("cam geometry and analysis"):
@@ -138,26 +136,20 @@ def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
     # from the arrays sent to it
     plots = Server([(SVAJ_PLOT, (program,), {"title": svaj_title(spec.name, program)}),
                     (CAM_PLOT, (built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower"), {})])
-    children = []  # the run's other child processes: stopped if the run fails before it collects them
-
-    def later(fn, *args):
-        from camcam.forked import later as fork_later
-
-        children.append(fork_later(fn, *args))
-        return children[-1]
-
+    # the run's other child processes: stopped if the run fails before it collects them
+    children = ChildGroup()
     try:
         svaj, profile_png = plots.first
         with progress.step("motion table and plot"):
             motion_outputs(out, spec.name, program, 0.5, svaj)
         summary = {"name": spec.name, "motion": motion_summary(program)}
-        model_files = later(model, built, spec.name)  # the mesh and STL need no NC: made beside it
+        model_files = children.later(model, built, spec.name)  # the mesh and STL need no NC: made beside it
         report = cam_report(built, mesh=False)  # its "mesh" comes with the STL
         machining = check = drawn = None
         if spec.machining is not None:
             with progress.step("NC second fitting and program"):
-                machining, check = nc_step(spec, built, later)
-            drawn = later(drawing, built, machining)  # beside the material check
+                machining, check = nc_step(spec, built, children.later)
+            drawn = children.later(drawing, built, machining)  # beside the material check
         with progress.step("report analysis"):
             from camcam.report.job import job_report, report_analysis
 
@@ -190,9 +182,7 @@ def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
             out.add(f"{spec.name}-report.json", to_json(report) + "\n")
         summary["cam"] = report
     except BaseException:
-        for child in children:
-            if isinstance(child, Pending):
-                child.cancel()
+        children.cancel()
         plots.kill()
         raise
     plots.close()

@@ -277,12 +277,10 @@ def _refine_motion(motion, samples, rho, gamma, best_v, best_j, iterations) -> t
         lo_p = samples[np.maximum(j - 1, 0)]
         hi_p = samples[np.minimum(j + 1, n - 1)]
     g = np.broadcast_to(gamma, (2, k))[found]
-    hi_side = np.broadcast_to(np.array([[False], [True]]), (2, k))[found]
+    side = np.broadcast_to(np.array([[0], [1]]), (2, k))[found]
 
     def f(pp):
-        lo, hi = section_interval(*motion.pose(motion.clamp(pp)), motion.r, motion.L, rho, g)
-        v = np.where(hi_side, hi, -lo)
-        return np.where(np.isnan(v), -np.inf, v)
+        return side_extent(*motion.pose(motion.clamp(pp)), motion.r, motion.L, rho, g, side)
 
     pr, vr = _golden(f, lo_p, hi_p, iterations)
     better = vr > best_v[found]

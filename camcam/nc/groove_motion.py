@@ -45,9 +45,11 @@ def section_interval(X, Y, Z, a, B, r, L, rho, gamma):
 
 
 def side_extent(X, Y, Z, a, B, r, L, rho, gamma, side):
-    """The wall-side extent: hi for side 1, −lo for side 0 (both maximised); −inf where it misses."""
+    """The wall-side extent: hi for side 1, −lo for side 0 (both maximised); −inf where it misses.
+
+    ``side`` is 0 or 1, or an array of them (one per pose and angle)."""
     lo, hi = section_interval(X, Y, Z, a, B, r, L, rho, gamma)
-    v = hi if side == 1 else -lo
+    v = np.where(np.asarray(side) == 1, hi, -lo)
     return np.where(np.isnan(v), -np.inf, v)
 
 

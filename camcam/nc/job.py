@@ -94,9 +94,10 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEF
     workers : int
         Processes the work may be shared with where it splits into independent
         parts: the further starts of a closed contour's arc spline
-        (:func:`camcam.toolpath.arcspline.fit_arc_spline`) and a barrel cam's 3-D
-        groove measurement (:func:`camcam.nc.groove3d.measure_groove`); the same
-        result for any count.
+        (:func:`camcam.toolpath.arcspline.fit_arc_spline`), a barrel cam's passes
+        (:func:`camcam.nc.rotary.machine_cylindrical`) and its 3-D groove
+        measurement (:func:`camcam.nc.groove3d.measure_groove`); the same result
+        for any count.
 
     Returns
     -------

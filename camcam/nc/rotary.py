@@ -142,6 +142,7 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     cs = dataclasses.replace(cs0, depth_mm=m.depth_mm + corner, stepdown_mm=m.stepdown_mm * scale)
     plan, flank_err = _plan(cam, r_t, rho_d)
     fit_tol = m.tolerance_mm - flank_err if flank_err < 0.5 * m.tolerance_mm else m.tolerance_mm / 2
+
     def printed(elements):
         return developed_printed(printed_axes(elements, post.quantizer, rho_d, turn), rho_d, turn)
 

@@ -46,6 +46,10 @@ SAMPLE_VALUES = {"title": "t", "name": "camcam", "units": "G21", "tool": 1, "spi
 _GCODE_WORD = r"(?:[A-Z][+-]?[0-9]+\.?[0-9]*|[A-Z]{2,}[A-Z0-9_]*)"
 _GCODE_LINE = re.compile(rf"{_GCODE_WORD}(?: {_GCODE_WORD})*|%|")
 
+#: What a comment looks like on a rendered line, per comment style (templates are checked
+#: closed and unnested before they are rendered).
+_COMMENT = {"parentheses": re.compile(r"\([^()]*\)"), "semicolon": re.compile(r";.*")}
+
 
 class TemplateError(ValueError):
     """A template that is not allowed; the message says why (the caller names the key)."""
@@ -111,15 +115,10 @@ def check_gcode_words(template: Template, values: dict = SAMPLE_VALUES) -> None:
     camcam.post.template.TemplateError: '0' is not G-code words (expected words such as G21 or T1 separated by one space, or %)
     """
     text = template.render(values)
-    code = "".join(p for p in _COMMENT[template.comment].split(text)).strip()
+    code = _COMMENT[template.comment].sub("", text).strip()
     if not _GCODE_LINE.fullmatch(code):
         raise TemplateError(f"{code!r} is not G-code words (expected words such as G21 or T1 separated by one "
                             "space, or %)")
-
-
-#: What a comment looks like on a rendered line, per comment style (templates are checked
-#: closed and unnested before they are rendered).
-_COMMENT = {"parentheses": re.compile(r"\([^()]*\)"), "semicolon": re.compile(r";.*")}
 
 
 def _bad_char(text: str) -> str | None:

@@ -129,8 +129,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from camcam.forked import parallel_map
 from camcam.errors import InputError
+from camcam.forked import parallel_map
 from camcam.toolpath.arcbatch import (MIN_CHORD_STEPS, arc_batch, candidate_deviation, grid_joint, peak_deviation,
                                       printed_element, unit_rows)
 from camcam.toolpath.arcclose import BIARC_RATIOS, closing_biarcs, landings, quiet_stretches
@@ -487,14 +487,14 @@ def _march(curve, a, b, tol, quantizer, max_sweep, sag, closed, budget, start) -
                 for j in range(1, min(budget.wrap_joints, len(chain) - 1) + 1):
                     jt = chain[j - 1]
                     targets.append((jt.p, jt.tan, jt.i + m.last, j))
+            cap = min(st.i + 2.0 * (st.reach - st.i) + 1, len(m.P) - 1)  # the farthest row a closure may end on
             if closed:
-                cap = min(st.i + 2.0 * (st.reach - st.i) + 1, len(m.P) - 1)
                 for j, dev, e1, e2 in landings(m, st, chain, min(budget.wrap_joints, len(chain) - 1), cap):
                     total = level_no + 2 - j  # one closing arc; arcs 1 … j−1 drop out, the j-th is lengthened
                     if best is None or (total, dev) < (best[5], best[0]):
                         best, best_level = (dev, st, e1, e2, j, total), level_no
             for p1, t1, row, saved in targets:
-                if not st.i < row <= min(st.i + 2.0 * (st.reach - st.i) + 1, len(m.P) - 1):
+                if not st.i < row <= cap:
                     continue
                 total = level_no + 2 - saved
                 if best is not None and total > best[5]:  # more arcs than the best closure: cannot win

@@ -1,12 +1,10 @@
-"""Helpers of the lines fitting: one analytic piece of a curve, the fitting check, the greedy step."""
+"""Helpers of the lines fitting: one analytic piece of a curve, the chord check, the greedy step."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from camcam.toolpath.elements import element_distance
-
-__all__ = ["pieces", "Piece", "dev", "lines_fit", "greedy", "GREEDY_BATCH", "GREEDY_LEVELS"]
+__all__ = ["pieces", "Piece", "lines_fit", "greedy", "GREEDY_BATCH", "GREEDY_LEVELS"]
 
 
 def pieces(curve, a=None, b=None):
@@ -18,13 +16,11 @@ def pieces(curve, a=None, b=None):
 
 
 class Piece:
-    """One analytic piece of the curve with tangent angles unwrapped continuously."""
+    """One analytic piece of the curve: its parameter grid and its points, single ones memoised."""
 
     def __init__(self, curve, a, b):
         self.curve, self.a, self.b = curve, a, b
         self.grid = np.linspace(a, b, 4097)
-        d = curve.evaluate(self.grid, 1)
-        self.phi_grid = np.unwrap(np.arctan2(d[:, 1], d[:, 0]))
         self._points: dict[float, np.ndarray] = {}
 
     def point(self, t) -> np.ndarray:
@@ -38,37 +34,6 @@ class Piece:
                 p = self._points[key] = self.curve.evaluate(np.atleast_1d(key), 0)
             return p
         return self.curve.evaluate(np.atleast_1d(t), 0)
-
-    def phi(self, t) -> np.ndarray:
-        t = np.atleast_1d(np.asarray(t, float))
-        ref = np.interp(t, self.grid, self.phi_grid)
-        d = self.curve.evaluate(t, 1)
-        raw = np.arctan2(d[:, 1], d[:, 0])
-        return ref + (raw - ref + np.pi) % (2 * np.pi) - np.pi
-
-    def samples(self, t0, t1, n=33) -> np.ndarray:
-        return self.point(np.linspace(t0, t1, n))
-
-
-def _seg_dist(q, poly):
-    """Distance from points q (n,2) to the polyline poly (m,2)."""
-    a, b = poly[:-1], poly[1:]
-    d = b - a
-    L2 = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
-    rel = q[:, None, :] - a[None, :, :]
-    u = np.clip(np.einsum("nmj,mj->nm", rel, d) / L2, 0, 1)
-    foot = a[None] + u[..., None] * d[None]
-    return np.hypot(*(q[:, None, :] - foot).transpose(2, 0, 1)).min(axis=1)
-
-
-def dev(piece, elems, t0, t1) -> float:
-    """Two-sided deviation of ``elems`` from the curve on [t0, t1], densely sampled (a fitting check)."""
-    cp = piece.samples(t0, t1, 41)
-    d1 = np.min([element_distance(e, cp) for e in elems], axis=0).max()
-    ep = np.concatenate([e.points(9) for e in elems])
-    dense = piece.samples(t0, t1, 81)
-    d2 = _seg_dist(ep, dense).max()
-    return float(max(d1, d2))
 
 
 #: Polyline segments on each side of a chord point's own place that :func:`lines_fit` looks
@@ -85,11 +50,11 @@ def _point_polyline(ep: np.ndarray, a: np.ndarray, e: np.ndarray, e2: np.ndarray
 
 
 def lines_fit(piece, t0: float, ts, tol: float) -> np.ndarray:
-    """Whether the chord from t0 to each of ``ts`` (k,) is within ``tol``: ``dev(chord) <= tol``, (k,) bool.
+    """Whether the chord from t0 to each of ``ts`` (k,) is within ``tol`` two-sided, (k,) bool.
 
-    The same samples as :func:`dev` (41 curve points to the chord, the chord's 9
-    points to the 81-point curve polyline), for a batch of candidate ends at
-    once; a chord of length 0 never fits.  A chord point's distance to the
+    Two-sided on samples: 41 curve points on [t0, t] to the chord, and the
+    chord's 9 points to the polyline through 81 curve points, for a batch of
+    candidate ends at once; a chord of length 0 never fits.  A chord point's distance to the
     polyline is first taken over the :data:`WINDOW` segments on each side of
     its own place: that is never below the distance to the whole polyline, so
     it decides every chord it leaves within ``tol``; the others are measured
@@ -163,23 +128,22 @@ def greedy(t0, b, ok_many, guess):
         else:
             if len(steps) < GREEDY_BATCH:  # the next step reaches b
                 hi = b
-    if lo == t0:  # shrink until something works
-        while True:
-            steps, s = [], step
-            for _ in range(GREEDY_BATCH):
-                s *= 0.5
-                steps.append(s)
-            for s, good in zip(steps, ok_many(t0, t0 + np.array([x for x in steps if x >= span * 1e-9]))):
-                if good:
-                    lo, hi = t0 + s, t0 + 2 * s
-                    break
-            else:
-                if steps[-1] >= span * 1e-9:
-                    step = steps[-1]
-                    continue
-                first_small = next(x for x in steps if x < span * 1e-9)
-                return t0 + first_small * 2
-            break
+    while lo == t0:  # shrink until something works
+        steps, s = [], step
+        while len(steps) < GREEDY_BATCH:
+            s *= 0.5
+            if s < span * 1e-9:
+                break
+            steps.append(s)
+        ok = ok_many(t0, t0 + np.array(steps)) if steps else np.zeros(0, bool)
+        for s_ok, good in zip(steps, ok):
+            if good:
+                lo, hi = t0 + s_ok, t0 + 2 * s_ok
+                break
+        else:
+            if len(steps) < GREEDY_BATCH:  # the next halving is below 1e-9 of the span
+                return t0 + s * 2
+            step = steps[-1]
     levels = 0
     while levels < 30 and hi - lo > 1e-6 * span:  # bisection, GREEDY_LEVELS levels judged at once
         mids = {}

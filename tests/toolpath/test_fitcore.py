@@ -8,12 +8,34 @@ from hypothesis import strategies as st
 
 from camcam.geometry.jet import Jet
 from camcam.geometry.jetcurve import JetCurve
-from camcam.toolpath.elements import Line
-from camcam.toolpath.fitcore import Piece, dev, greedy, lines_fit
+from camcam.toolpath.elements import Line, element_distance
+from camcam.toolpath.fitcore import Piece, greedy, lines_fit
 
 ELLIPSE = JetCurve(lambda t, K, piece=None: (Jet.variable(t, K).cos() * 30.0, Jet.variable(t, K).sin() * 20.0),
                    np.array([0.0, np.pi, 2 * np.pi]))
 PIECE = Piece(ELLIPSE, 0.0, np.pi)
+
+
+def _seg_dist(q, poly):
+    """Distance from points q (n,2) to the polyline poly (m,2)."""
+    a, b = poly[:-1], poly[1:]
+    d = b - a
+    L2 = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+    rel = q[:, None, :] - a[None, :, :]
+    u = np.clip(np.einsum("nmj,mj->nm", rel, d) / L2, 0, 1)
+    foot = a[None] + u[..., None] * d[None]
+    return np.hypot(*(q[:, None, :] - foot).transpose(2, 0, 1)).min(axis=1)
+
+
+def dev(piece, elems, t0, t1) -> float:
+    """The lines fit's check as it was written for one chord at a time (the reference): two-sided, 41 curve
+    points to the elements, the elements' 9 points each to the polyline through 81 curve points."""
+    cp = piece.point(np.linspace(t0, t1, 41))
+    d1 = np.min([element_distance(e, cp) for e in elems], axis=0).max()
+    ep = np.concatenate([e.points(9) for e in elems])
+    dense = piece.point(np.linspace(t0, t1, 81))
+    d2 = _seg_dist(ep, dense).max()
+    return float(max(d1, d2))
 
 
 def sequential_greedy(t0, b, ok, guess):
