@@ -13,7 +13,10 @@ more cores they can run beside the NC work:
 * :class:`Server` forks one child that runs a first batch of jobs on the
   memory it inherited, then serves later jobs sent to it (pickled), one at a
   time, importing the modules they name itself.  So the parent never imports
-  matplotlib: the server imports it once, on the other core.
+  matplotlib: the server imports it once, on the other core.  `camcam run`
+  starts its plot server before anything else (matplotlib's import then runs
+  beside the run's own imports) and a second server for the drawing before
+  the NC step (ezdxf's); the cam and the program go to them pickled.
 
 The child runs the very same function on the very same data as an in-process
 call would, so the results are the same.  Fork is what makes this cheap, so it
@@ -27,7 +30,6 @@ from __future__ import annotations
 import importlib
 import os
 import pickle
-import select
 import signal
 import struct
 import sys
@@ -36,7 +38,7 @@ from typing import Any, Callable
 
 from camcam.interrupts import SIGNALS, Interrupted
 
-__all__ = ["ChildError", "Pending", "later", "resolve", "ChildGroup", "parallel_map", "Server", "call_target"]
+__all__ = ["ChildError", "Pending", "later", "resolve", "ChildGroup", "parallel_map", "Server", "call_target", "preload"]
 
 _OK, _FAILED = b"K", b"E"
 _FRAME = struct.Struct("<Q")  # the length of one server reply
@@ -50,6 +52,12 @@ def call_target(target: str, *args, **kwargs):
     """Call the function named ``"package.module:function"`` (imported here, in whichever process runs it)."""
     module, _, name = target.partition(":")
     return getattr(importlib.import_module(module), name)(*args, **kwargs)
+
+
+def preload(*modules: str) -> None:
+    """Import ``modules`` (a server child's first job: its later jobs then find them loaded)."""
+    for name in modules:
+        importlib.import_module(name)
 
 
 def _payload(fn: Callable, args, kwargs) -> bytes:
@@ -253,15 +261,88 @@ def parallel_map(fn: Callable, items, workers: int = 1) -> list:
     return out
 
 
+class _ServerPipes:
+    """The server child's two pipe ends, each served by a thread of its own.
+
+    A reader thread takes every request frame off the request pipe as soon as
+    it arrives, so the parent's (blocking) write of a request returns at once,
+    whatever job the child is busy with: a pickled cam is larger than a pipe
+    holds, and the parent, busy with the NC step, must not wait for the child's
+    current job to end.  A writer thread writes the replies in order, blocking
+    while the reply pipe is full, so the next job starts while the parent has
+    not yet read the last reply (a plot's PNG alone fills a pipe).  A parent
+    that is gone (a broken pipe) ends the writing; the jobs then end with the
+    request pipe.  The threads live only in the server child, whose jobs do not fork.
+    """
+
+    def __init__(self, requests, replies) -> None:
+        import queue
+        import threading
+
+        self._requests, self._replies = requests, replies
+        self.jobs: queue.SimpleQueue = queue.SimpleQueue()  # request bodies; None at the end
+        self._out: queue.SimpleQueue = queue.SimpleQueue()  # reply bodies; None at the end
+        self._reader = threading.Thread(target=self._read, name="camcam-server-requests", daemon=True)
+        self._writer = threading.Thread(target=self._write, name="camcam-server-replies", daemon=True)
+
+    def _read(self) -> None:
+        try:
+            while True:
+                head = self._requests.read(_FRAME.size)
+                if len(head) < _FRAME.size or _FRAME.unpack(head)[0] == 0:
+                    break  # an empty frame (or the pipe closed): done
+                self.jobs.put(self._requests.read(_FRAME.unpack(head)[0]))
+        finally:
+            self.jobs.put(None)
+
+    def _write(self) -> None:
+        broken = False
+        while (data := self._out.get()) is not None:
+            if broken:
+                continue
+            try:
+                self._replies.write(_FRAME.pack(len(data)) + data)
+                self._replies.flush()
+            except OSError:  # the parent closed its end: nobody reads any more replies
+                broken = True
+
+    def reply(self, data: bytes) -> None:
+        """Queue one reply (written in order by the writer thread)."""
+        self._out.put(data)
+
+    def __enter__(self) -> "_ServerPipes":
+        self._reader.start()
+        self._writer.start()
+        return self
+
+    def __exit__(self, *exc) -> bool:
+        self._out.put(None)
+        self._writer.join()  # every reply written (the reader ends with the request pipe)
+        return False
+
+
+def _widen(fd: int) -> None:
+    """Let a pipe hold 1 MiB where the platform allows it (Linux): fewer wake-ups for a large message."""
+    try:
+        import fcntl
+
+        fcntl.fcntl(fd, fcntl.F_SETPIPE_SZ, 1 << 20)
+    except (ImportError, AttributeError, OSError):
+        pass  # only an optimisation: the pipe's own size works, in more steps
+
+
 class Server:
     """One forked child that runs jobs for the parent, in the order they are given.
 
     ``Server(first)`` forks at once; the child runs each ``(target, args,
     kwargs)`` of ``first`` on the memory it inherited (nothing pickled), then
-    waits for :meth:`submit` jobs, whose arguments are pickled to it.  A target
-    is ``"package.module:function"``, imported in the child (:func:`call_target`).
-    :meth:`close` ends the child once every reply was read; without fork every
-    job runs at once, in process.
+    the :meth:`submit` jobs, whose arguments are pickled to it.  A target is
+    ``"package.module:function"``, imported in the child (:func:`call_target`);
+    :func:`preload` as a first job imports modules ahead of the jobs that need
+    them.  :meth:`submit` returns at once (the child takes requests off the
+    pipe while it works, see :class:`_ServerPipes`); :meth:`close` ends the
+    child once every reply was read.  Without fork every job runs at once, in
+    process.  Jobs must not fork (the child runs two threads for its pipes).
 
     Examples
     --------
@@ -284,29 +365,23 @@ class Server:
             return
         req_r, req_w = os.pipe()
         rep_r, rep_w = os.pipe()
+        _widen(req_w)
+        _widen(rep_w)
 
         def child():
             os.close(req_w), os.close(rep_r)
-            with os.fdopen(req_r, "rb") as requests, os.fdopen(rep_w, "wb") as replies:
-                def reply(data: bytes) -> None:
-                    replies.write(_FRAME.pack(len(data)) + data)
-                    replies.flush()
-
+            with os.fdopen(req_r, "rb") as requests, os.fdopen(rep_w, "wb") as replies, \
+                    _ServerPipes(requests, replies) as pipes:
                 for t, a, k in first:
-                    reply(_payload(call_target, (t, *a), k))
-                while True:
-                    head = requests.read(_FRAME.size)
-                    if len(head) < _FRAME.size or _FRAME.unpack(head)[0] == 0:
-                        return  # an empty frame (or the pipe closed): done
-                    t, a, k = pickle.loads(requests.read(_FRAME.unpack(head)[0]))
-                    reply(_payload(call_target, (t, *a), k))
+                    pipes.reply(_payload(call_target, (t, *a), k))
+                while (raw := pipes.jobs.get()) is not None:
+                    t, a, k = pickle.loads(raw)
+                    pipes.reply(_payload(call_target, (t, *a), k))
 
         self._pid = _fork(child)
         os.close(req_r), os.close(rep_w)
         self._req_fd, self._rep_fd = req_w, rep_r
-        os.set_blocking(req_w, False)  # a request is written as far as the pipe takes it (see submit)
         self._buffer = bytearray()
-        self._out = bytearray()  # requests not yet taken by the pipe
         self.first = tuple(self._pending(t) for t, _, _ in first)
 
     def _pending(self, target: str) -> Pending:
@@ -338,36 +413,27 @@ class Server:
         self._pump(until=index)
         return _decode(self._replies.pop(index), self._names[index])
 
-    def _pump(self, until: int | None = None) -> None:
-        """Write queued requests as far as the pipe takes them and read the replies that are in; with
-        ``until``, go on (blocking) until reply ``until`` is in.  The parent never blocks on a full
-        request pipe while the server blocks on a full reply pipe: both are served in one loop."""
-        while self._out or (until is not None and until >= self._next_reply):
-            wait = until is not None and until >= self._next_reply
-            readable, writable, _ = select.select([self._rep_fd], [self._req_fd] if self._out else [], [],
-                                                  None if wait else 0)
-            if readable:
-                self._read_some()
-            if writable:
-                try:
-                    del self._out[:os.write(self._req_fd, self._out)]
-                except BlockingIOError:
-                    pass
-            if not wait and not readable and not writable:
-                return  # nothing can move now: the rest is written later
+    def _pump(self, until: int) -> None:
+        """Read replies until reply ``until`` is in."""
+        while until >= self._next_reply:
+            self._read_some()
+
+    def _send(self, frame: bytes) -> None:
+        """Write a whole request frame (the child's reader thread takes it off the pipe as it comes)."""
+        view = memoryview(frame)
+        try:
+            while view:
+                view = view[os.write(self._req_fd, view):]
+        except BrokenPipeError:
+            raise ChildError("the server process ended before it took its jobs") from None
 
     def submit(self, target: str, *args, **kwargs) -> Pending | Any:
-        """Run ``target(*args, **kwargs)`` in the server (arguments and result must pickle).
-
-        Returns at once: what the request pipe does not take now is written when the parent next
-        submits or waits for a reply."""
+        """Run ``target(*args, **kwargs)`` in the server (arguments and result must pickle); returns at once."""
         if self._pid is None:
             return call_target(target, *args, **kwargs)
         data = pickle.dumps((target, args, kwargs), protocol=pickle.HIGHEST_PROTOCOL)
-        self._out += _FRAME.pack(len(data)) + data
-        pending = self._pending(target)
-        self._pump()
-        return pending
+        self._send(_FRAME.pack(len(data)) + data)
+        return self._pending(target)
 
     def kill(self) -> None:
         """End the child at once (a run that failed): replies not yet read are lost (idempotent)."""
@@ -383,11 +449,11 @@ class Server:
         """Read every reply still due, end the child and wait for it (idempotent)."""
         if self._pid is None:
             return
-        self._out += _FRAME.pack(0)  # the server's signal to end (not EOF: other children hold the pipe too)
         try:
+            # an empty frame ends the child (not EOF: other children hold the pipe too)
+            self._send(_FRAME.pack(0))
             if self._names:
                 self._pump(until=len(self._names) - 1)
-            self._pump()
         except ChildError:
             pass  # the missing replies raise when their results are asked for
         os.close(self._req_fd)

@@ -1,6 +1,8 @@
 """camcam.forked: jobs in forked children give the in-process results, in order, without deadlock."""
 
 import os
+import select
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -26,6 +28,9 @@ def test_later_returns_the_child_result():
 class _Unpicklable(Exception):
     def __init__(self, a, b):
         super().__init__(f"{a}/{b}")
+        # a lock never pickles: without it, importing distributed (tests/scale, tests/cli's batch runs)
+        # installs tblib's reduce for every exception class, which rebuilds this one from its __dict__
+        self.handle = threading.Lock()
 
 
 def _unpicklable():
@@ -85,6 +90,63 @@ def test_server_big_requests_and_replies_do_not_deadlock():
     s.close()  # reads what is still due before ending the child
     assert all(np.array_equal(resolve(j), -big) for j in jobs)
     assert resolve(s.first[0]).shape == (500_000,)
+
+
+def _wait_for_gate(fd):
+    return os.read(fd, 1)
+
+
+def _mark(fd):
+    os.write(fd, b"m")
+
+
+def _size(data):
+    return len(data)
+
+
+def _bytes(n):
+    return b"r" * n
+
+
+#: Generous: the marker comes within milliseconds when the server works; only a stalled server misses it.
+MARK_WAIT_S = 120.0
+
+
+def _marked(fd) -> bool:
+    return bool(select.select([fd], [], [], MARK_WAIT_S)[0])
+
+
+@needs_fork
+def test_server_takes_a_big_request_while_busy_and_runs_it_without_the_parent():
+    # regression: a request larger than the pipe (a pickled cam, 0.2-1.2 MB) was written only as far as
+    # the pipe took it, the rest when the parent next looked; busy with the NC step, the parent left
+    # the server waiting for the rest of the cam plot's request for about a second
+    gate_r, gate_w = os.pipe()
+    mark_r, mark_w = os.pipe()
+    s = Server([(f"{__name__}:_wait_for_gate", (gate_r,), {})])
+    try:
+        big = s.submit(f"{__name__}:_size", b"x" * 3_000_000)  # the server is still at the gate
+        s.submit(f"{__name__}:_mark", mark_w)
+        os.write(gate_w, b"g")
+        assert _marked(mark_r)  # both jobs ran while the parent wrote and read nothing more
+        assert resolve(big) == 3_000_000
+    finally:
+        s.close()
+        for fd in (gate_r, gate_w, mark_r, mark_w):
+            os.close(fd)
+
+
+@needs_fork
+def test_server_goes_on_to_the_next_job_while_its_last_reply_is_unread():
+    # regression: a reply larger than the pipe (a plot's PNG) held the server until the parent read it
+    mark_r, mark_w = os.pipe()
+    s = Server([(f"{__name__}:_bytes", (3_000_000,), {}), (f"{__name__}:_mark", (mark_w,), {})])
+    try:
+        assert _marked(mark_r)  # the second job ran before the parent read the first reply
+        assert resolve(s.first[0]) == b"r" * 3_000_000
+    finally:
+        s.close()
+        os.close(mark_r), os.close(mark_w)
 
 
 @needs_fork

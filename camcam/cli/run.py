@@ -20,7 +20,8 @@ from camcam.cli.output import add_output_arguments, output_set, publish, to_json
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
 
-__all__ = ["register", "nc_step", "model", "drawing", "nc_figures", "job_verdict", "design_and_drawing_checks", "job", "DEFAULT_SPEC"]
+__all__ = ["register", "nc_step", "model", "drawing", "nc_figures", "job_verdict", "design_and_drawing_checks", "job",
+           "plot_server", "DEFAULT_SPEC"]
 
 #: The bundled job `camcam run` runs without a spec.
 DEFAULT_SPEC = "default.toml"
@@ -110,46 +111,54 @@ def _load(spec_arg):
         return load_spec(path)
 
 
-def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
+def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
     """The whole flow for a loaded ``spec``: add every file to ``out`` (not committed); (summary, verdict).
 
-    `camcam run` and each spec of `camcam batch` go through here.
+    `camcam run` and each spec of `camcam batch` go through here.  ``plots`` is a plot server
+    (:func:`plot_server`) already started, which this call closes; without one, the call starts its own.
     """
     from camcam.cli.motion import SVAJ_PLOT, motion_outputs, motion_summary, svaj_title
+    from camcam.forked import ChildGroup, resolve
 
     verdict = Verdict(())
-    program = spec.need("motion", "run").program(spec.unit)
-    for j in program.joins:
-        warn(j.describe())
-    if spec.cam is None:
-        with progress.step("motion table and plot"):
-            motion_outputs(out, spec.name, program, 0.5)
-        return {"name": spec.name, "motion": motion_summary(program)}, verdict
-    from camcam.export.cam_report import cam_report
-    from camcam.forked import ChildGroup, Server, resolve
-    from camcam.geometry.build import build_cam
-
-    with progress.step("cam geometry and analysis"):
-        built = build_cam(spec.cam, spec.follower, program)
-    # one child process draws every plot while the NC step runs, and only it imports matplotlib
-    # (camcam.forked): the SVAJ and profile plots from the memory it inherits, the report's plots
-    # from the arrays sent to it
-    plots = Server([(SVAJ_PLOT, (program,), {"title": svaj_title(spec.name, program)}),
-                    (CAM_PLOT, (built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower"), {})])
+    # one child process draws every plot, and only it imports matplotlib (camcam.forked.Server): the
+    # plots' data goes to it pickled (a cam pickles in about a millisecond)
+    plots = plot_server() if plots is None else plots
     # the run's other child processes: stopped if the run fails before it collects them
     children = ChildGroup()
+    drawings = None
     try:
-        svaj, profile_png = plots.first
+        program = spec.need("motion", "run").program(spec.unit)
+        for j in program.joins:
+            warn(j.describe())
+        svaj = plots.submit(SVAJ_PLOT, program, title=svaj_title(spec.name, program))
+        if spec.cam is None:
+            with progress.step("motion table and plot"):
+                motion_outputs(out, spec.name, program, 0.5, svaj)
+                resolve(svaj)
+            plots.close()
+            return {"name": spec.name, "motion": motion_summary(program)}, verdict
+        from camcam.export.cam_report import cam_report
+        from camcam.forked import Server
+        from camcam.geometry.build import build_cam
+
+        with progress.step("cam geometry and analysis"):
+            built = build_cam(spec.cam, spec.follower, program)
+        profile_png = plots.submit(CAM_PLOT, built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
         with progress.step("motion table and plot"):
             motion_outputs(out, spec.name, program, 0.5, svaj)
         summary = {"name": spec.name, "motion": motion_summary(program)}
         model_files = children.later(model, built, spec.name)  # the mesh and STL need no NC: made beside it
+        if spec.machining is not None:
+            # the drawing's child starts now and imports ezdxf and scipy.interpolate (about a second)
+            # beside the NC step; the program goes to it pickled once it is printed
+            drawings = Server([(PRELOAD, DRAWING_MODULES, {})])
         report = cam_report(built, mesh=False)  # its "mesh" comes with the STL
         machining = check = drawn = None
         if spec.machining is not None:
             with progress.step("NC second fitting and program"):
                 machining, check = nc_step(spec, built, children.later)
-            drawn = children.later(drawing, built, machining)  # beside the material check
+            drawn = drawings.submit(DRAWING, built, machining)  # beside the material check
         with progress.step("report analysis"):
             from camcam.report.job import job_report, report_analysis
 
@@ -160,6 +169,7 @@ def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
                 from camcam.nc import with_removal
 
                 nc, part_deviation = resolve(drawn)
+                drawings.close()
                 for name, data in nc.items():
                     out.add(name, data)
                 if check is not None:
@@ -184,9 +194,29 @@ def job(spec, out, progress: Progress) -> tuple[dict, Verdict]:
     except BaseException:
         children.cancel()
         plots.kill()
+        if drawings is not None:
+            drawings.kill()
         raise
     plots.close()
     return summary, verdict
+
+
+def plot_server():
+    """The child process that draws a run's plots (:class:`camcam.forked.Server`), started at once: it
+    imports matplotlib (about a second) while the run itself reads the spec and designs the cam."""
+    from camcam.forked import Server
+
+    return Server([(PRELOAD, PLOT_MODULES, {})])
+
+
+#: Loads modules in a server child before its first job (camcam.forked.preload).
+PRELOAD = "camcam.forked:preload"
+#: What the plot server imports before its first plot: matplotlib comes with them.
+PLOT_MODULES = ("camcam.plots.svaj", "camcam.plots.profile")
+#: What the drawing's child imports while the NC step runs: ezdxf and scipy.interpolate come with it.
+DRAWING_MODULES = ("camcam.export.nc",)
+#: The drawing's function (run in its child, on the pickled cam and program).
+DRAWING = "camcam.cli.run:drawing"
 
 
 #: The cam profile plot's function (drawn in the plot server, camcam.forked).
@@ -197,9 +227,13 @@ def run(args) -> int:
     progress = Progress.from_args(args)
     from camcam.cli.motion import print_summary
 
-    spec = _load(args.spec)
-    out = output_set(args, "run")
-    summary, verdict = job(spec, out, progress)
+    plots = plot_server()  # first: matplotlib's import runs on the other core while the spec loads
+    try:
+        spec = _load(args.spec)
+        out = output_set(args, "run")
+        summary, verdict = job(spec, out, progress, plots)
+    finally:
+        plots.kill()  # a spec or folder refused: the server is stopped (after job() it has ended already)
 
     def show(summary: dict) -> None:
         print_summary(summary["motion"])

@@ -48,6 +48,7 @@ groove centre line is u = ρθ.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -186,6 +187,20 @@ class CylindricalCam(CamBasics):
         return x, c * y - s * z, s * y + c * z
 
     # -- curves -------------------------------------------------------------
+    # (each curve's jets are a partial of one of these methods, not a lambda: the curves pickle with
+    # their cam, and a MachiningResult goes to the run's child processes pickled)
+    def _centre_jets(self, theta, K, piece=None, *, rho):
+        return self._to_cam(theta, self._axis_point(theta, K, piece, rho)[0])
+
+    def _flank_jets(self, theta, K, piece=None, *, rho, index):
+        return self._to_cam(theta, self._contact(theta, K, piece, rho, index))
+
+    def _developed_centre_jets(self, theta, K, piece=None, *, rho):
+        return self._developed(theta, K, piece, rho, self._axis_point(theta, K, piece, rho)[0])
+
+    def _developed_flank_jets(self, theta, K, piece=None, *, rho, index):
+        return self._developed(theta, K, piece, rho, self._contact(theta, K, piece, rho, index))
+
     def _check_radius(self, rho: float) -> float:
         if not self.bottom_radius - 1e-9 <= rho <= self.base_radius + 1e-9:
             raise GeometryError(f"radius {rho:g} mm is outside the groove ({self.bottom_radius:g} … {self.base_radius:g} mm)")
@@ -194,14 +209,14 @@ class CylindricalCam(CamBasics):
     def centre(self, radius_mm: float) -> SpaceCurve:
         """Groove centre curve (the roller axis) at radius ρ, cam frame."""
         rho = self._check_radius(radius_mm)
-        return SpaceCurve(lambda t, K, piece=None: self._to_cam(t, self._axis_point(t, K, piece, rho)[0]), self.breaks)
+        return SpaceCurve(functools.partial(self._centre_jets, rho=rho), self.breaks)
 
     def flank(self, index: int, radius_mm: float) -> SpaceCurve:
         """Flank ``index`` (0: −X wall, 1: +X wall) on the roller cross-section at radius ρ, cam frame."""
         rho = self._check_radius(radius_mm)
         if index not in (0, 1):
             raise ValueError(f"flank index must be 0 or 1, got {index!r}")
-        return SpaceCurve(lambda t, K, piece=None: self._to_cam(t, self._contact(t, K, piece, rho, index)), self.breaks)
+        return SpaceCurve(functools.partial(self._flank_jets, rho=rho, index=index), self.breaks)
 
     def contact_point(self, theta, radius_mm: float, index: int) -> np.ndarray:
         """Fixed-frame contact point(s) (n, 3): seed 002's eqs. 10–12 (corrected) at θc = 0."""
@@ -216,14 +231,12 @@ class CylindricalCam(CamBasics):
     def developed_centre(self, radius_mm: float) -> JetCurve:
         """The unrolled groove centre line at radius ρ: (u, x), u = ρθ."""
         rho = self._check_radius(radius_mm)
-        return JetCurve(lambda t, K, piece=None: self._developed(t, K, piece, rho, self._axis_point(t, K, piece, rho)[0]),
-                        self.breaks, closed=False)
+        return JetCurve(functools.partial(self._developed_centre_jets, rho=rho), self.breaks, closed=False)
 
     def developed_flank(self, index: int, radius_mm: float) -> JetCurve:
         """The unrolled flank ``index`` at radius ρ: (u, x)."""
         rho = self._check_radius(radius_mm)
-        return JetCurve(lambda t, K, piece=None: self._developed(t, K, piece, rho, self._contact(t, K, piece, rho, index)),
-                        self.breaks, closed=False)
+        return JetCurve(functools.partial(self._developed_flank_jets, rho=rho, index=index), self.breaks, closed=False)
 
     def pressure_angle(self, theta, K: int = 0, piece: int | None = None, radius_mm: float | None = None) -> Jet:
         """Signed pressure angle (rad) at radius ρ (default: the groove bottom, where it is largest)."""

@@ -22,6 +22,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -133,7 +134,7 @@ class DiscCam(CamBasics):
         e = self.element(theta, K, piece)
         return self._to_cam(theta, e.nx, e.ny)
 
-    def _offset_jets(self, theta, K, piece, distance):
+    def _offset_jets(self, theta, K, piece=None, *, distance):
         if self.is_roller:
             x, y = self._pitch_jets(theta, K, piece)
             d = distance - self.roller_radius
@@ -161,8 +162,9 @@ class DiscCam(CamBasics):
 
         For a roller follower this is the pitch curve offset by ``distance_mm − roller_radius``.
         """
-        d = float(distance_mm)
-        return JetCurve(lambda t, K, piece=None: self._offset_jets(t, K, piece, d), self.breaks)
+        # a partial of a bound method, not a lambda: the curve pickles with its cam (a MachiningResult
+        # goes to the run's child processes pickled)
+        return JetCurve(functools.partial(self._offset_jets, distance=float(distance_mm)), self.breaks)
 
     def normal(self, theta) -> np.ndarray:
         """Unit normal away from the material at program angles θ, shape (n, 2)."""
