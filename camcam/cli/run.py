@@ -225,9 +225,9 @@ CAM_PLOT = "camcam.plots.profile:cam_png"
 
 def run(args) -> int:
     progress = Progress.from_args(args)
+    plots = plot_server()  # first of all: matplotlib's import runs on the other core while the flow's load
     from camcam.cli.motion import print_summary
 
-    plots = plot_server()  # first: matplotlib's import runs on the other core while the spec loads
     try:
         spec = _load(args.spec)
         out = output_set(args, "run")

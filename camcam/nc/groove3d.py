@@ -224,6 +224,7 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
     lo_s = np.arcsin(np.clip((-r - Y[keep]) / rho, -1, 1))
     hi_s = np.arcsin(np.clip((r - Y[keep]) / rho, -1, 1))
     ak = a[keep]
+    sincos = np.sin(B), np.cos(B)  # each sample's, taken for every angle it reaches
     best_v = np.full((2, k), -np.inf)
     best_j = np.full((2, k), -1)
     if regular:
@@ -236,7 +237,8 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
             loc = np.repeat(np.arange(s0, s0 + len(c)), c)
             ii = np.repeat(i0[s0:s0 + chunk], c) + (np.arange(c.sum()) - np.repeat(np.cumsum(c) - c, c))
             js = keep[loc]
-            lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, g0 + ii * dg)
+            lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, g0 + ii * dg,
+                                      (sincos[0][js], sincos[1][js]))
             ii = np.mod(ii, k)
             for side, v in ((0, -lo), (1, hi)):
                 _scatter_best(ii, np.where(np.isnan(v), -np.inf, v), js, best_v[side], best_j[side])
@@ -247,7 +249,8 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
             js = keep[(d_lo >= 0) & (d_hi >= 0)]
             if len(js) == 0:
                 continue
-            lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, gamma[i])
+            lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, gamma[i],
+                                      (sincos[0][js], sincos[1][js]))
             for side, v in ((0, -lo), (1, hi)):
                 v = np.where(np.isnan(v), -np.inf, v)
                 m = int(np.argmax(v))

@@ -22,26 +22,57 @@ from camcam.nc.toolposes import A_AXIS_SENSE, CylinderTool, ToolPoses
 __all__ = ["section_interval", "side_extent", "Motion", "ProgramMotion", "RollerMotion", "follower_poses"]
 
 
-def section_interval(X, Y, Z, a, B, r, L, rho, gamma):
-    """x-interval (lo, hi) of a posed cylinder on r = ρ at part angle γ; NaN where it misses."""
-    beta = gamma + a
-    sb, cb = np.sin(B), np.cos(B)
-    eta = rho * np.sin(beta) + Y
-    zeta = rho * np.cos(beta) - Z
-    q2 = r * r - eta * eta
-    q = np.sqrt(np.maximum(q2, 0.0))
-    lo = (zeta * sb - q) / cb
-    hi = (zeta * sb + q) / cb
+def section_interval(X, Y, Z, a, B, r, L, rho, gamma, sincos_B=None):
+    """x-interval (lo, hi) of a posed cylinder on r = ρ at part angle γ; NaN where it misses.
+
+    ``sincos_B`` is (sin B, cos B) when the caller has them (an envelope reuses
+    a sample's for each of its angles).  The arithmetic is done in place: at
+    tens of thousands of (pose, angle) pairs a call, fresh temporaries cost
+    more than the arithmetic; sin and cos are most of the rest.
+    """
+    shape = np.broadcast_shapes(np.shape(gamma), np.shape(a), np.shape(X), np.shape(Y), np.shape(Z), np.shape(B))
+    beta = np.add(gamma, a, out=np.empty(shape))  # every result below is an array of this shape (0-d too)
+    sb, cb = (np.sin(B), np.cos(B)) if sincos_B is None else sincos_B
+    eta = np.sin(beta, out=np.empty(shape))
+    zeta = np.cos(beta, out=beta)
+    eta *= rho
+    eta += Y
+    zeta *= rho
+    zeta -= Z
+    q2 = np.multiply(eta, eta, out=eta)
+    np.subtract(r * r, q2, out=q2)
+    q = np.maximum(q2, 0.0, out=np.empty(shape))
+    np.sqrt(q, out=q)
+    lo = np.multiply(zeta, sb, out=np.empty(shape))
+    hi = np.add(lo, q, out=np.empty(shape))
+    lo -= q
+    lo /= cb
+    hi /= cb
     tilted = np.abs(sb) > 1e-15
-    safe = np.where(tilted, sb, 1.0)
-    e0 = -zeta * cb / safe  # axial position 0 (the tip plane)
-    e1 = (L - zeta * cb) / safe  # axial position L
-    alo = np.where(sb > 0, e0, e1)
-    ahi = np.where(sb > 0, e1, e0)
-    lo = np.where(tilted, np.maximum(lo, alo), lo)
-    hi = np.where(tilted, np.minimum(hi, ahi), hi)
-    ok = (q2 >= 0) & (lo <= hi) & (tilted | ((zeta >= 0) & (zeta <= L)))
-    return np.where(ok, X + lo, np.nan), np.where(ok, X + hi, np.nan)
+    if tilted.any():
+        # the tip plane (axial position 0) and the end (L) bound a tilted cylinder's section
+        safe = np.where(tilted, sb, 1.0)
+        e0 = np.negative(zeta, out=np.empty(shape))
+        e0 *= cb
+        e0 /= safe
+        e1 = np.multiply(zeta, cb, out=np.empty(shape))
+        np.subtract(L, e1, out=e1)
+        e1 /= safe
+        up = sb > 0
+        alo = np.where(up, e0, e1)
+        ahi = np.where(up, e1, e0)
+        np.maximum(lo, alo, out=alo)
+        np.minimum(hi, ahi, out=ahi)
+        lo = np.where(tilted, alo, lo)
+        hi = np.where(tilted, ahi, hi)
+    miss = np.less(q2, 0, out=np.empty(shape, bool))  # the negation of the old q2 >= 0 & ...: NaN-free here
+    miss |= lo > hi
+    miss |= ~(tilted | ((zeta >= 0) & (zeta <= L)))
+    lo += X
+    hi += X
+    lo[miss] = np.nan
+    hi[miss] = np.nan
+    return lo, hi
 
 
 def side_extent(X, Y, Z, a, B, r, L, rho, gamma, side):
