@@ -234,14 +234,18 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
         chunk = max(1, int(_PAIRS_PER_CHUNK // max(1, int(cnt.mean()) + 1)))
         for s0 in range(0, len(keep), chunk):
             c = cnt[s0:s0 + chunk]
-            loc = np.repeat(np.arange(s0, s0 + len(c)), c)
-            ii = np.repeat(i0[s0:s0 + chunk], c) + (np.arange(c.sum()) - np.repeat(np.cumsum(c) - c, c))
-            js = keep[loc]
+            # pairs: sample j of the chunk with grid angles i0[j], i0[j] + 1, …, i0[j] + c[j] − 1
+            js = np.repeat(keep[s0:s0 + chunk], c)
+            ii = np.arange(c.sum()) - np.repeat(np.cumsum(c) - c - i0[s0:s0 + chunk], c)
             lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, g0 + ii * dg,
                                       (sincos[0][js], sincos[1][js]))
             ii = np.mod(ii, k)
-            for side, v in ((0, -lo), (1, hi)):
-                _scatter_best(ii, np.where(np.isnan(v), -np.inf, v), js, best_v[side], best_j[side])
+            miss = np.isnan(lo)  # lo and hi miss together
+            side0 = np.negative(lo, out=lo)
+            side0[miss] = -np.inf
+            hi[miss] = -np.inf
+            for side, v in ((0, side0), (1, hi)):
+                _scatter_best(ii, v, js, best_v[side], best_j[side])
     else:
         for i in range(k):
             d_lo = np.mod(gamma[i] + ak - lo_s + math.pi, 2 * math.pi) - math.pi
