@@ -36,6 +36,7 @@ import shapely
 from scipy.spatial import cKDTree
 from shapely.geometry import LineString, Point
 
+from camcam.forked import ChildGroup, resolve
 from camcam.nc.readback import read_program
 from camcam.nc.stock import bore_region
 from camcam.verdict import Check
@@ -252,9 +253,46 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
         shapely.prepare(s)
     rounding = 2 * 10.0 ** -decimals
     slope = math.tan(math.radians(ramp_angle_deg))
+    passes = len({m.pass_label for m in moves if m.pass_label})
+    # the figures at the finished surface need only the moves and the part, not the slabs: they are
+    # computed in a child process beside the move-by-move removal below (the same call, the same figures);
+    # stopped if the removal fails
+    finishing = ChildGroup()
+    finish = finishing.later(_finish_figures, cut_moves, levels, top_z, keep, boundary, r_t)
+    try:
+        slabs, eng, eng_at, slot_eng, plunges, plunge_at, rapids, rapid_at = _remove(
+            moves, slabs, bounds, r_t, slope, rounding, slot_kinds)
+        left, left_at, over, over_at, clearance, clear_at = resolve(finish)
+    except BaseException:
+        finishing.cancel()
+        raise
+
+    keep_band = keep.buffer(tolerance_mm, quad_segs=32)
+    for i, s in enumerate(slabs):
+        rest = s.difference(keep_band)
+        if rest.area > 1e-6:
+            pts = shapely.get_coordinates(rest)
+            dist = shapely.distance(keep, shapely.points(pts))
+            j = int(np.argmax(dist))
+            if dist[j] > left:
+                left = float(dist[j])
+                left_at = f"slab Z{bounds[i + 1]:g}…Z{bounds[i]:g}: material at X{pts[j, 0]:.3f} Y{pts[j, 1]:.3f} not cut"
+    return RemovalReport(r_t, stepover_mm, ramp_angle_deg, tolerance_mm, allowance_mm, tuple(levels), passes,
+                         eng, eng_at, slot_eng, plunges, plunge_at, rapids, rapid_at, left, left_at, over, over_at,
+                         clearance, clear_at)
+
+
+def _remove(moves, slabs: list, bounds: list, r_t: float, slope: float, rounding: float, slot_kinds) -> tuple:
+    """Take each move's cut out of the slabs, in program order, and find on the way the largest engagement
+    (and in slots), the plunges into material and the rapids that touch it.
+
+    ``slabs[i]`` is the material between ``bounds[i + 1]`` and ``bounds[i]``;
+    returns (slabs after the program, engagement, where, slot engagement,
+    plunges, where, rapids, where).
+    """
+    slabs = list(slabs)
     eng, eng_at, slot_eng = 0.0, "", 0.0
     plunges, plunge_at, rapids, rapid_at = 0, "", 0, ""
-    passes = len({m.pass_label for m in moves if m.pass_label})
 
     def slab_hits(i, geom) -> bool:
         return float(shapely.distance(slabs[i], geom)) < r_t - TOUCH_MM if not slabs[i].is_empty else False
@@ -309,20 +347,7 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
             if cuts:
                 slabs[i] = slabs[i].difference(shapely.union_all(cuts))
                 shapely.prepare(slabs[i])
-    left, left_at, over, over_at, clearance, clear_at = _finish_figures(cut_moves, levels, top_z, keep, boundary, r_t)
-    keep_band = keep.buffer(tolerance_mm, quad_segs=32)
-    for i, s in enumerate(slabs):
-        rest = s.difference(keep_band)
-        if rest.area > 1e-6:
-            pts = shapely.get_coordinates(rest)
-            dist = shapely.distance(keep, shapely.points(pts))
-            j = int(np.argmax(dist))
-            if dist[j] > left:
-                left = float(dist[j])
-                left_at = f"slab Z{bounds[i + 1]:g}…Z{bounds[i]:g}: material at X{pts[j, 0]:.3f} Y{pts[j, 1]:.3f} not cut"
-    return RemovalReport(r_t, stepover_mm, ramp_angle_deg, tolerance_mm, allowance_mm, tuple(levels), passes,
-                         eng, eng_at, slot_eng, plunges, plunge_at, rapids, rapid_at, left, left_at, over, over_at,
-                         clearance, clear_at)
+    return slabs, eng, eng_at, slot_eng, plunges, plunge_at, rapids, rapid_at
 
 
 def _tree(points: np.ndarray) -> cKDTree:

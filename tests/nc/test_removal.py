@@ -1,6 +1,7 @@
 """The 2.5-D material-removal check on closed cases, and on today's program that plunged into the blank."""
 
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -125,6 +126,8 @@ def test_skipping_far_moves_changes_no_figure(monkeypatch):
     skipped = check_program(result.program.text, m.post, result.blank, m, built)
     far = removal._far_moves
     seen = []
+    # the finished-surface figures, where the skip happens, run in-process here so the counter sees them
+    monkeypatch.setattr("camcam.forked.later", lambda fn, *a, **k: fn(*a, **k))
     monkeypatch.setattr(removal, "_far_moves", lambda moves, *a: seen.append(sum(far(moves, *a))) or
                         [False] * len(moves))
     dense = check_program(result.program.text, m.post, result.blank, m, built)
@@ -143,3 +146,23 @@ def test_roughing_that_never_comes_near_is_measured_exactly():
     assert r.rough_clearance_mm == pytest.approx(25.0 - R_T, abs=1e-9)
     # the band y 30…40 between the two passes stays: up to 20 mm off the part (slab polygons, within 2.4e-3 mm)
     assert r.material_left_mm == pytest.approx(20.0, abs=0.01)
+
+
+@pytest.mark.skipif(not hasattr(os, "fork") or not Path("/proc/self/stat").exists(),
+                    reason="counts the child that computes the finished-surface figures (fork, /proc)")
+def test_a_failing_removal_stops_the_finishing_child(monkeypatch):
+    """The finished-surface figures run in a child beside the move-by-move removal; if the removal fails,
+    that child is killed and reaped, not left running."""
+    import camcam.nc.removal as removal
+    from tests.test_forked import _children
+
+    def broken(*args, **kw):
+        raise ZeroDivisionError("a bug in the removal")
+
+    monkeypatch.setattr(removal, "_remove", broken)
+    events = ["pass 1/1: finish, test", _rapid(-10.0, 20.0 + R_T, 5.0), _line(-10.0, 20.0 + R_T, -1.0),
+              _line(110.0, 20.0 + R_T, -1.0)]
+    before = _children()
+    with pytest.raises(ZeroDivisionError):
+        _check(events, 20.0)
+    assert _children() <= before
