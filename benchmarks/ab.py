@@ -1,0 +1,77 @@
+"""Wall time of `camcam run` on this tree against an earlier commit, the two alternated.
+
+    PYTHONPATH=. python benchmarks/ab.py REV [--repeat 6] [SAMPLE ...]
+
+`benchmarks/speed.py` gives ratios to the import floor from one run; on a shared
+machine those move by ±15 % from one run to the next (the floor itself was 2.38,
+2.69 and 2.91 s within one hour here), so a change of 10 % is not visible in them.
+This script checks REV out into a temporary git worktree and runs each sample
+with the two trees alternately (old, new, old, new, …), so the machine's load
+hits both alike, then prints the sorted wall seconds and the medians.  Both use
+this tree's interpreter and libraries; each tree's bytecode is compiled first
+(as in speed.py).  SAMPLE defaults to the default disc, disc-groove and
+cylindrical-translating-small-tool.  No test asserts any of these figures.
+"""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+SAMPLES = ("disc-translating-roller", "disc-groove", "cylindrical-translating-small-tool")
+
+
+def _wall(tree: Path, spec: Path, out: Path) -> float:
+    """Wall seconds of one `camcam run` with ``tree``'s camcam (run from that folder: it comes first on sys.path)."""
+    t0 = time.perf_counter()
+    r = subprocess.run([sys.executable, "-m", "camcam", "run", str(spec), "-o", str(out), "--force"],
+                       capture_output=True, text=True, cwd=tree)
+    wall = time.perf_counter() - t0
+    if r.returncode not in (0, 3):
+        raise SystemExit(f"{tree}: camcam run {spec.name} failed ({r.returncode}): {r.stderr.strip()[-300:]}")
+    return wall
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("rev", help="the earlier commit (anything git rev-parse takes)")
+    ap.add_argument("samples", nargs="*", default=list(SAMPLES), help="sample names under samples/")
+    ap.add_argument("--repeat", type=int, default=6, help="runs per tree and sample (default 6)")
+    args = ap.parse_intermixed_args()
+    rev = subprocess.run(["git", "rev-parse", "--short", args.rev], capture_output=True, text=True, cwd=ROOT,
+                         check=True).stdout.strip()
+    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=ROOT,
+                          check=True).stdout.strip()
+    with tempfile.TemporaryDirectory() as tmp:
+        old = Path(tmp) / "old"
+        subprocess.run(["git", "worktree", "add", "--detach", str(old), rev], capture_output=True, cwd=ROOT, check=True)
+        try:
+            for tree in (old, ROOT):
+                subprocess.run([sys.executable, "-m", "compileall", "-q", "camcam"], cwd=tree, check=True)
+            print(f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, {rev} against {head} (this tree's "
+                  f"working files), {args.repeat} runs each, alternated\n")
+            print(f"| sample | {rev} wall s (sorted) | now wall s (sorted) | median {rev} | median now | change |")
+            print("|---|---|---|---|---|---|")
+            for name in args.samples:
+                spec = ROOT / "samples" / f"{name}.toml"
+                times: dict[Path, list[float]] = {old: [], ROOT: []}
+                for _ in range(args.repeat):
+                    for tree in (old, ROOT):
+                        times[tree].append(_wall(tree, spec, Path(tmp) / "out"))
+                a, b = statistics.median(times[old]), statistics.median(times[ROOT])
+                fmt = lambda xs: " ".join(f"{x:.2f}" for x in sorted(xs))  # noqa: E731
+                print(f"| {name} | {fmt(times[old])} | {fmt(times[ROOT])} | {a:.2f} | {b:.2f} | {100 * (b / a - 1):+.0f} % |",
+                      flush=True)
+        finally:
+            subprocess.run(["git", "worktree", "remove", "--force", str(old)], capture_output=True, cwd=ROOT)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
