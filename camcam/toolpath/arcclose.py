@@ -78,6 +78,7 @@ def closing_biarcs(m, st, p1, t1, ratios, row: int) -> list:
         alpha_eq = float(v @ v) / den
     else:
         alpha_eq = (-vt + math.sqrt(vt * vt + 2.0 * c * float(v @ v))) / (2.0 * c)
+    joints, chords = [], []
     for k in ratios:
         # tangent lengths α (from p0) and β (into p1) of a G1 biarc: |v − α t0 − β t1| = α + β
         alpha = k * alpha_eq
@@ -96,8 +97,16 @@ def closing_biarcs(m, st, p1, t1, ratios, row: int) -> list:
         chord2 = float(np.hypot(*(p1 - joint)))
         if min(float(np.hypot(*(joint - p0))), chord2) < MIN_CHORD_STEPS * m.q.step_mm:
             continue
-        c1, w1, l1, te1, _, s1 = (x[0] for x in arc_batch(p0[None], tan0[None], joint[None], m.q, m.sag))
-        c2, w2, l2, _, _, s2 = (x[0] for x in arc_batch(joint[None], te1[None], p1[None], m.q, m.sag))
+        joints.append(joint)
+        chords.append(chord2)
+    if not joints:
+        return out
+    # the biarcs' two arcs, each as one batch (rows are independent: the same arcs as one at a time)
+    J = np.array(joints)
+    n = len(J)
+    first = arc_batch(np.repeat(p0[None], n, axis=0), np.repeat(tan0[None], n, axis=0), J, m.q, m.sag)
+    second = arc_batch(J, first[3], np.repeat(p1[None], n, axis=0), m.q, m.sag)
+    for joint, chord2, (c1, w1, l1, _, _, s1), (c2, w2, l2, _, _, s2) in zip(joints, chords, zip(*first), zip(*second)):
         if (not l1 and s1 > m.max_sweep) or (not l2 and s2 > m.max_sweep):
             continue
         e1 = printed_element(p0, joint, c1, w1, l1)

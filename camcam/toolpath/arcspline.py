@@ -262,24 +262,24 @@ class _March:
             ok, data = self.arcs(i0, np.repeat([r.state.p for r in todo], K, axis=0),
                                  np.repeat([r.state.tan for r in todo], K, axis=0), i1,
                                  np.repeat([r.offset for r in todo], K))
-            ok = ok.reshape(len(todo), K)
             again = []
-            for k, ray in enumerate(todo):
-                rows, ii = ok[k], i1[k * K:(k + 1) * K]
-                if not rows.any():
+            # the verdicts as Python lists: a ray's bookkeeping is a few list operations, not numpy calls
+            for k, (ray, rows, ii) in enumerate(zip(todo, ok.reshape(len(todo), K).tolist(),
+                                                    i1.reshape(len(todo), K).tolist())):
+                if not any(rows):
                     ray.h *= 0.3
                     if ray.h >= 1.0:
                         again.append(ray)
                     continue
-                if rows.all() and ii[-1] < stop:
+                if all(rows) and ii[-1] < stop:
                     ray.h *= 2.0
                     again.append(ray)
                     continue
-                for j in np.nonzero(rows)[0]:
-                    ray.feasible.append((int(ii[j]), data, k * K + j))  # the arc: row k·K + j of the batch
-                jmax = int(np.nonzero(rows)[0].max())
+                hits = [j for j, good in enumerate(rows) if good]
+                ray.feasible.extend((ii[j], data, k * K + j) for j in hits)  # the arc: row k·K + j of the batch
+                jmax = hits[-1]
                 if jmax + 1 < K and ii[jmax + 1] > ii[jmax] + 1:
-                    brackets.append((ray, int(ii[jmax]), int(ii[jmax + 1])))
+                    brackets.append((ray, ii[jmax], ii[jmax + 1]))
             todo = again
         if brackets:
             owners, cand = [], []
@@ -291,7 +291,7 @@ class _March:
             i1 = np.concatenate(cand)
             ok, data = self.arcs(np.array([r.state.i for r in owners]), np.array([r.state.p for r in owners]),
                                  np.array([r.state.tan for r in owners]), i1, np.array([r.offset for r in owners]))
-            for j in np.nonzero(ok)[0]:
+            for j in np.flatnonzero(ok).tolist():
                 owners[j].feasible.append((int(i1[j]), data, j))
         for s in states:
             for r in s.rays:
