@@ -38,6 +38,7 @@ from shapely.geometry import LineString, Point
 
 from camcam.forked import ChildGroup, resolve
 from camcam.nc.readback import read_program
+from camcam.nc.roughing import polygon_distance
 from camcam.nc.stock import bore_region
 from camcam.verdict import Check
 
@@ -272,7 +273,7 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
         rest = s.difference(keep_band)
         if rest.area > 1e-6:
             pts = shapely.get_coordinates(rest)
-            dist = shapely.distance(keep, shapely.points(pts))
+            dist = polygon_distance(keep, pts)  # shapely.distance's figures, through an R-tree of keep's edges
             j = int(np.argmax(dist))
             if dist[j] > left:
                 left = float(dist[j])

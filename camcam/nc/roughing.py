@@ -83,13 +83,14 @@ class Spiral:
     clearance_mm: float
 
 
-def polygon_distance(poly: Polygon, xy: np.ndarray) -> np.ndarray:
+def polygon_distance(poly, xy: np.ndarray) -> np.ndarray:
     """``shapely.distance(poly, shapely.points(xy))``, (n,) for points (n, 2), through an R-tree of its edges.
 
     GEOS measures a point against every edge of a polygon; an offset blank has
     10 000 edges, so 10 000 points took 2.3 s.  The nearest edge from the tree
     gives the same distance (GEOS's point-to-segment distance either way); a
-    point inside the polygon is at 0.
+    point inside the polygon is at 0.  ``poly`` is a Polygon or a
+    MultiPolygon (the edges of all its parts; inside any part is 0).
 
     Examples
     --------
@@ -99,9 +100,10 @@ def polygon_distance(poly: Polygon, xy: np.ndarray) -> np.ndarray:
     """
     xy = np.asarray(xy, float)
     segments = []
-    for ring in (poly.exterior, *poly.interiors):
-        c = np.asarray(ring.coords)
-        segments.append(np.stack([c[:-1], c[1:]], axis=1))
+    for part in shapely.get_parts(poly):
+        for ring in (part.exterior, *part.interiors):
+            c = np.asarray(ring.coords)
+            segments.append(np.stack([c[:-1], c[1:]], axis=1))
     tree = shapely.STRtree(shapely.linestrings(np.concatenate(segments)))
     (which, _), dist = tree.query_nearest(shapely.points(xy), return_distance=True, all_matches=False)
     out = np.empty(len(xy))
