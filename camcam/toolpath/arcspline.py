@@ -282,13 +282,18 @@ class _March:
                     brackets.append((ray, ii[jmax], ii[jmax + 1]))
             todo = again
         if brackets:
-            owners, cand = [], []
-            for ray, lo, hi in brackets:
-                ii = np.unique(np.rint(np.linspace(lo, hi, K + 2)[1:-1]).astype(int))
-                ii = ii[(ii > lo) & (ii < hi)]
-                owners += [ray] * len(ii)
-                cand.append(ii)
-            i1 = np.concatenate(cand)
+            # K rows strictly between each bracket's ends, as np.unique(np.rint(np.linspace(lo, hi, K + 2)[1:-1]))
+            # per bracket gives them: linspace takes arrays of ends (elementwise the same arithmetic; no
+            # bracket is empty, hi ≥ lo + 2), and a row's rounded values never fall, so its unique values
+            # are the first of each run
+            lo = np.array([b[1] for b in brackets])
+            hi = np.array([b[2] for b in brackets])
+            ii = np.rint(np.linspace(lo, hi, K + 2, axis=1)[:, 1:-1]).astype(int)
+            take = np.ones(ii.shape, bool)
+            take[:, 1:] = ii[:, 1:] != ii[:, :-1]
+            take &= (ii > lo[:, None]) & (ii < hi[:, None])
+            owners = [ray for (ray, _, _), n in zip(brackets, take.sum(axis=1).tolist()) for _ in range(n)]
+            i1 = ii[take]
             ok, data = self.arcs(np.array([r.state.i for r in owners]), np.array([r.state.p for r in owners]),
                                  np.array([r.state.tan for r in owners]), i1, np.array([r.offset for r in owners]))
             for j in np.flatnonzero(ok).tolist():
@@ -381,7 +386,8 @@ def _frontier(m: _March, children: list, W: int, bins: tuple[int, int]) -> list:
     tan = np.array([c.tan for c in children])
     off = np.einsum("ij,ij->i", p - m.P[rows], m.N[rows]) / m.tol
     turn = np.arctan2(m.T[rows, 0] * tan[:, 1] - m.T[rows, 1] * tan[:, 0], np.einsum("ij,ij->i", m.T[rows], tan))
-    step = np.array([max(float(np.hypot(*(c.p - c.parent.p))), 1e-12) for c in children])
+    d = p - np.array([c.parent.p for c in children])
+    step = np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-12)  # each child's last chord
     turn = turn * step / m.tol
     lim = TURN_RANGE
     bo = np.clip(np.rint((off + 1.0) / 2.0 * (bins[0] - 1)), 0, bins[0] - 1).astype(int)
