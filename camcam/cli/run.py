@@ -51,8 +51,8 @@ def model(built, name: str) -> tuple[dict, dict]:
 
 def drawing(built, machining) -> tuple[dict, float | None]:
     """The program and the DXF with the part outline: ({file: bytes}, the part outline's deviation
-    from the design or None).  ezdxf is imported here: `camcam run` calls this in a child process
-    while the material check runs in another."""
+    from the design or None).  ezdxf is imported here: `camcam run` calls this in its drawing server
+    (started, and ezdxf imported, while the NC step runs), beside the material check's child."""
     from camcam.export.nc import nc_files, part_of
 
     part = part_of(built, machining)
