@@ -118,7 +118,7 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
     (:func:`plot_server`) already started, which this call closes; without one, the call starts its own.
     """
     from camcam.cli.motion import SVAJ_PLOT, motion_outputs, motion_summary, svaj_title
-    from camcam.forked import ChildGroup, resolve
+    from camcam.forked import ChildGroup, Server, resolve
 
     verdict = Verdict(())
     # one child process draws every plot, and only it imports matplotlib (camcam.forked.Server): the
@@ -139,7 +139,6 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
             plots.close()
             return {"name": spec.name, "motion": motion_summary(program)}, verdict
         from camcam.export.cam_report import cam_report
-        from camcam.forked import Server
         from camcam.geometry.build import build_cam
 
         with progress.step("cam geometry and analysis"):

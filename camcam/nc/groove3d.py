@@ -63,7 +63,8 @@ import numpy as np
 
 from camcam.forked import parallel_map
 from camcam.geometry.cylindrical import CylindricalCam
-from camcam.nc.groove_motion import Motion, ProgramMotion, RollerMotion, follower_poses, section_interval, side_extent
+from camcam.nc.groove_motion import (Motion, ProgramMotion, RollerMotion, follower_poses, section_interval, side_extent,
+                                     wall_extents)
 from camcam.nc.toolposes import CylinderTool, ToolPoses, frozen_array
 
 __all__ = ["WallExtreme", "WallDeviation", "GrooveMeasurement", "measure_groove", "WALL_LABELS", "design_walls",
@@ -240,11 +241,7 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
             lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, g0 + ii * dg,
                                       (sincos[0][js], sincos[1][js]))
             ii = np.mod(ii, k)
-            miss = np.isnan(lo)  # lo and hi miss together
-            side0 = np.negative(lo, out=lo)
-            side0[miss] = -np.inf
-            hi[miss] = -np.inf
-            for side, v in ((0, side0), (1, hi)):
+            for side, v in enumerate(wall_extents(lo, hi)):
                 _scatter_best(ii, v, js, best_v[side], best_j[side])
     else:
         for i in range(k):
@@ -255,8 +252,7 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
                 continue
             lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, gamma[i],
                                       (sincos[0][js], sincos[1][js]))
-            for side, v in ((0, -lo), (1, hi)):
-                v = np.where(np.isnan(v), -np.inf, v)
+            for side, v in enumerate(wall_extents(lo, hi)):
                 m = int(np.argmax(v))
                 if np.isfinite(v[m]):
                     best_v[side, i], best_j[side, i] = v[m], js[m]

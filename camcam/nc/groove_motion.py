@@ -19,7 +19,7 @@ import numpy as np
 from camcam.geometry.cylindrical import BarrelOscillatingRoller, CylindricalCam
 from camcam.nc.toolposes import A_AXIS_SENSE, CylinderTool, ToolPoses
 
-__all__ = ["section_interval", "side_extent", "Motion", "ProgramMotion", "RollerMotion", "follower_poses"]
+__all__ = ["section_interval", "wall_extents", "side_extent", "Motion", "ProgramMotion", "RollerMotion", "follower_poses"]
 
 
 def section_interval(X, Y, Z, a, B, r, L, rho, gamma, sincos_B=None):
@@ -75,13 +75,23 @@ def section_interval(X, Y, Z, a, B, r, L, rho, gamma, sincos_B=None):
     return lo, hi
 
 
+def wall_extents(lo, hi):
+    """Both walls' extents from a section's (lo, hi): (−lo, hi), both maximised; −inf where it misses.
+
+    Computed in ``lo`` and ``hi`` themselves (a section's interval misses on both ends at once)."""
+    miss = np.isnan(lo)
+    side0 = np.negative(lo, out=lo)
+    side0[miss] = -np.inf
+    hi[miss] = -np.inf
+    return side0, hi
+
+
 def side_extent(X, Y, Z, a, B, r, L, rho, gamma, side):
     """The wall-side extent: hi for side 1, −lo for side 0 (both maximised); −inf where it misses.
 
     ``side`` is 0 or 1, or an array of them (one per pose and angle)."""
-    lo, hi = section_interval(X, Y, Z, a, B, r, L, rho, gamma)
-    v = np.where(np.asarray(side) == 1, hi, -lo)
-    return np.where(np.isnan(v), -np.inf, v)
+    side0, side1 = wall_extents(*section_interval(X, Y, Z, a, B, r, L, rho, gamma))
+    return np.where(np.asarray(side) == 1, side1, side0)
 
 
 class Motion(ABC):

@@ -258,16 +258,11 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
     # the figures at the finished surface need only the moves and the part, not the slabs: they are
     # computed in a child process beside the move-by-move removal below (the same call, the same figures);
     # stopped if the removal fails
-    finishing = ChildGroup()
-    finish = finishing.later(_finish_figures, cut_moves, levels, top_z, keep, boundary, r_t)
-    try:
+    with ChildGroup() as finishing:
+        finish = finishing.later(_finish_figures, cut_moves, levels, top_z, keep, boundary, r_t)
         slabs, eng, eng_at, slot_eng, plunges, plunge_at, rapids, rapid_at = _remove(
             moves, slabs, bounds, r_t, slope, rounding, slot_kinds)
         left, left_at, over, over_at, clearance, clear_at = resolve(finish)
-    except BaseException:
-        finishing.cancel()
-        raise
-
     keep_band = keep.buffer(tolerance_mm, quad_segs=32)
     for i, s in enumerate(slabs):
         rest = s.difference(keep_band)
