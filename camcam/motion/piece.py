@@ -127,5 +127,7 @@ class TrigPoly:
                     cands.append((s + phi + 2 * math.pi * k) / w)
             roots = np.array(cands)
         eps = 1e-13 * max(1.0, length)
-        roots = np.unique(roots[(roots > eps) & (roots < length - eps)])
-        return roots
+        roots = np.sort(roots[(roots > eps) & (roots < length - eps)])
+        # equal roots once (np.unique's result; numpy ≥ 2.3's np.unique imports numpy.ma, 40 ms of
+        # `camcam optimize`, for its masked-array check)
+        return roots[np.r_[True, roots[1:] != roots[:-1]]] if roots.size else roots

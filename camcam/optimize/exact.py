@@ -14,6 +14,11 @@ is exceeded, and solves again, until the worst excess is at most ``rtol``
 continuous problem, so its optimum is a lower bound of the continuous optimum
 and the returned curve, feasible to ``rtol``, attains it to the same accuracy.
 
+The LP keeps its rows from round to round and each round adds only its new
+samples' rows, so HiGHS's dual simplex restarts from the last optimal basis
+(:class:`~camcam.optimize.lp.IncrementalLp`; Table 1: 73 simplex iterations in
+13 rounds, against 521 when every round was solved from nothing).
+
 So that the returned curve meets the limits literally (its exact extremes are
 ≤ the limits, not only within ``rtol``), the LP is solved against limits
 tightened by the relative ``margin`` (default 2e-9 > the 1e-9 refinement
@@ -28,16 +33,16 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import linprog
 
 from camcam.optimize.evaluation import LINEAR_QUANTITIES, CurveEvaluator, Problem
 from camcam.optimize.extremes import piece_extremes
+from camcam.optimize.lp import IncrementalLp, solve_lp
 
 __all__ = ["ExactResult", "InfeasibleProblem", "exact_optimum"]
 
-#: HiGHS tolerances on rows scaled to O(1): 1e-10 keeps the solver's own
+#: HiGHS's feasibility tolerance on rows scaled to O(1): 1e-10 keeps the solver's own
 #: slack below the 1e-9 relative limit check.
-_TIGHT = {"primal_feasibility_tolerance": 1e-10, "dual_feasibility_tolerance": 1e-10}
+_TIGHT = 1e-10
 
 
 class InfeasibleProblem(ValueError):
@@ -91,13 +96,23 @@ def exact_optimum(
     samples = {q: (np.repeat(pieces, per_piece), np.tile(base_u, len(pieces))) for q in set(limits) | {problem.minimize}}
     rounds = lp_iters = 0
     t_scale = 1.0
+    c = np.zeros(nf + 1)
+    c[-1] = 1.0
+    lower = np.r_[np.full(nf, -np.inf), 0.0]
+    upper = np.full(nf + 1, np.inf)
+    # The LP keeps its rows and basis from round to round: each round adds the rows of its new
+    # samples only, and the dual simplex restarts from the last optimum.
+    lp = IncrementalLp(c, lower, upper, primal_tolerance=_TIGHT, dual_tolerance=_TIGHT)
+    new = dict(samples)
+    rows_A, rows_b = [], []  # every row so far, for a solve from nothing if the warm one stalls
     while True:
         rounds += 1
         A_ub, b_ub = [], []
-        for q, (pc, u) in samples.items():
+        for q, (pc, u) in new.items():
             a, b = _rows(ev, q, pc, u)
             # Rows are divided by their limit (or the last objective value) to keep
-            # HiGHS well scaled: its feasibility tolerance then is relative.
+            # HiGHS well scaled: its feasibility tolerance then is relative.  (A row
+            # added in an earlier round keeps that round's scale: the same constraint.)
             if q == problem.minimize:
                 s = 1.0 / max(1e-3, t_scale)
                 A_ub += [np.hstack([a * s, -s * np.ones((len(u), 1))]), np.hstack([-a * s, -s * np.ones((len(u), 1))])]
@@ -107,21 +122,21 @@ def exact_optimum(
                 zero = np.zeros((len(u), 1))
                 A_ub += [np.hstack([a / lim, zero]), np.hstack([-a / lim, zero])]
                 b_ub += [(lim - b) / lim, (lim + b) / lim]
-        c = np.zeros(nf + 1)
-        c[-1] = 1.0
-        A_all, b_all = np.vstack(A_ub), np.concatenate(b_ub)
-        bounds = [(None, None)] * nf + [(0, None)]
-        res = linprog(c, A_ub=A_all, b_ub=b_all, bounds=bounds, method="highs-ds", options=_TIGHT)
-        if res.status not in (0, 2):  # tight tolerances can stall HiGHS: retry with its defaults
-            res = linprog(c, A_ub=A_all, b_ub=b_all, bounds=bounds, method="highs")
-        lp_iters += int(getattr(res, "nit", 0) or 0)
-        if res.status == 2:
+        rows_A += A_ub
+        rows_b += b_ub
+        lp.add_rows(np.vstack(A_ub), np.concatenate(b_ub))
+        res = lp.solve()
+        if res.status not in ("optimal", "infeasible"):  # tight tolerances can stall HiGHS: retry with its defaults
+            res = solve_lp(c, np.vstack(rows_A), np.concatenate(rows_b), lower, upper, simplex=False)
+        lp_iters += res.iterations
+        if res.status == "infeasible":
             raise InfeasibleProblem("no curve of this degree and number of segments meets the limits")
-        if res.status != 0:
-            raise RuntimeError(f"HiGHS failed: {res.message}")
+        if res.status != "optimal":
+            raise RuntimeError(f"HiGHS failed: {res.status}")
         x, t = res.x[:nf], float(res.x[-1])
         t_scale = t
         worst, obj_excess, added = 0.0, 0.0, 0
+        new = {}
         for q in samples:
             lo, ulo, hi, uhi = piece_extremes(ev.coefficients(q, x), h)
             bound = limits.get(q)
@@ -142,7 +157,8 @@ def exact_optimum(
                     new_u.append(uu[m])
             pc = np.concatenate(new_p)
             if pc.size:
-                samples[q] = (np.concatenate([samples[q][0], pc]), np.concatenate([samples[q][1], np.concatenate(new_u)]))
+                new[q] = (pc, np.concatenate(new_u))
+                samples[q] = (np.concatenate([samples[q][0], pc]), np.concatenate([samples[q][1], new[q][1]]))
                 added += pc.size
         if (worst <= rtol and obj_excess <= rtol) or added == 0 or rounds >= max_rounds:
             break

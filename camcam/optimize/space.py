@@ -14,16 +14,25 @@ The first control points are solved from the start conditions and the last
 ones from the end conditions; the others are free.  Every quantity the
 optimisers need is affine in the free points: the power-basis coefficients of
 each polynomial piece of S are ``C0 + K @ x``.
+
+The knots are uniform, so every basis function is the cardinal B-spline
+M_n(x) = (1/n!) Σ_l (−1)^l C(n+1, l) (x − l)_+^n, shifted and scaled; its
+power coefficients on each knot interval are integers over n! (computed
+exactly, :func:`cardinal_pieces`).  scipy's ``BSpline``/``PPoly.from_spline``
+give the same numbers (the tests compare them) but need ``scipy.interpolate``,
+whose import alone (0.4–0.8 s) is longer than ``camcam optimize``'s whole
+exact solve; :meth:`BSplineSpace.spline` still returns a scipy ``BSpline``
+for checks.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.polynomial import polynomial as P
-from scipy.interpolate import BSpline, PPoly
 
 __all__ = ["BSplineSpace", "MAX_DEGREE", "MAX_SEGMENTS"]
 
@@ -73,10 +82,20 @@ class BSplineSpace:
             raise ValueError(f"segments must be an integer from 1 to {MAX_SEGMENTS}, got {N!r}")
         if self.n_free < 1:
             raise ValueError(f"{N} segment(s) of degree {n} leave no free control point")
+        # Power-basis coefficients (lowest first, local variable u = T − T_i) of S on
+        # each knot interval, per control point: Q[i, k, j].  Control point j's basis
+        # function is M_n((T − t_j)/h), t_j = (j − n)·h: on interval i it is M_n's
+        # piece m = i + n − j (0 ≤ m ≤ n), whose coefficient of s^k becomes one of u^k / h^k.
+        M = cardinal_pieces(n)
+        Q = np.zeros((N, n + 1, self.n_control))
+        scale = self.h ** -np.arange(n + 1.0)
+        for i in range(N):
+            for m in range(n + 1):
+                Q[i, :, i + n - m] = M[m] * scale
+        object.__setattr__(self, "_Q", Q)
         # Boundary-condition rows B @ P = b, P the N + n control points.
-        basis = BSpline(self.knots, np.eye(self.n_control), n)
         conds = self.conditions
-        B = np.array([basis(T, nu=k) for T, k, _ in conds])
+        B = np.concatenate([self.basis_matrix(np.array([T]), k) for T, k, _ in conds])
         b = np.array([v for _, _, v in conds])
         n_start = sum(1 for T, _, _ in conds if T == 0.0)
         n_end = len(conds) - n_start
@@ -90,15 +109,8 @@ class BSplineSpace:
         p0[det] = np.linalg.solve(Bd, b)
         E[det] = -np.linalg.solve(Bd, B[:, free])
         E[free, np.arange(len(free))] = 1.0
-        # Power-basis coefficients (lowest first, local variable T − T_i) of S on
-        # each knot interval, per control point: Q[i, k, j].
-        Q = np.empty((N, n + 1, self.n_control))
-        for j in range(self.n_control):
-            pp = PPoly.from_spline(BSpline(self.knots, np.eye(self.n_control)[j], n))
-            Q[:, :, j] = pp.c[::-1, n : n + N].T
         object.__setattr__(self, "_p0", p0)
         object.__setattr__(self, "_E", E)
-        object.__setattr__(self, "_Q", Q)
         object.__setattr__(self, "_free", tuple(free))
 
     # -- layout -----------------------------------------------------------------
@@ -157,9 +169,33 @@ class BSplineSpace:
         """The free points inside a full control vector (inverse of :meth:`control_points`)."""
         return np.asarray(control, dtype=float)[list(self._free)]
 
-    def spline(self, x) -> BSpline:
-        """The scipy B-spline over [0, L] for the free points ``x``."""
+    def spline(self, x):
+        """The scipy ``BSpline`` over [0, L] for the free points ``x`` (for checks: it imports scipy.interpolate)."""
+        from scipy.interpolate import BSpline
+
         return BSpline(self.knots, self.control_points(x), self.degree)
+
+    def basis_matrix(self, T, nu: int = 0) -> np.ndarray:
+        """Values (or ``nu``-th derivatives) of the N + n basis functions at ``T`` in [0, L]: shape (len(T), N + n).
+
+        Each T is evaluated on its knot interval (the last interval for T = L), from the
+        exact power coefficients.
+
+        Examples
+        --------
+        >>> sp = BSplineSpace(3, 4, False)
+        >>> B = sp.basis_matrix(np.array([0.0, 0.3, 1.0]))
+        >>> B.sum(axis=1).round(15).tolist()  # a partition of unity
+        [1.0, 1.0, 1.0]
+        """
+        T = np.asarray(T, dtype=float)
+        n, N, h = self.degree, self.segments, self.h
+        i = np.clip(np.floor(T / h).astype(int), 0, N - 1)
+        u = T - i * h
+        k = np.arange(n + 1)
+        falling = np.array([math.perm(int(p), nu) for p in k], dtype=float)  # d^ν u^p = p!/(p−ν)! u^(p−ν)
+        powers = np.where(k >= nu, u[:, None] ** np.maximum(k - nu, 0), 0.0) * falling
+        return np.einsum("sk,skj->sj", powers, self._Q[i])
 
     def affine_pieces(self) -> tuple[np.ndarray, np.ndarray]:
         """``(C0, K)`` with piece coefficients ``C0 + K @ x`` for the whole law on [0, 1].
@@ -191,9 +227,33 @@ class BSplineSpace:
         """A feasible-looking start: the free points closest (least squares) to the cycloidal law."""
         T = np.linspace(0.0, self.span, 20 * self.segments + 1)
         target = T - np.sin(2 * math.pi * T) / (2 * math.pi)
-        basis = BSpline(self.knots, np.eye(self.n_control), self.degree)(T)
+        basis = self.basis_matrix(T)
         x, *_ = np.linalg.lstsq(basis @ self._E, target - basis @ self._p0, rcond=None)
         return x
+
+
+@functools.lru_cache(maxsize=None)
+def cardinal_pieces(n: int) -> np.ndarray:
+    """Power coefficients of the cardinal B-spline M_n on its n + 1 unit intervals: ``C[m, k]``, s^k on [m, m + 1].
+
+    M_n(m + s) = (1/n!) Σ_{l ≤ m} (−1)^l C(n+1, l) (m − l + s)^n, so the
+    coefficient of s^k is the integer Σ_l (−1)^l C(n+1, l) C(n, k) (m − l)^(n−k)
+    over n!, rounded once to the nearest float.  (Read-only: cached per degree.)
+
+    Examples
+    --------
+    >>> (cardinal_pieces(1) * 1).tolist()  # the hat: s on [0, 1], 1 − s on [1, 2]
+    [[0.0, 1.0], [1.0, -1.0]]
+    >>> (cardinal_pieces(3) * 6).tolist()[1]  # M_3 on [1, 2] is (1 + 3s + 3s² − 3s³)/6
+    [1.0, 3.0, 3.0, -3.0]
+    """
+    out = np.empty((n + 1, n + 1))
+    for m in range(n + 1):
+        for k in range(n + 1):
+            num = sum((-1) ** l * math.comb(n + 1, l) * math.comb(n, k) * (m - l) ** (n - k) for l in range(m + 1))
+            out[m, k] = num / math.factorial(n)
+    out.flags.writeable = False
+    return out
 
 
 def _reflection_matrix(degree: int, h: float) -> np.ndarray:

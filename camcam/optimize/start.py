@@ -16,7 +16,6 @@ much worse law.)
 from __future__ import annotations
 
 import numpy as np
-from scipy.interpolate import BSpline
 
 from camcam.motion.catalog import LAWS, make_law
 from camcam.motion.law import MotionLaw
@@ -43,7 +42,7 @@ def project_law(space: BSplineSpace, law: MotionLaw) -> np.ndarray:
     True
     """
     T = np.linspace(0.0, space.span, 40 * space.segments + 1)
-    basis = BSpline(space.knots, np.eye(space.n_control), space.degree)(T)
+    basis = space.basis_matrix(T)
     p0 = space.control_points(np.zeros(space.n_free))
     E = np.stack([space.control_points(e) - p0 for e in np.eye(space.n_free)], axis=1)
     x, *_ = np.linalg.lstsq(basis @ E, law.evaluate(T, 0) - basis @ p0, rcond=None)

@@ -1,14 +1,22 @@
 """Tool paths: the NC second fitting (arcs and lines with a guaranteed deviation on the printed
 numbers), the printed rounding, the tolerance budget, two-sided deviation measurement, and the
-neutral :class:`Toolpath` of :class:`Pass` records the posts print."""
+neutral :class:`Toolpath` of :class:`Pass` records the posts print.
 
-from camcam.toolpath.arcfit import FitResult, fit_contour
-from camcam.toolpath.lowerbound import line_estimate_blocks, lower_bound_blocks
-from camcam.toolpath.budget import FitBudget, DEFAULT_BUDGET
-from camcam.toolpath.quantizer import Quantizer
-from camcam.toolpath.contours import CutContour, fit_printed
-from camcam.toolpath.deviation import Deviation, measure_deviation
-from camcam.toolpath.elements import Line, Arc
-from camcam.toolpath.path import Toolpath, Pass, CutSettings, Rapid, Feed, ArcMove, contour_toolpath, slot_toolpath, rotary_toolpath
+The public names load their module on first use (:mod:`camcam.lazy`): the spec reader needs only
+:class:`Toolpath`'s settings and the :class:`Quantizer`, and ``camcam optimize`` reads specs without
+importing the fitter's scipy.
+"""
 
-__all__ = ["FitResult", "fit_contour", "lower_bound_blocks", "line_estimate_blocks", "FitBudget", "DEFAULT_BUDGET", "Quantizer", "CutContour", "fit_printed", "Deviation", "measure_deviation", "Line", "Arc", "Toolpath", "Pass", "CutSettings", "Rapid", "Feed", "ArcMove", "contour_toolpath", "slot_toolpath", "rotary_toolpath"]
+from camcam.lazy import lazy_exports
+
+__getattr__, __dir__, __all__ = lazy_exports(__name__, {
+    **dict.fromkeys(("FitResult", "fit_contour"), "camcam.toolpath.arcfit"),
+    **dict.fromkeys(("line_estimate_blocks", "lower_bound_blocks"), "camcam.toolpath.lowerbound"),
+    **dict.fromkeys(("FitBudget", "DEFAULT_BUDGET"), "camcam.toolpath.budget"),
+    **dict.fromkeys(("Quantizer",), "camcam.toolpath.quantizer"),
+    **dict.fromkeys(("CutContour", "fit_printed"), "camcam.toolpath.contours"),
+    **dict.fromkeys(("Deviation", "measure_deviation"), "camcam.toolpath.deviation"),
+    **dict.fromkeys(("Line", "Arc"), "camcam.toolpath.elements"),
+    **dict.fromkeys(("Toolpath", "Pass", "CutSettings", "Rapid", "Feed", "ArcMove", "contour_toolpath",
+                     "slot_toolpath", "rotary_toolpath"), "camcam.toolpath.path"),
+})
