@@ -10,12 +10,7 @@ from camcam.cli.progress import Progress, add_progress_flag
 from camcam.errors import SpecError
 from camcam.export.files import atomic_write
 from camcam.optimize.bspline_law import BSplineLaw
-from camcam.optimize.complex_method import ComplexSettings
-from camcam.optimize.evaluation import EvaluationFunction
-from camcam.optimize.exact import InfeasibleProblem, exact_optimum
 from camcam.optimize.lawfile import law_document
-from camcam.optimize.multistart import multistart
-from camcam.optimize.start import ranked_starts, start_point
 from camcam.spec import load_spec
 from camcam.spec.optimize import OptimizeSpec
 
@@ -34,7 +29,10 @@ def register(sub) -> None:
 def optimize(opt: OptimizeSpec) -> tuple[BSplineLaw, dict]:
     """Run the spec's method; the law and the solver figures."""
     problem = opt.problem
+    # each method imports its own modules: `camcam optimize` (exact) is meant to take at most 0.5 s
     if opt.method == "exact":
+        from camcam.optimize.exact import InfeasibleProblem, exact_optimum
+
         try:
             r = exact_optimum(problem)
         except InfeasibleProblem as err:
@@ -51,6 +49,11 @@ def optimize(opt: OptimizeSpec) -> tuple[BSplineLaw, dict]:
         }
         x = r.x
     else:
+        from camcam.optimize.complex_method import ComplexSettings
+        from camcam.optimize.evaluation import EvaluationFunction
+        from camcam.optimize.multistart import multistart
+        from camcam.optimize.start import ranked_starts, start_point
+
         settings = ComplexSettings(max_evaluations=opt.evaluations)
         f = EvaluationFunction(problem)
         starts = ranked_starts(f) if opt.start == "auto" else [start_point(f, opt.start)]

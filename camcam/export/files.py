@@ -32,10 +32,8 @@ the interrupt message.
 
 from __future__ import annotations
 
-import ctypes
 import errno
 import fcntl
-import hashlib
 import json
 import os
 import secrets
@@ -158,6 +156,8 @@ _RENAME_EXCHANGE = 2
 def _swap(a: Path, b: Path) -> bool:
     """Swap folders ``a`` and ``b`` in one step (Linux ``renameat2(RENAME_EXCHANGE)``); False where
     the kernel or file system cannot."""
+    import ctypes  # here: only a folder swap needs it, and every command imports this module
+
     try:
         renameat2 = ctypes.CDLL(None, use_errno=True).renameat2
     except (OSError, AttributeError):
@@ -274,6 +274,8 @@ class OutputSet:
 
     def manifest(self) -> bytes:
         """The manifest's bytes (deterministic: no times, no ids)."""
+        import hashlib  # here: only an output folder's manifest needs it, and every command imports this module
+
         files = [{"name": n, "bytes": len(d), "sha256": hashlib.sha256(d).hexdigest()} for n, d in sorted(self._files.items())]
         doc = {"camcam": __version__, "command": self.command, "files": files}
         return (json.dumps(doc, indent=2) + "\n").encode("utf-8")

@@ -9,11 +9,13 @@ so the NC stage does not depend on the post package that prints its result.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 from camcam.errors import InputError
-from camcam.toolpath.path import CutSettings, Toolpath
-from camcam.toolpath.quantizer import Quantizer
+
+if TYPE_CHECKING:  # annotations only: reading a spec does not import the tool-path modules
+    from camcam.toolpath.path import CutSettings, Toolpath
+    from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["MachiningSpec", "PostDialect", "ProgramSetup", "WORK_OFFSETS", "COOLANTS", "StockSpec", "DEFAULT_STOCK",
            "DEFAULT_OVERSIZE_MM", "STOCK_KINDS"]
@@ -137,6 +139,8 @@ class MachiningSpec:
 
     def cut_settings(self, stock_side: str = "right") -> CutSettings:
         """Settings for :func:`camcam.toolpath.path.contour_toolpath`."""
+        from camcam.toolpath.path import CutSettings
+
         return CutSettings(depth_mm=self.depth_mm, stepdown_mm=self.stepdown_mm, feed_mm_min=self.feed_mm_min,
                            spindle_rpm=self.spindle_rpm, plunge_feed_mm_min=self.plunge_feed_mm_min,
                            safe_z_mm=self.safe_z_mm, clearance_z_mm=self.clearance_z_mm,
