@@ -179,7 +179,8 @@ class BSplineSpace:
         """Values (or ``nu``-th derivatives) of the N + n basis functions at ``T`` in [0, L]: shape (len(T), N + n).
 
         Each T is evaluated on its knot interval (the last interval for T = L), from the
-        exact power coefficients.
+        exact power coefficients.  The basis is C^(n−1): for ``nu`` < n a T on a knot gives
+        the same value from either side (up to rounding), while the n-th derivative jumps there.
 
         Examples
         --------
