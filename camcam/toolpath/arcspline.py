@@ -79,7 +79,14 @@ issue's bound), the march starts again from shifted points of the longest
 dwell and of the next one (``start_shifts`` × half the stretch, at most
 ``tries`` marches) and keeps the spline with the fewest blocks.  A contour
 within the goal at the first start (the default sample at 0.1–0.001 mm) is
-marched once, as before.
+marched once, as before.  A contour still over the goal after all of them is
+marched from its first ``wide_tries`` = 2 starts once more with a wider search
+(beam 24, pool 60, 7 children per ray instead of 16, 40, 5): that search is
+no better on average (its counts differ by ±1 from the default's), but as a
+last resort it can only lower the count, and it costs time only on contours
+that miss the goal (optimize/run-table1 at 0.001 mm: 31 → 30 arcs, the goal
+30.4, the NC step with two workers +3.5 s; disc-translating-flat at 0.0005 mm:
+still 40, +7.4 s).
 
 Tried and dropped (measured on the misses): a finer frontier (33 → 65 or 129
 tangent cells, pool 80–200, beam 30–60) saves 1–2 arcs on some cases at 2–4×
@@ -87,14 +94,21 @@ the time and loses 1–2 on others; extra children that land tangentially on a
 dwell's circle (offset across the band) from the states before it changed no
 count on the 40 cases.
 
+Also tried (2026-12-02, on the two misses of the time): replacing any 3
+consecutive arcs of the final spline by a G1 biarc between the same joints
+(11 join ratios) found no replacement on any march, so the beam leaves no
+3-for-2 slack; six other budget variants left disc-translating-flat at
+0.0005 mm at 40.
+
 Measured (``benchmarks/run_nc.py --arcs``, the eight disc samples at 0.1–0.0005 mm,
-band 0.95·δ): 38 of 40 contour × tolerance cases within 1.2·N_lb + 4 (24
-with the biarc closure and one start; 27 with the landing closure alone),
+band 0.95·δ): 39 of 40 contour × tolerance cases within 1.2·N_lb + 4 (24
+with the biarc closure and one start; 27 with the landing closure alone; 38
+before the wider last resort),
 1.28–1.57·N_lb at 0.01–0.0005 mm where N_lb is honest (1.48–1.76 at 0.1 mm,
 where the +4 matters).
-The two misses, each by one block: disc-translating-flat at 0.0005 mm (40
-against 39.8) and optimize/run-table1 at 0.001 mm (31 against 30.4); 32
-starts found no spline with one arc fewer.  The default sample's curve: 9,
+The miss, by one block: disc-translating-flat at 0.0005 mm (40 against
+39.8); 32 starts (an earlier sweep) and the 2 wide marches found no spline
+with one arc fewer.  The default sample's curve: 9,
 16, 25, 32 and 39 blocks at 0.1, 0.01, 0.002, 0.001, 0.0005 mm (9, 16, 26,
 33, 40 before the landing closure; 15, 20, –, 40 and 48 with the earlier
 one-step-lookahead march split at every break).  The remaining gap to
@@ -125,7 +139,7 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -152,7 +166,9 @@ class SplineBudget:
     ``offsets``: the rays' joint offsets (× the band); ``state_bins``: frontier
     cells (offset, tangent error); ``start_turns``: first-joint tangent errors
     of a closed section (× δ/h); ``wrap_joints``: first joints a closing biarc
-    may replace.
+    may replace.  A closed section still over ``goal`` after ``tries`` starts
+    is marched from its first ``wide_tries`` starts once more with a wider
+    search, ``wide`` = (beam, pool, children).
     """
 
     samples: int = 28
@@ -170,6 +186,8 @@ class SplineBudget:
     stretches: int = 2
     tries: int = 12
     goal: tuple[float, float] = (1.18, 4.0)
+    wide: tuple[int, int, int] = (24, 60, 7)
+    wide_tries: int = 2
 
 
 @dataclass(frozen=True)
@@ -451,15 +469,21 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
     starts = [a + (mid - a + shift * half) % (b - a)
               for shift, (mid, half) in [(sh, st) for sh in budget.start_shifts for st in stretches][:budget.tries]]
 
-    def march_from(start):
-        return _march(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, True, budget, start)
+    # a contour still over the goal after every start is marched from its first starts again with a wider
+    # search (beam, pool, children): never fewer arcs kept, and time spent only where the goal is missed
+    wide = replace(budget, beam=budget.wide[0], pool=budget.wide[1], children=budget.wide[2])
+    jobs = [(start, budget) for start in starts] + [(start, wide) for start in starts[:budget.wide_tries]]
+
+    def march_from(job):
+        start, job_budget = job
+        return _march(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, True, job_budget, start)
 
     # the first start alone (most contours meet the goal there); then rounds of ``workers`` starts at once
     # (camcam.forked.parallel_map), taken in the same order as one after the other: the same spline
     best = None
     k, n = 0, 1
-    while k < len(starts):
-        for spline in parallel_map(march_from, starts[k:k + n], n):
+    while k < len(jobs):
+        for spline in parallel_map(march_from, jobs[k:k + n], n):
             if best is None or len(spline.elements) < len(best.elements):
                 best = spline
             if len(best.elements) <= goal:

@@ -232,11 +232,22 @@ def test_further_starts_keep_the_fewest_and_stop_at_the_goal():
     def fit(**b):
         return fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=SplineBudget(**b), **kw)
 
-    alone = [len(fit(start_shifts=(s,), stretches=1, tries=1).elements) for s in shifts]
-    never = fit(start_shifts=shifts, stretches=1, goal=(0.0, 0.0))  # a goal no spline meets: every start
+    alone = [len(fit(start_shifts=(s,), stretches=1, tries=1, wide_tries=0).elements) for s in shifts]
+    # a goal no spline meets: every start
+    never = fit(start_shifts=shifts, stretches=1, goal=(0.0, 0.0), wide_tries=0)
     assert len(never.elements) == min(alone), (alone, len(never.elements))
     always = fit(start_shifts=shifts, stretches=1, goal=(100.0, 0.0))  # met at once: the first start only
     assert len(always.elements) == alone[0]
+    # still over the goal after every start: the first two starts again with the wider search (beam 24, pool 60,
+    # children 7), the fewest kept.  The search is narrowed here so that the wider one finds fewer (19-21
+    # against 16-17 arcs when this was written): the spline comes from a wide march, or the test fails
+    narrow = dict(beam=3, pool=6, children=2)
+    narrow_alone = [len(fit(start_shifts=(s,), stretches=1, tries=1, wide_tries=0, **narrow).elements) for s in shifts]
+    wide = [len(fit(start_shifts=(s,), stretches=1, tries=1, wide_tries=0, beam=24, pool=60, children=7).elements)
+            for s in shifts[:2]]
+    assert min(wide) < min(narrow_alone), (narrow_alone, wide)
+    widened = fit(start_shifts=shifts, stretches=1, goal=(0.0, 0.0), **narrow)
+    assert len(widened.elements) == min(narrow_alone + wide), (narrow_alone, wide, len(widened.elements))
 
 
 def test_further_starts_in_two_processes_give_the_same_spline():
