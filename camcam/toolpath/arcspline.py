@@ -470,7 +470,8 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
               for shift, (mid, half) in [(sh, st) for sh in budget.start_shifts for st in stretches][:budget.tries]]
 
     # a contour still over the goal after every start is marched from its first starts again with a wider
-    # search (beam, pool, children): never fewer arcs kept, and time spent only where the goal is missed
+    # search (beam, pool, children): the fewest arcs of all marches kept (never more than before), and time
+    # spent only where the goal is missed
     wide = replace(budget, beam=budget.wide[0], pool=budget.wide[1], children=budget.wide[2])
     jobs = [(start, budget) for start in starts] + [(start, wide) for start in starts[:budget.wide_tries]]
 
