@@ -15,6 +15,10 @@ import sys
 
 
 def main() -> None:
+    # Ctrl-C as a terminal delivers it: a process started in the background by a non-interactive shell
+    # (`nohup pytest &`) inherits SIGINT ignored, and Python keeps it so; the faults below must not depend on
+    # how the suite was launched
+    signal.signal(signal.SIGINT, signal.default_int_handler)
     argv = sys.argv[1:]
     sep = argv.index("--")
     modes, args = argv[:sep], argv[sep + 1:]
