@@ -21,7 +21,7 @@ from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
 
 __all__ = ["register", "nc_step", "model", "drawing", "nc_figures", "job_verdict", "design_and_drawing_checks", "job",
-           "plot_server", "DEFAULT_SPEC"]
+           "plot_server", "engagement_phrase", "DEFAULT_SPEC"]
 
 #: The bundled job `camcam run` runs without a spec.
 DEFAULT_SPEC = "default.toml"
@@ -222,6 +222,30 @@ DRAWING = "camcam.cli.run:drawing"
 CAM_PLOT = "camcam.plots.profile:cam_png"
 
 
+def engagement_phrase(material: dict) -> str:
+    """The summary's engagement figures from a report's ``material`` dict: the radial engagement is measured
+    on passes other than slots (:data:`camcam.nc.passes.SLOT_KINDS`), so a program of slots alone (a groove)
+    says so instead of printing 0 over no moves; a slot's own width is added where there are slots.
+
+    Examples
+    --------
+    >>> engagement_phrase({"passes": [{"kind": "slot"}], "max_engagement_mm": 0.0, "stepover_mm": 8.0,
+    ...                    "max_slot_engagement_mm": 20.0})
+    'every pass a slot (engagement 20.000 mm)'
+    >>> engagement_phrase({"passes": [{"kind": "rough"}, {"kind": "finish"}], "max_engagement_mm": 5.5,
+    ...                    "stepover_mm": 8.0, "max_slot_engagement_mm": 0.0})
+    'largest engagement 5.500 mm of 8 mm'
+    """
+    from camcam.nc.passes import SLOT_KINDS
+
+    kinds = [p["kind"] for p in material["passes"]]
+    slots = f"engagement {material['max_slot_engagement_mm']:.3f} mm"
+    if all(k in SLOT_KINDS for k in kinds):
+        return f"every pass a slot ({slots})"
+    radial = f"largest engagement {material['max_engagement_mm']:.3f} mm of {material['stepover_mm']:g} mm"
+    return radial + (f" outside slots, slots {slots}" if any(k in SLOT_KINDS for k in kinds) else "")
+
+
 def run(args) -> int:
     progress = Progress.from_args(args)
     plots = plot_server()  # first of all: matplotlib's import runs on the other core while the flow's load
@@ -253,9 +277,9 @@ def run(args) -> int:
                           f"{spec.machining.post.rapid_mm_min:g} mm/min, acceleration not counted")
             if "material" in c:
                 mt = c["material"]
-                print(f"material: {mt['blank']['description']}; {len(mt['passes'])} passes, largest engagement "
-                      f"{mt['max_engagement_mm']:.3f} mm of {mt['stepover_mm']:g} mm, {mt['plunges_into_material']} "
-                      f"plunges into material, left {mt['material_left_mm']:.4f} mm, overcut {mt['overcut_mm']:.4f} mm")
+                print(f"material: {mt['blank']['description']}; {len(mt['passes'])} passes, {engagement_phrase(mt)}, "
+                      f"{mt['plunges_into_material']} plunges into material, left {mt['material_left_mm']:.4f} mm, "
+                      f"overcut {mt['overcut_mm']:.4f} mm")
 
     with progress.step("writing files"):
         publish(out, summary, args.json, show, (verdict.line(),) if verdict.checks else ())

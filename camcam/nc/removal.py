@@ -37,6 +37,7 @@ from scipy.spatial import cKDTree
 from shapely.geometry import LineString, Point
 
 from camcam.forked import ChildGroup, resolve
+from camcam.nc.passes import SLOT_KINDS
 from camcam.nc.readback import read_program
 from camcam.nc.roughing import polygon_distance
 from camcam.nc.stock import bore_region
@@ -234,7 +235,7 @@ def _front_extent(slab, pts: np.ndarray, tangents: np.ndarray, r_probe: float) -
 
 def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_radius_mm: float, stepover_mm: float,
                 ramp_angle_deg: float, tolerance_mm: float, allowance_mm: float, decimals: int,
-                slot_kinds=("slot", "bore")) -> RemovalReport:
+                slot_kinds=SLOT_KINDS) -> RemovalReport:
     """Check interpreted ``events`` (moves and comment strings) against the blank ``region`` (shapely).
 
     ``keep`` is the material that must remain at the final depth (shapely),

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from camcam.nc.passes import SLOT_KINDS
 from camcam.report.html import DataTable, KeyValues, Paragraph, Section
 
 __all__ = ["material_section"]
@@ -23,6 +24,7 @@ def material_section(m) -> Section | None:
         ("bore", b.bore_note()),
         ("depth levels", ", ".join(f"Z{z:g}" for z in r.levels)),
         ("largest radial engagement (outside slot passes)",
+         "none: every pass is a slot" if all(p.kind in SLOT_KINDS for p in m.passes) else
          f"{_fig(r.max_engagement_mm)} of the stepover {r.stepover_mm:g} mm — {status['radial engagement']}"
          + (f" ({r.engagement_where})" if r.engagement_where else "")),
         ("largest engagement in slot passes (stated)", _fig(r.max_slot_engagement_mm)),

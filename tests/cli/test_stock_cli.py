@@ -34,3 +34,16 @@ def test_bad_stock_is_one_line(tmp_path, capsys, sample, old, new, start):
     err = capsys.readouterr().err.strip()
     assert err.startswith(start) and len(err.splitlines()) == 1, err
     assert not (tmp_path / "out").exists() or not any((tmp_path / "out").iterdir())
+
+
+def test_a_groove_of_slots_says_so_instead_of_engagement_zero(tmp_path, capsys):
+    """disc-groove is cut by slot passes alone: the radial engagement is measured outside slots only, so the
+    summary printed "largest engagement 0.000 mm of 8 mm" (a figure over no moves); it now names the slots and
+    their width, the tool's diameter (Ø20 mm: a slot engages all of it; 0.01 mm is the probe's resolution)."""
+    assert main(["run", str(ROOT / "samples" / "disc-groove.toml"), "-o", str(tmp_path)]) == 0
+    line = next(x for x in capsys.readouterr().out.splitlines() if x.startswith("material:"))
+    assert "every pass a slot (engagement " in line and "largest engagement" not in line, line
+    width = float(line.split("every pass a slot (engagement ")[1].split(" mm")[0])
+    assert width == pytest.approx(20.0, abs=0.01), line
+    html = (tmp_path / "disc-groove-report.html").read_text()
+    assert "none: every pass is a slot" in html
