@@ -23,9 +23,9 @@ from camcam.spec import load_spec
 TABLE1 = Problem(5, 7, True, "A", (("V", 2.0), ("J", 61.4)))
 
 
-@settings(max_examples=25, deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(
-    degree=st.sampled_from([3, 5]),
+    degree=st.sampled_from([3, 5, 7, 9]),
     segments=st.integers(4, 12),
     symmetric=st.booleans(),
     seed=st.integers(0, 10_000),
@@ -34,10 +34,14 @@ def test_boundary_conditions_hold_for_any_free_points(degree, segments, symmetri
     sp = BSplineSpace(degree, segments, symmetric)
     x = sp.initial_free() + np.random.default_rng(seed).uniform(-0.2, 0.2, sp.n_free)
     law = BSplineLaw.from_free(sp, x)
-    # The conditions are solved exactly; only float rounding remains, of the acceleration at the ends, which
-    # grows like (2·segments)² × the control points (≈ 500 at 11 segments): 1e-11 (hypothesis found 1.02e-12
-    # at degree 5, 11 segments, seed 504, past the earlier 1e-12).
-    assert law.boundary_residual() <= 1e-11
+    # The conditions are solved exactly; only float rounding remains, largest in the acceleration at the ends.
+    # It scales with the law's acceleration and grows with the degree, about tenfold per two degrees (the
+    # conditions' rows are the pieces' power coefficients, larger at higher degree).  Measured over 40 seeds ×
+    # 4–12 segments × both symmetries: residual / (eps · max|A|) ≤ 15, 43, 452, 4134 at degrees 3, 5, 7, 9;
+    # the bound 100 · 10^((degree − 3)/2) keeps a 6.7–24 × margin (degree 9 exceeded the old fixed 1e-11).
+    T = np.linspace(0.0, 1.0, 2001)
+    a_max = float(np.abs(law.evaluate(T, 2)).max())
+    assert law.boundary_residual() <= 100 * 10 ** ((degree - 3) / 2) * np.finfo(float).eps * a_max
     assert sp.n_free == segments + degree - (5 if symmetric else 6)
 
 
