@@ -50,7 +50,7 @@ import numpy as np
 from camcam.errors import FitError, GeometryError, InputError, PostError
 from camcam.geometry.build import BuiltCam
 from camcam.nc.toolposes import CylinderTool, poses_from_program
-from camcam.nc.groove3d import measure_groove
+from camcam.nc.groove3d import measure_groove, pose_step_for
 from camcam.nc.result import MachiningResult
 from camcam.nc.settings import MachiningSpec
 from camcam.nc.tools import SAME_TOOL_MM, job_title
@@ -372,7 +372,8 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int
     measured = post.write_program(toolpath, name, m.setup)
     poses = poses_from_program(klartext_as_gcode(measured.text) if post.dialect == "heidenhain" else measured.text,
                                m.a_axis)
-    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers)
+    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers,
+                           pose_step_mm=pose_step_for(m.tolerance_mm, r_t))
     value, tol = groove.max_deviation_mm, m.tolerance_mm
     holds = math.ceil(value * 1e4) / 1e4
     check = Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(),

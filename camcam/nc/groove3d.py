@@ -67,8 +67,8 @@ from camcam.nc.groove_motion import (Motion, ProgramMotion, RollerMotion, follow
                                      wall_extents)
 from camcam.nc.toolposes import CylinderTool, ToolPoses, frozen_array
 
-__all__ = ["WallExtreme", "WallDeviation", "GrooveMeasurement", "measure_groove", "WALL_LABELS", "design_walls",
-           "cut_walls"]
+__all__ = ["WallExtreme", "WallDeviation", "GrooveMeasurement", "measure_groove", "pose_step_for", "WALL_LABELS",
+           "design_walls", "cut_walls"]
 
 WALL_LABELS = ("flank 0 (-X wall)", "flank 1 (+X wall)")
 
@@ -141,9 +141,19 @@ class GrooveMeasurement:
     uncut_points: int = 0
 
     @property
-    def max_deviation_mm(self) -> float:
-        """The largest overcut or material left on either wall, mm."""
+    def measured_mm(self) -> float:
+        """The largest overcut or material left on either wall, as measured, mm."""
         return max(max(w.overcut_mm, w.material_left_mm) for w in self.walls)
+
+    @property
+    def max_deviation_mm(self) -> float:
+        """:attr:`measured_mm` plus :attr:`sampling_bound_mm`: what the job is held to, mm.
+
+        As the 2-D :class:`~camcam.toolpath.deviation.Deviation` adds its
+        between-sample bound, so that a program within the tolerance is within it
+        whatever the sampling of the motion missed.
+        """
+        return self.measured_mm + self.sampling_bound_mm
 
     @property
     def worst(self) -> WallDeviation:
@@ -156,7 +166,8 @@ class GrooveMeasurement:
         return f"{kind} on {w.label}, {w.worst.describe()}"
 
     def as_dict(self) -> dict:
-        return {"max_deviation_mm": self.max_deviation_mm, "sampling_bound_mm": self.sampling_bound_mm,
+        return {"max_deviation_mm": self.max_deviation_mm, "measured_mm": self.measured_mm,
+                "sampling_bound_mm": self.sampling_bound_mm,
                 "pose_step_mm": self.pose_step_mm, "radii_mm": [float(r) for r in self.radii_mm],
                 "angle_step_deg": float(self.cam_angle_deg[1] - self.cam_angle_deg[0]),
                 "uncut_points": self.uncut_points, "walls": [w.as_dict() for w in self.walls]}
@@ -426,8 +437,26 @@ def _refine(setup: _Setup, side: int, rho0: float, th0: float, sign: float, rho_
     return rho, th, setup.exact_deviation(rho, th, side)
 
 
+#: Largest step of a tool section between motion samples (mm), and the share of the tolerance the sampling
+#: bound h²/(8 r) may take at most (as the 2-D measurement's margin, FitBudget.sampling_share).
+POSE_STEP_MM, SAMPLING_SHARE = 0.1, 0.02
+
+
+def pose_step_for(tolerance_mm: float, tool_radius_mm: float) -> float:
+    """The pose step (mm) whose sampling bound h²/(8 r) is at most :data:`SAMPLING_SHARE` × the tolerance.
+
+    Examples
+    --------
+    >>> pose_step_for(0.02, 8.0)  # the samples' tolerances keep the 0.1 mm step (bound 1.6e-4 mm)
+    0.1
+    >>> round(pose_step_for(0.001, 8.0), 6)  # 0.001 mm: bound 2e-5 mm
+    0.035777
+    """
+    return min(POSE_STEP_MM, math.sqrt(8.0 * tool_radius_mm * SAMPLING_SHARE * tolerance_mm))
+
+
 def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *, radii: int | np.ndarray = 11,
-                   angle_step_deg: float = 0.25, pose_step_mm: float = 0.1, workers: int = 1) -> GrooveMeasurement:
+                   angle_step_deg: float = 0.25, pose_step_mm: float = POSE_STEP_MM, workers: int = 1) -> GrooveMeasurement:
     """Measure the groove the poses cut against the designed groove: both walls, all radii, all angles.
 
     Parameters
@@ -465,8 +494,10 @@ def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *,
     >>> X, Y, Z, a, B = follower_poses(cam, np.radians(np.arange(0.0, 360.01, 0.1)))
     >>> poses = ToolPoses(np.stack([X, Y, Z + 30.0], axis=-1), np.degrees(a), np.degrees(B))
     >>> m = measure_groove(cam, CylinderTool(8.0, 40.0), poses, radii=3, angle_step_deg=2.0)
-    >>> bool(m.max_deviation_mm < 1e-4)  # chords 0.1° apart: s″·Δθ²/8 ≤ 2e-5 mm
+    >>> bool(m.measured_mm < 1e-4)  # chords 0.1° apart: s″·Δθ²/8 ≤ 2e-5 mm
     True
+    >>> round(m.sampling_bound_mm, 7)  # 0.1² / (8 · 8): what the motion's sampling could miss
+    0.0001563
     """
     n_ang = int(round(360.0 / angle_step_deg))
     if abs(n_ang * angle_step_deg - 360.0) > 1e-9:

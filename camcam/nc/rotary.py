@@ -44,7 +44,7 @@ from camcam.forked import parallel_map
 from camcam.geometry.build import BuiltCam
 from camcam.nc.flank import DisplacedCurve, plan_flank, smallest_tool_radius
 from camcam.nc.toolposes import A_AXIS_SENSE, CylinderTool, poses_from_program
-from camcam.nc.groove3d import GrooveMeasurement, measure_groove
+from camcam.nc.groove3d import GrooveMeasurement, measure_groove, pose_step_for
 from camcam.nc.result import MachiningResult, deviation_checks
 from camcam.nc.settings import MachiningSpec
 from camcam.nc.tools import SAME_TOOL_MM, groove_passes
@@ -175,7 +175,8 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     toolpath = dataclasses.replace(join_toolpaths(title, paths), comments=comments)
     measured = post.write_program(toolpath, name, m.setup)
     poses = poses_from_program(measured.text, m.a_axis)
-    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers)
+    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers,
+                           pose_step_mm=pose_step_for(m.tolerance_mm, r_t))
     check = groove_check(cam, m, groove, smallest)
     # the same moves, with the check's result in the header
     verdict = "within" if check.ok else "OUT OF TOLERANCE"

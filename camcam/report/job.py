@@ -78,7 +78,9 @@ def _groove_rows(m: MachiningResult) -> tuple:
     g = m.groove
     rows.append(("3-D measurement", f"radii {g.radii_mm[0]:g}-{g.radii_mm[-1]:g} mm ({len(g.radii_mm)} on the map, "
                                     f"extremes refined between), cam angle step {g.cam_angle_deg[1]:g}°, motion "
-                                    f"sampling bound {g.sampling_bound_mm:.1e} mm"))
+                                    f"sampling bound {g.sampling_bound_mm:.1e} mm (pose step {g.pose_step_mm:g} mm), "
+                                    f"added to the walls' largest {g.measured_mm:.4f} mm in the deviation held to "
+                                    f"the tolerance"))
     if m.smallest_tool_mm is not None:
         rows.append(("smallest tool holding half the tolerance on the flanks", f"Ø{m.smallest_tool_mm:.2f} mm"))
     return tuple(rows)

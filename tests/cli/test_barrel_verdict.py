@@ -5,6 +5,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
+
 from tests.cli.test_exit_status import cli
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -29,7 +31,12 @@ def test_small_tool_fails_with_advice_and_exit_3(tmp_path):
     assert report["verdict"]["status"] == "FAIL" and not report["verdict"]["accepted"]
     walls = report["machining"]["flank_deviation"]
     assert [w["wall"] for w in walls] == [0, 1]
-    assert report["max_deviation_mm"] == max(max(w["overcut_mm"], w["material_left_mm"]) for w in walls)
+    g = report["machining"]["groove_3d"]
+    # the figure held to the tolerance is the walls' largest plus the motion-sampling bound (0.1² / (8 · 6) mm),
+    # exactly as summed in float
+    assert g["measured_mm"] == max(max(w["overcut_mm"], w["material_left_mm"]) for w in walls)
+    assert report["max_deviation_mm"] == g["measured_mm"] + g["sampling_bound_mm"]
+    assert g["sampling_bound_mm"] == pytest.approx(0.1**2 / (8 * 6.0), rel=1e-12)  # float rounding only
     assert report["max_deviation_mm"] > report["tolerance_mm"]
     for w in walls:
         assert 40.0 <= w["overcut_radius_mm"] <= 50.0 and 0.0 <= w["overcut_cam_angle_deg"] < 360.0
