@@ -198,7 +198,8 @@ def _centre_path(moves, floor_z: float, step_mm: float = 0.002) -> np.ndarray:
 def test_groove_at_a_fine_tolerance_is_not_failed_by_polygon_slivers(tmp_path, monkeypatch):
     """Real failing data: disc-groove at tolerance 0.001 mm said FAIL, "material left over the profile
     0.001708 mm (slab Z-8…Z-6: material at X37.902 Y-70.368 not cut)".  The slabs are polygons, whose swept
-    discs fall short of their circles by up to 2.4e-3 mm, more than that tolerance; the point was cut.
+    discs fall short of their circles by r_t·(1 − cos(π/128)), 3.0e-3 mm for this Ø20 mm tool, more than that
+    tolerance; the point was cut.
     Now a piece a slab leaves counts only if some point of it is exactly outside every tool disc."""
     from dataclasses import replace
 
