@@ -92,14 +92,15 @@ def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
-def derivatives(curve: PlanarCurve, t, order: int) -> list[np.ndarray]:
-    """[P′, P″, …, P^(order)] at ``t``, each shape (n, 2): one evaluation of the jets when the curve
-    has them (a jet of order k carries every lower derivative), else one ``evaluate`` per order."""
+def derivatives(curve: PlanarCurve, t, order: int, first: int = 1) -> list[np.ndarray]:
+    """[P^(first), …, P^(order)] at ``t`` (by default from P′), each shape (n, 2): one evaluation of the
+    jets when the curve has them (a jet of order k carries every lower derivative), else one
+    ``evaluate`` per order."""
     jets = getattr(curve, "jets", None)
     if jets is None:
-        return [curve.evaluate(t, k) for k in range(1, order + 1)]
+        return [curve.evaluate(t, k) for k in range(first, order + 1)]
     js = jets(t, order)
-    return [np.stack([j.d[k] for j in js], axis=-1) for k in range(1, order + 1)]
+    return [np.stack([j.d[k] for j in js], axis=-1) for k in range(first, order + 1)]
 
 
 def speed(curve: PlanarCurve, t) -> np.ndarray:

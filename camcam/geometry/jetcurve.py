@@ -45,7 +45,7 @@ class LiftJet:
             raise ValueError(f"the motion program gives lift derivatives up to order {MAX_ORDER}, asked {K}")
         theta = np.atleast_1d(np.asarray(theta, dtype=float))
         if piece is None:
-            rows = [self.program.lift(theta, k) for k in range(K + 1)]
+            rows = list(self.program.lifts(theta, K))
         else:
             seg = self.program.segments[piece]
             T = (np.degrees(theta) - seg.start_deg) / (seg.end_deg - seg.start_deg)

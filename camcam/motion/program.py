@@ -154,6 +154,19 @@ class MotionProgram:
             out[m] = val + (seg.base if order == 0 else 0.0)
         return out
 
+    def lifts(self, theta_rad, K: int) -> np.ndarray:
+        """[s, s′, …, s^(K)] at cam angles θ (rad), shape (K + 1, n): :meth:`lift` of every order up
+        to ``K`` with the segments located once."""
+        theta = np.atleast_1d(np.asarray(theta_rad, dtype=float))
+        idx, T = self.locate(theta)
+        out = np.empty((K + 1,) + np.shape(T))
+        for i in np.unique(idx):
+            m = idx == i
+            seg, Tm = self.segments[i], T[m]
+            for k in range(K + 1):
+                out[k, m] = seg.derivative(Tm, k) + (seg.base if k == 0 else 0.0)
+        return out
+
     def to_physical(self, value, order: int):
         w = self.omega_rad_s
         value = np.asarray(value, dtype=float) * w**order

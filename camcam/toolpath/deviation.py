@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
-from camcam.geometry.curve import PlanarCurve, curvature, speed
+from camcam.geometry.curve import PlanarCurve, curvature, derivatives, speed
 from camcam.toolpath.elements import Arc, element_distance, element_points
 
 __all__ = ["Deviation", "closest_params", "measure_deviation"]
@@ -71,7 +71,7 @@ def closest_params(curve: PlanarCurve, q, lo: float, hi: float, seeds_t=None) ->
     # a closed curve taken whole has no ends: Newton may step across its seam (t_end ≡ t_start)
     seam = bool(getattr(curve, "closed", False)) and lo <= curve.t_start and hi >= curve.t_end
     for _ in range(8):
-        p, d1, d2 = (curve.evaluate(t, o) for o in (0, 1, 2))
+        p, d1, d2 = derivatives(curve, t, 2, first=0)  # one jet evaluation for all three
         r = p - q
         f = np.einsum("ij,ij->i", r, d1)
         fp = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", r, d2)

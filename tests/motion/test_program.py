@@ -2,6 +2,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from camcam.errors import MotionError
 from camcam.motion.catalog import make_law
@@ -41,6 +43,18 @@ def test_lift_wraps_and_is_periodic():
     th = np.radians([10.0, 370.0, -350.0])
     s = p.lift(th)
     assert s[0] == pytest.approx(s[1], abs=1e-12) and s[0] == pytest.approx(s[2], abs=1e-12)  # same angle
+
+
+@given(st.lists(st.floats(-20.0, 20.0, allow_nan=False), min_size=1, max_size=40), st.integers(0, 4))
+def test_lifts_is_lift_of_every_order(angles, K):
+    # lifts() locates the segments once for all orders: the very same arithmetic as lift() per order,
+    # so the rows agree exactly (no tolerance)
+    p = demo()
+    th = np.array(angles)
+    rows = p.lifts(th, K)
+    assert rows.shape == (K + 1, len(angles))
+    for k in range(K + 1):
+        np.testing.assert_array_equal(rows[k], p.lift(th, k))
 
 
 def test_joins_of_a_smooth_program_are_empty():
