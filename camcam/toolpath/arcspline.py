@@ -100,6 +100,21 @@ consecutive arcs of the final spline by a G1 biarc between the same joints
 3-for-2 slack; six other budget variants left disc-translating-flat at
 0.0005 mm at 40.
 
+Also tried (2026-12-03), for time: a narrower first march (beam 8, pool 24,
+about 60 % of a march's time) kept where it meets the goal: the default
+sample's NC step 1.75 → 1.18 s at 0.01 mm, but over the 40 cases it had more
+arcs than the full march from the same start on 22, fewer on 4 (10 instead
+of 9 on the default sample at 0.1 mm), and reverse/recovered-disc at 0.0005
+mm came out at 71 arcs against the target's 67.7 (that curve's goal, from the
+Chebyshev copy's N_lb, is looser than the target).  The two wide marches
+right after the first start instead of after all the others: 3 marches
+instead of 11–14 on disc-translating-roller at 0.0005 mm and
+optimize/run-table1 at 0.001 mm, but 2 more on disc-oscillating-roller at
+0.001 mm and on disc-oscillating-flat at 0.001 and 0.0005 mm (95 marches
+against 106 over the 40 cases, a wide one costing 1.5–2 ordinary ones): no
+gain.  Eight wide starts on disc-translating-flat at 0.0005 mm: 40 or 41
+arcs on all 20 marches.
+
 Measured (``benchmarks/run_nc.py --arcs``, the eight disc samples at 0.1–0.0005 mm,
 band 0.95·δ): 39 of 40 contour × tolerance cases within 1.2·N_lb + 4 (24
 with the biarc closure and one start; 27 with the landing closure alone; 38
