@@ -108,11 +108,17 @@ def _fit_arcs(curve, tolerance_mm, band, quantizer, max_sweep, a, b, exact, prin
     sections = g1_sections(curve, edges[0][0], edges[-1][1])
     whole = bool(curve.closed) and len(sections) == 1 and edges[0][0] == curve.t_start and \
         edges[-1][1] == curve.t_end
+    # a closed section's goal is on the exact curve's N_lb, the bound block counts are judged by, not on
+    # the Chebyshev copy's (higher on a noisy curve); taken at the first band (N_lb ∝ δ^(-1/3)) for
+    # every attempt, so a tighter retry does not loosen the goal
+    lbs = lower_bound_pieces(exact, tolerance_mm, edges)
+    band_lb = float(sum(lbs)) * float(np.cbrt(tolerance_mm / targets[0])) if whole else None
     elems, starts, worst = [], [], None
     for lo, hi in sections:
         for target in targets:
             spline = fit_arc_spline(curve, lo, hi, target, quantizer=quantizer, max_sweep=max_sweep, sag=sag,
-                                    closed=whole, workers=workers)
+                                    closed=whole, workers=workers,
+                                    lower_bound=band_lb)
             dev_s = measure_deviation(exact, printed(spline.elements), lo, hi, margin_mm=margin)
             if dev_s.max_deviation_mm <= tolerance_mm:
                 break
@@ -127,7 +133,6 @@ def _fit_arcs(curve, tolerance_mm, band, quantizer, max_sweep, a, b, exact, prin
     last = edges[-1][1]
     blocks = [int(np.count_nonzero((starts >= lo) & ((starts < hi) | (hi == last))))
               for lo, hi in edges]  # each arc counts on the piece its start joint lies on
-    lbs = lower_bound_pieces(exact, tolerance_mm, edges)
     measured_whole = len(sections) == 1 and sections[0] == (exact.t_start, exact.t_end)
     return FitResult(tuple(elems), "arcs", tolerance_mm, quantizer.decimals, worst, float(sum(lbs)),
                      tuple(blocks), tuple(lbs), measured_whole)

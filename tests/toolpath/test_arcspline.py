@@ -2,6 +2,7 @@
 
 import functools
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -248,6 +249,25 @@ def test_further_starts_keep_the_fewest_and_stop_at_the_goal():
     assert min(wide) < min(narrow_alone), (narrow_alone, wide)
     widened = fit(start_shifts=shifts, stretches=1, goal=(0.0, 0.0), **narrow)
     assert len(widened.elements) == min(narrow_alone + wide), (narrow_alone, wide, len(widened.elements))
+
+
+def test_the_goal_is_on_the_lower_bound_given():
+    """A closed section's goal is ``goal`` on the N_lb passed in (the exact curve's, from the fitter), not
+    on the curve's own: a bound of 0 is a goal no spline meets (every start, the fewest kept), a bound of
+    1000 one met at once (the first start only), whatever the curve's own N_lb (about 11 here)."""
+    curve = polar_cam()
+    kw = dict(quantizer=Quantizer(4), max_sweep=math.radians(120), sag=5e-6, closed=True)
+    shifts = (0.12, 0.0, -0.12)  # the first start the worst (17 arcs against 16 when this was written)
+    budget = SplineBudget(start_shifts=shifts, stretches=1, goal=(1.0, 0.0), wide_tries=0)
+
+    def fit(lower_bound, **b):
+        return fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=replace(budget, **b), lower_bound=lower_bound,
+                              **kw)
+
+    alone = [len(fit(None, start_shifts=(s,), tries=1).elements) for s in shifts]
+    assert alone[0] > min(alone), alone  # else the first start alone and all of them could not be told apart
+    assert len(fit(0.0).elements) == min(alone), alone
+    assert len(fit(1000.0).elements) == alone[0], alone
 
 
 def test_further_starts_in_two_processes_give_the_same_spline():
