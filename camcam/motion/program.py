@@ -144,28 +144,25 @@ class MotionProgram:
 
     def lift(self, theta_rad, order: int = 0) -> np.ndarray:
         """d^order s/dθ^order at cam angles θ (rad): mm or deg, per radian^order."""
-        theta = np.asarray(theta_rad, dtype=float)
-        idx, T = self.locate(theta)
-        out = np.empty(np.shape(T))
-        for i in np.unique(idx):
-            m = idx == i
-            seg = self.segments[i]
-            val = seg.derivative(T[m], order)
-            out[m] = val + (seg.base if order == 0 else 0.0)
-        return out
+        return self._lift_orders(theta_rad, (order,))[0, ...]  # a 0-d array for a scalar θ, as before
 
     def lifts(self, theta_rad, K: int) -> np.ndarray:
         """[s, s′, …, s^(K)] at cam angles θ (rad), shape (K + 1, n): :meth:`lift` of every order up
         to ``K`` with the segments located once."""
-        theta = np.atleast_1d(np.asarray(theta_rad, dtype=float))
-        idx, T = self.locate(theta)
-        out = np.empty((K + 1,) + np.shape(T))
+        return self._lift_orders(np.atleast_1d(theta_rad), range(K + 1))
+
+    def _lift_orders(self, theta_rad, orders) -> np.ndarray:
+        """:meth:`lift` of each of ``orders`` at θ, shape (len(orders),) + θ's shape: one segment lookup."""
+        idx, T = self.locate(np.asarray(theta_rad, dtype=float))
+        shape = np.shape(T)
+        idx, T = np.ravel(idx), np.ravel(T)
+        out = np.empty((len(orders), T.size))
         for i in np.unique(idx):
             m = idx == i
             seg, Tm = self.segments[i], T[m]
-            for k in range(K + 1):
-                out[k, m] = seg.derivative(Tm, k) + (seg.base if k == 0 else 0.0)
-        return out
+            for row, k in zip(out, orders):
+                row[m] = seg.derivative(Tm, k) + (seg.base if k == 0 else 0.0)
+        return out.reshape((len(orders),) + shape)
 
     def to_physical(self, value, order: int):
         w = self.omega_rad_s

@@ -117,8 +117,7 @@ def _fit_arcs(curve, tolerance_mm, band, quantizer, max_sweep, a, b, exact, prin
     for lo, hi in sections:
         for target in targets:
             spline = fit_arc_spline(curve, lo, hi, target, quantizer=quantizer, max_sweep=max_sweep, sag=sag,
-                                    closed=whole, workers=workers,
-                                    lower_bound=band_lb)
+                                    closed=whole, workers=workers, lower_bound=band_lb)
             dev_s = measure_deviation(exact, printed(spline.elements), lo, hi, margin_mm=margin)
             if dev_s.max_deviation_mm <= tolerance_mm:
                 break

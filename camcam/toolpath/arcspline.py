@@ -78,11 +78,11 @@ march's band, 0.95·δ: 1.18·(1/0.95)^⅓ = 1.2 on the tolerance's N_lb, the
 issue's bound; N_lb of the exact curve, which the fitter passes in: the
 Chebyshev copy's own, by a trapezoid rule, is up to 4 % higher on the noisy
 lift and the recovered cam, a looser goal than the bound the counts are
-judged by; the same counts on all 40 cases of ``run_nc.py --arcs``), the march starts again from shifted points of the longest
-dwell and of the next one (``start_shifts`` × half the stretch, at most
-``tries`` marches) and keeps the spline with the fewest blocks.  A contour
-within the goal at the first start (the default sample at 0.1–0.001 mm) is
-marched once, as before.  A contour still over the goal after all of them is
+judged by; the same counts on all 40 cases of ``run_nc.py --arcs``), the
+march starts again from shifted points of the longest dwell and of the next
+one (``start_shifts`` × half the stretch, at most ``tries`` marches) and
+keeps the spline with the fewest blocks.  A contour within the goal at the
+first start (the default sample at 0.1–0.001 mm) is marched once, as before.  A contour still over the goal after all of them is
 marched from its first ``wide_tries`` = 2 starts once more with a wider search
 (beam 24, pool 60, 7 children per ray instead of 16, 40, 5): that search is
 no better on average (its counts differ by ±1 from the default's), but as a
