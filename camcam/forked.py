@@ -15,8 +15,13 @@ more cores they can run beside the NC work:
   time, importing the modules they name itself.  So the parent never imports
   matplotlib: the server imports it once, on the other core.  `camcam run`
   starts its plot server before anything else (matplotlib's import then runs
-  beside the run's own imports) and a second server for the drawing before
-  the NC step (ezdxf's); the cam and the program go to them pickled.
+  beside the run's own imports); the cam and the plots' data go to it pickled.
+* :class:`Prepared` forks one child that imports modules at once and runs one
+  job sent to it later, which, unlike a server's, may fork children of its
+  own.  `camcam run` starts one before the NC step: it imports ezdxf and
+  scipy (the DXF's splines, the material check's k-d trees) beside the NC
+  work, then takes the printed program and writes the drawing while the
+  material check runs in its children, which inherit those modules.
 
 The child runs the very same function on the very same data as an in-process
 call would, so the results are the same.  Fork is what makes this cheap, so it
@@ -38,7 +43,8 @@ from typing import Any, Callable
 
 from camcam.interrupts import SIGNALS, Interrupted
 
-__all__ = ["ChildError", "Pending", "later", "resolve", "ChildGroup", "parallel_map", "Server", "call_target", "preload"]
+__all__ = ["ChildError", "Pending", "later", "resolve", "ChildGroup", "parallel_map", "Server", "Prepared", "call_target",
+           "preload"]
 
 _OK, _FAILED = b"K", b"E"
 _FRAME = struct.Struct("<Q")  # the length of one server reply
@@ -321,6 +327,50 @@ class _ServerPipes:
         return False
 
 
+def _read_exactly(fd: int, n: int) -> bytes:
+    """``n`` bytes from ``fd``, fewer only at end of file."""
+    parts, got = [], 0
+    while got < n:
+        chunk = os.read(fd, min(n - got, 1 << 20))
+        if not chunk:
+            break
+        parts.append(chunk)
+        got += len(chunk)
+    return b"".join(parts)
+
+
+def _read_frame(fd: int) -> bytes:
+    """One frame's body from ``fd`` (b"" for an empty frame or end of file)."""
+    head = _read_exactly(fd, _FRAME.size)
+    if len(head) < _FRAME.size:
+        return b""
+    return _read_exactly(fd, _FRAME.unpack(head)[0])
+
+
+def _write_all(fd: int, data: bytes) -> None:
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view):]
+
+
+def _reap(pid: int, *fds: int | None) -> None:
+    """Close the parent's pipe ends ``fds`` (None: closed already) and wait for child ``pid``; returns None
+    (the child's pid once reaped)."""
+    for fd in fds:
+        if fd is not None:
+            os.close(fd)
+    os.waitpid(pid, 0)
+    return None
+
+
+def _pipes() -> tuple[tuple[int, int], tuple[int, int]]:
+    """A request pipe and a reply pipe, ((read, write), (read, write)), each widened (:func:`_widen`)."""
+    req, rep = os.pipe(), os.pipe()
+    _widen(req[1])
+    _widen(rep[1])
+    return req, rep
+
+
 def _widen(fd: int) -> None:
     """Let a pipe hold 1 MiB where the platform allows it (Linux): fewer wake-ups for a large message."""
     try:
@@ -363,10 +413,7 @@ class Server:
         if not hasattr(os, "fork"):
             self.first = tuple(call_target(t, *a, **k) for t, a, k in first)
             return
-        req_r, req_w = os.pipe()
-        rep_r, rep_w = os.pipe()
-        _widen(req_w)
-        _widen(rep_w)
+        (req_r, req_w), (rep_r, rep_w) = _pipes()
 
         def child():
             os.close(req_w), os.close(rep_r)
@@ -420,10 +467,8 @@ class Server:
 
     def _send(self, frame: bytes) -> None:
         """Write a whole request frame (the child's reader thread takes it off the pipe as it comes)."""
-        view = memoryview(frame)
         try:
-            while view:
-                view = view[os.write(self._req_fd, view):]
+            _write_all(self._req_fd, frame)
         except BrokenPipeError:
             raise ChildError("the server process ended before it took its jobs") from None
 
@@ -440,10 +485,7 @@ class Server:
         if self._pid is None:
             return
         os.kill(self._pid, signal.SIGKILL)
-        os.close(self._req_fd)
-        os.close(self._rep_fd)
-        os.waitpid(self._pid, 0)
-        self._pid = None
+        self._pid = _reap(self._pid, self._req_fd, self._rep_fd)
 
     def close(self) -> None:
         """Read every reply still due, end the child and wait for it (idempotent)."""
@@ -456,7 +498,146 @@ class Server:
                 self._pump(until=len(self._names) - 1)
         except ChildError:
             pass  # the missing replies raise when their results are asked for
-        os.close(self._req_fd)
-        os.close(self._rep_fd)
-        os.waitpid(self._pid, 0)
-        self._pid = None
+        self._pid = _reap(self._pid, self._req_fd, self._rep_fd)
+
+
+class Prepared:
+    """One forked child that imports ``modules`` and runs ``first`` at once, and one job sent to it later.
+
+    ``Prepared(modules, first)`` forks at once; the child imports the modules
+    and runs each ``(function, args, kwargs)`` of ``first`` on the memory it
+    inherited (nothing pickled), in its main thread, while a reader thread
+    takes the job off the request pipe as soon as it comes, so :meth:`submit`
+    returns at once whatever the size of the job's arguments (pickled).  The
+    reader ends before the job runs, so, unlike a :class:`Server` job, the job
+    may fork children of its own (a :func:`later` in it), and they inherit
+    the modules imported.  Every reply (``first``'s, then the job's) is sent
+    once the job has run, so the child never waits on a parent that is busy
+    elsewhere: ``first``'s results can be had once :meth:`submit` or
+    :meth:`close` was called.  The child leads a process group of its own:
+    :meth:`kill` (a run that failed) ends it and every child it started, at
+    once.  Without fork, ``first`` runs at once and the job when it is
+    submitted, in process.  A failed import fails every job.
+
+    Examples
+    --------
+    >>> p = Prepared(["fractions"], first=[(sum, ([1, 2],), {})])
+    >>> job = p.submit("fractions:Fraction", 3, 6)
+    >>> resolve(p.first[0]), resolve(job)
+    (3, Fraction(1, 2))
+    """
+
+    def __init__(self, modules=(), first=()) -> None:
+        self._modules = tuple(modules)
+        first = [(fn, tuple(a), dict(k)) for fn, a, k in first]
+        self._pid: int | None = None
+        self._sent = False  # the job, or an empty frame, was sent
+        self._replies: list[bytes] = []
+        if not hasattr(os, "fork"):
+            preload(*self._modules)
+            self.first = tuple(fn(*a, **k) for fn, a, k in first)
+            return
+        (req_r, req_w), (rep_r, rep_w) = _pipes()
+
+        def child():
+            import threading
+
+            os.setpgid(0, 0)
+            # a process group of its own is not the terminal's foreground one: with ``stty tostop`` a write to
+            # the terminal (a library's warning) would stop it; ignoring SIGTTOU lets the write through
+            if hasattr(signal, "SIGTTOU"):
+                signal.signal(signal.SIGTTOU, signal.SIG_IGN)
+            os.close(req_w), os.close(rep_r)
+            box: list[bytes] = []
+            reader = threading.Thread(target=lambda: box.append(_read_frame(req_r)), name="camcam-prepared-job",
+                                      daemon=True)
+            reader.start()
+            loaded = _payload(preload, self._modules, {})
+            replies = [loaded if loaded[:1] != _OK else _payload(fn, a, k) for fn, a, k in first]
+            reader.join()  # one thread again: the job may fork
+            os.close(req_r)
+            if box and box[0]:
+                target, args, kwargs = pickle.loads(box[0])
+                replies.append(loaded if loaded[:1] != _OK else _payload(call_target, (target, *args), kwargs))
+            try:
+                for data in replies:
+                    _write_all(rep_w, _FRAME.pack(len(data)) + data)
+            except BrokenPipeError:
+                pass  # the parent is gone or stopped waiting
+            os.close(rep_w)
+
+        self._pid = _fork(child)
+        try:
+            os.setpgid(self._pid, self._pid)  # also here: a kill() before the child ran must reach its group
+        except OSError:
+            pass  # the child did it first (or has ended already)
+        os.close(req_r), os.close(rep_w)
+        self._req_fd, self._rep_fd = req_w, rep_r
+        self._names = [getattr(fn, "__name__", "job") for fn, _, _ in first]
+        self.first = tuple(Pending(lambda k=k: self._reply(k), self.kill) for k in range(len(first)))
+
+    def _reply(self, index: int):
+        """Reply ``index`` (``first``'s in order, then the job's), read off the pipe as far as needed."""
+        if not self._sent:
+            raise ChildError("a prepared child's results come after its job was submitted, or it was closed")
+        what = self._names[index]
+        while len(self._replies) <= index:
+            if self._pid is None:
+                raise ChildError(f"{what} failed: the prepared process was stopped before it replied")
+            body = _read_frame(self._rep_fd)
+            if not body:  # the child ended without it
+                self._reap()
+                raise ChildError(f"{what} failed: the prepared process ended without a result")
+            self._replies.append(body)
+            if len(self._replies) == len(self._names):
+                self._reap()  # every reply is in
+        return _decode(self._replies[index], what)
+
+    def _send(self, frame: bytes, what: str) -> None:
+        self._sent = True
+        try:
+            _write_all(self._req_fd, frame)
+        except BrokenPipeError:
+            raise ChildError(f"{what} failed: the prepared process ended before it took its job") from None
+        finally:
+            os.close(self._req_fd)
+            self._req_fd = None
+
+    def submit(self, target: str, *args, **kwargs) -> Pending | Any:
+        """Run ``target(*args, **kwargs)`` in the child (arguments and result must pickle); returns at once.
+        One job per child."""
+        if self._sent:
+            raise RuntimeError("a prepared child runs one job")
+        if self._pid is None and not hasattr(os, "fork"):
+            self._sent = True
+            return call_target(target, *args, **kwargs)
+        self._names.append(target)
+        index = len(self._names) - 1
+        data = pickle.dumps((target, args, kwargs), protocol=pickle.HIGHEST_PROTOCOL)
+        self._send(_FRAME.pack(len(data)) + data, target)
+        return Pending(lambda: self._reply(index), self.kill)
+
+    def _reap(self) -> None:
+        self._pid = _reap(self._pid, self._req_fd, self._rep_fd)
+        self._req_fd = None
+
+    def kill(self) -> None:
+        """End the child and every child it started at once, and reap it (idempotent)."""
+        if self._pid is None:
+            return
+        try:
+            os.killpg(self._pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        self._reap()
+
+    def close(self) -> None:
+        """No job for the child (an empty frame): ``first``'s results then follow (idempotent)."""
+        if self._sent or self._pid is None:
+            return
+        try:
+            self._send(_FRAME.pack(0), "the prepared process")
+        except ChildError:
+            pass  # the missing replies raise when their results are asked for
+        if not self._names:
+            self._reap()

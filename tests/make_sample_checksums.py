@@ -10,6 +10,18 @@ samples in this fresh process and compares every output file with the record
 subprocess, so a refactoring that changes a byte of a program, drawing, mesh,
 plot, table or report fails there.  The outputs do not depend on the hash seed
 (tests/hostile/test_determinism.py); it is pinned only for the record.
+
+The bytes do depend on the CPU's instruction set: numpy picks its loops for
+sin, cos, exp and the like at import by what the CPU has, and its AVX-512
+loops (X86_V4 and up) round some results differently in the last bit from
+its AVX2 ones (X86_V3), which moves digits of the DXF's exact splines, the
+mesh's float32 vertices and the report's figures (seen on an AMD EPYC with
+AVX-512: 41 files of 21 samples differed, none with AVX-512 disabled).  So
+this script, in both modes, turns numpy's AVX-512 loops off
+(``NPY_DISABLE_CPU_FEATURES``, before numpy is imported; names a CPU or a
+numpy version does not know are ignored), and the record is that of the AVX2
+loops on every machine that has them.  camcam itself uses whatever the CPU
+has: the same spec gives the same bytes on one machine, run after run.
 """
 
 from __future__ import annotations
@@ -18,10 +30,16 @@ import contextlib
 import hashlib
 import io
 import json
+import os
 import sys
 import tempfile
 import tomllib
 from pathlib import Path
+
+# numpy's AVX-512 loops (numpy 2.x's X86_V4 group and its own names, numpy 1.x's names): see the notes above
+AVX512 = ("X86_V4 AVX512_ICL AVX512_SPR AVX512F AVX512CD AVX512_KNL AVX512_KNM AVX512_SKX AVX512_CLX "
+          "AVX512_CNL")
+os.environ["NPY_DISABLE_CPU_FEATURES"] = AVX512  # before anything imports numpy
 
 ROOT = Path(__file__).resolve().parents[1]
 RECORD = ROOT / "tests" / "data" / "sample_checksums.json"

@@ -246,3 +246,129 @@ def test_a_failed_run_leaves_no_child_behind(tmp_path, monkeypatch):
     code = main(["run", "samples/disc-translating-roller.toml", "-o", str(tmp_path / "out")])
     assert code == 1
     assert _children() <= before  # the plot server, the model child and the NC children were stopped
+
+
+# --- Prepared: imports and first jobs at once, one job later, which may fork ------------------------------------
+
+
+def _forks_and_adds(a, b):
+    """A job that starts a child of its own (as the run's drawing job starts the material check)."""
+    child = later(np.add, a, b)
+    return resolve(child), os.getpid()
+
+
+@needs_fork
+def test_prepared_first_jobs_then_the_job_which_may_fork():
+    from camcam.forked import Prepared
+
+    p = Prepared(["fractions"], first=[(np.arange, (4,), {}), (os.getpid, (), {})])
+    job = p.submit(f"{__name__}:_forks_and_adds", np.ones(3), 2.0)
+    total, where = resolve(job)
+    assert np.array_equal(total, np.full(3, 3.0))
+    assert np.array_equal(resolve(p.first[0]), np.arange(4))
+    assert where == resolve(p.first[1]) != os.getpid()  # the job ran in the prepared child, not here
+
+
+@needs_fork
+def test_prepared_takes_a_big_job_while_it_imports_and_the_parent_goes_on():
+    # the job's arguments (a pickled cam and program, up to about a megabyte) are far larger than a pipe;
+    # the child's first job holds it at a gate, so only its reader thread can take them: submit returns
+    from camcam.forked import Prepared
+
+    gate_r, gate_w = os.pipe()
+    try:
+        p = Prepared(first=[(_wait_for_gate, (gate_r,), {})])
+        job = p.submit(f"{__name__}:_size", b"x" * 5_000_000)  # returns: the reader took it all
+        os.write(gate_w, b"g")
+        assert resolve(job) == 5_000_000 and resolve(p.first[0]) == b"g"
+    finally:
+        for fd in (gate_r, gate_w):
+            os.close(fd)
+
+
+@needs_fork
+def test_prepared_failures_are_reported_on_their_jobs():
+    from camcam.forked import Prepared
+
+    p = Prepared(first=[(_boom, ("first",), {})])
+    job = p.submit(f"{__name__}:_boom", "the job")
+    with pytest.raises(ValueError, match="the job"):
+        resolve(job)
+    with pytest.raises(ValueError, match="first"):
+        resolve(p.first[0])
+    # a module that does not import fails every job, with the import's own error
+    p = Prepared(["camcam.no_such_module"], first=[(sum, ([1],), {})])
+    job = p.submit("operator:add", 1, 2)
+    with pytest.raises(ModuleNotFoundError, match="camcam.no_such_module"):
+        resolve(job)
+    with pytest.raises(ModuleNotFoundError):
+        resolve(p.first[0])
+
+
+@needs_fork
+def test_prepared_closed_without_a_job_gives_its_first_results():
+    from camcam.forked import Prepared
+
+    p = Prepared(first=[(sum, ([1, 2],), {})])
+    with pytest.raises(ChildError, match="after its job was submitted"):
+        resolve(p.first[0])  # would wait for a job that never comes: refused instead
+    p = Prepared(first=[(sum, ([1, 2],), {})])
+    p.close()
+    assert resolve(p.first[0]) == 3
+
+
+def _sleeping_grandchild(fd):
+    """Start a child that reports its pid and then sleeps; wait for it (the prepared child never ends alone)."""
+    child = later(_report_and_sleep, fd)
+    return resolve(child)
+
+
+def _report_and_sleep(fd):
+    import time
+
+    os.write(fd, str(os.getpid()).encode() + b"\n")
+    time.sleep(600)  # killed long before: the test ends it with the prepared child's group
+
+
+@needs_fork
+@needs_proc
+def test_prepared_kill_ends_the_children_its_job_started():
+    from camcam.forked import Prepared
+
+    before = _children()
+    pid_r, pid_w = os.pipe()
+    try:
+        p = Prepared()
+        job = p.submit(f"{__name__}:_sleeping_grandchild", pid_w)
+        grandchild = int(os.read(pid_r, 32).split(b"\n")[0])  # blocks until the grandchild runs
+        p.kill()
+        with pytest.raises(ChildError):
+            resolve(job)
+    finally:
+        os.close(pid_r), os.close(pid_w)
+    assert _children() <= before
+    # the grandchild was sent SIGKILL with the group; it dies when the kernel next runs it, so it is waited
+    # for (up to MARK_WAIT_S: only a grandchild that was never killed takes that long) and must be gone
+    # or a zombie (of init's), never still running
+    import time
+
+    def alive() -> bool:
+        try:
+            return Path(f"/proc/{grandchild}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"
+        except OSError:
+            return False
+
+    deadline = time.monotonic() + MARK_WAIT_S
+    while alive() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert not alive()
+
+
+def test_prepared_without_fork_runs_in_process(monkeypatch):
+    from camcam.forked import Prepared
+
+    monkeypatch.delattr(os, "fork")
+    p = Prepared(["fractions"], first=[(sum, ([1, 2],), {})])
+    assert resolve(p.first[0]) == 3
+    assert resolve(p.submit("operator:mul", 3, 4)) == 12
+    p.kill()

@@ -20,29 +20,27 @@ from camcam.cli.output import add_output_arguments, output_set, publish, to_json
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
 
-__all__ = ["register", "nc_step", "model", "drawing", "nc_figures", "job_verdict", "design_and_drawing_checks", "job",
+__all__ = ["register", "nc_step", "model", "drawing", "drawing_and_check", "nc_figures", "job_verdict", "design_and_drawing_checks", "job",
            "plot_server", "engagement_phrase", "DEFAULT_SPEC"]
 
 #: The bundled job `camcam run` runs without a spec.
 DEFAULT_SPEC = "default.toml"
 
 
-def nc_step(spec, built, later):
-    """Start the NC step: the program (:func:`camcam.nc.machine_program`), then its material check
-    (:func:`camcam.nc.material_check`) in a child process started by ``later`` (the run's
-    :meth:`camcam.forked.ChildGroup.later`); (result without the check, pending check or None)."""
-    from camcam.nc import machine_program, material_check
+def nc_step(spec, built):
+    """The NC step's program (:func:`camcam.nc.machine_program`), without its material check (see
+    :func:`drawing_and_check`)."""
+    from camcam.nc import machine_program
 
     # work that splits into independent parts (a closed contour's further arc starts, a barrel cam's passes
     # and 3-D measurement) is shared with a second process: the same results
-    result = machine_program(built, spec.machining, spec.name, spec.stock, workers=min(2, os.cpu_count() or 1))
-    check = later(material_check, result, built, spec.machining) if result.blank is not None else None
-    return result, check
+    return machine_program(built, spec.machining, spec.name, spec.stock, workers=min(2, os.cpu_count() or 1))
 
 
 def model(built, name: str) -> tuple[dict, dict]:
     """The STL and the mesh's figures: ({file: bytes}, figures).  The mesh is made and trimesh
-    imported here: `camcam run` calls this in a child process while the NC step runs."""
+    imported here: `camcam run` calls this in a child process while the NC step runs (the drawing's
+    prepared child when there is a program, see :func:`drawing_and_check`)."""
     from camcam.export.cam_report import mesh_figures
     from camcam.export.stl import program_frame, stl_bytes
 
@@ -51,12 +49,27 @@ def model(built, name: str) -> tuple[dict, dict]:
 
 def drawing(built, machining) -> tuple[dict, float | None]:
     """The program and the DXF with the part outline: ({file: bytes}, the part outline's deviation
-    from the design or None).  ezdxf is imported here: `camcam run` calls this in its drawing server
-    (started, and ezdxf imported, while the NC step runs), beside the material check's child."""
+    from the design or None).  ezdxf is imported here."""
     from camcam.export.nc import nc_files, part_of
 
     part = part_of(built, machining)
     return nc_files(built, machining, part), part.deviation_mm
+
+
+def drawing_and_check(built, machining, machining_spec):
+    """:func:`drawing` and the program's material check (:func:`camcam.nc.material_check`, None for a job
+    without a blank): (files, part outline deviation, removal report or None).
+
+    `camcam run` calls this in a prepared child (:class:`camcam.forked.Prepared`) that imported ezdxf and
+    scipy while the NC step ran: the check runs in a child of its own (which inherits them) beside the
+    drawing, so the run's own process never imports scipy."""
+    from camcam.forked import ChildGroup, resolve
+    from camcam.nc import material_check
+
+    with ChildGroup() as group:
+        check = group.later(material_check, machining, built, machining_spec) if machining.blank is not None else None
+        files, part_deviation = drawing(built, machining)
+        return files, part_deviation, resolve(check)
 
 
 def nc_figures(report: dict, result, part_deviation_mm: float | None) -> None:
@@ -118,7 +131,7 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
     (:func:`plot_server`) already started, which this call closes; without one, the call starts its own.
     """
     from camcam.cli.motion import SVAJ_PLOT, motion_outputs, motion_summary, svaj_title
-    from camcam.forked import ChildGroup, Server, resolve
+    from camcam.forked import ChildGroup, Prepared, resolve
 
     verdict = Verdict(())
     # one child process draws every plot, and only it imports matplotlib (camcam.forked.Server): the
@@ -147,17 +160,20 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
         with progress.step("motion table and plot"):
             motion_outputs(out, spec.name, program, 0.5, svaj)
         summary = {"name": spec.name, "motion": motion_summary(program)}
-        model_files = children.later(model, built, spec.name)  # the mesh and STL need no NC: made beside it
         if spec.machining is not None:
-            # the drawing's child starts now and imports ezdxf and scipy.interpolate (about a second)
-            # beside the NC step; the program goes to it pickled once it is printed
-            drawings = Server([(PRELOAD, DRAWING_MODULES, {})])
+            # the drawing's child starts now, imports ezdxf and scipy (about a second) and makes the mesh and
+            # STL (trimesh, which imports scipy too: once for both) beside the NC step; the program goes to it
+            # pickled once it is printed, and it writes the drawing while its own children run the material check
+            drawings = Prepared(DRAWING_MODULES, first=[(model, (built, spec.name), {})])
+            model_files = drawings.first[0]
+        else:
+            model_files = children.later(model, built, spec.name)  # the mesh and STL need no NC: made beside it
         report = cam_report(built, mesh=False)  # its "mesh" comes with the STL
-        machining = check = drawn = None
+        machining = drawn = None
         if spec.machining is not None:
             with progress.step("NC second fitting and program"):
-                machining, check = nc_step(spec, built, children.later)
-            drawn = drawings.submit(DRAWING, built, machining)  # beside the material check
+                machining = nc_step(spec, built)
+            drawn = drawings.submit(DRAWING, built, machining, spec.machining)
         with progress.step("report analysis"):
             from camcam.report.job import job_report, report_analysis
 
@@ -167,12 +183,11 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
             if machining is not None:
                 from camcam.nc import with_removal
 
-                nc, part_deviation = resolve(drawn)
-                drawings.close()
+                nc, part_deviation, removal = resolve(drawn)
                 for name, data in nc.items():
                     out.add(name, data)
-                if check is not None:
-                    machining = with_removal(machining, resolve(check))
+                if removal is not None:
+                    machining = with_removal(machining, removal)
                 nc_figures(report, machining, part_deviation)
         verdict = job_verdict(machining, spec.machining)
         verdict = Verdict(verdict.checks + design_and_drawing_checks(
@@ -212,10 +227,11 @@ def plot_server():
 PRELOAD = "camcam.forked:preload"
 #: What the plot server imports before its first plot: matplotlib comes with them.
 PLOT_MODULES = ("camcam.plots.svaj", "camcam.plots.profile")
-#: What the drawing's child imports while the NC step runs: ezdxf and scipy.interpolate come with it.
-DRAWING_MODULES = ("camcam.export.nc",)
-#: The drawing's function (run in its child, on the pickled cam and program).
-DRAWING = "camcam.cli.run:drawing"
+#: What the drawing's child imports while the NC step runs: ezdxf, scipy.interpolate and the material
+#: check's scipy.spatial come with them.
+DRAWING_MODULES = ("camcam.export.nc", "camcam.nc.removal", "scipy.spatial")
+#: The drawing's and material check's function (run in its child, on the pickled cam and program).
+DRAWING = "camcam.cli.run:drawing_and_check"
 
 
 #: The cam profile plot's function (drawn in the plot server, camcam.forked).
