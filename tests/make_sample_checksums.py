@@ -17,7 +17,7 @@ loops (X86_V4 and up) round some results differently in the last bit from
 its AVX2 ones (X86_V3), which moves digits of the DXF's exact splines, the
 mesh's float32 vertices and the report's figures (seen on an AMD EPYC with
 AVX-512: 41 files of 21 samples differed, none with AVX-512 disabled).  So
-this script, in both modes, turns numpy's AVX-512 loops off
+this script, in both modes (run as a script), turns numpy's AVX-512 loops off
 (``NPY_DISABLE_CPU_FEATURES``, before numpy is imported; names a CPU or a
 numpy version does not know are ignored), and the record is that of the AVX2
 loops on every machine that has them.  camcam itself uses whatever the CPU
@@ -39,7 +39,6 @@ from pathlib import Path
 # numpy's AVX-512 loops (numpy 2.x's X86_V4 group and its own names, numpy 1.x's names): see the notes above
 AVX512 = ("X86_V4 AVX512_ICL AVX512_SPR AVX512F AVX512CD AVX512_KNL AVX512_KNM AVX512_SKX AVX512_CLX "
           "AVX512_CNL")
-os.environ["NPY_DISABLE_CPU_FEATURES"] = AVX512  # before anything imports numpy
 
 ROOT = Path(__file__).resolve().parents[1]
 RECORD = ROOT / "tests" / "data" / "sample_checksums.json"
@@ -96,4 +95,7 @@ def main() -> int:
 
 
 if __name__ == "__main__":
+    # before anything imports numpy; only when run as a script: pytest imports this module for its doctests,
+    # and the variable would then reach every process the test session starts (Dask's workers among them)
+    os.environ["NPY_DISABLE_CPU_FEATURES"] = AVX512
     raise SystemExit(main())

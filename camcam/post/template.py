@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from camcam.post.text import encode_comment, program_name
 
 __all__ = ["FIELDS", "Template", "parse_template", "MAX_WIDTH", "TemplateError", "check_gcode_words",
-           "SAMPLE_VALUES"]
+           "check_klartext_blocks", "SAMPLE_VALUES"]
 
 #: Field name → kind: ``comment`` (free text, only inside a comment), ``name`` (a program
 #: name), ``word`` (a word camcam checked, e.g. the units word), ``int`` (a whole number).
@@ -45,6 +45,16 @@ SAMPLE_VALUES = {"title": "t", "name": "camcam", "units": "G21", "tool": 1, "spi
 #: them or read them as something a header line must not do.
 _GCODE_WORD = r"(?:[A-Z][+-]?[0-9]+\.?[0-9]*|[A-Z]{2,}[A-Z0-9_]*)"
 _GCODE_LINE = re.compile(rf"{_GCODE_WORD}(?: {_GCODE_WORD})*|%|")
+
+#: A Heidenhain conversational (Klartext) block a post's own lines may print: program begin and end, blank
+#: form, tool call or definition, stop, M functions, cycle definition (and its ``~`` continuation) or call,
+#: a Q parameter, a straight-line move; or nothing (a comment line).  The TNC refuses any other text, and a
+#: line of digits alone (``0``) would read as a bare block number.
+_KLARTEXT_LINE = re.compile(
+    r"(?:BEGIN|END) PGM [A-Za-z0-9_-]+ MM|BLK FORM 0\.[12](?: [XYZ])?(?: [XYZ][+-]?[0-9.]+)*|"
+    r"TOOL (?:CALL|DEF) [0-9]+(?: [XYZ])?(?: [SFDLR][+-]?[0-9.]+)*|STOP(?: M[0-9]+)*|M[0-9]+(?: M[0-9]+)*|"
+    r"CYCL DEF [0-9.]+(?: [A-Z]+)*(?: ~)?|CYCL CALL(?: M[0-9]+)*|Q[0-9]+=[+-]?[0-9.]+|"
+    r"L(?: [XYZABC][+-][0-9.]+)* R[0LR](?: F(?:MAX|[0-9.]+))?(?: M[0-9]+)*|")
 
 #: What a comment looks like on a rendered line, per comment style (templates are checked
 #: closed and unnested before they are rendered).
@@ -119,6 +129,25 @@ def check_gcode_words(template: Template, values: dict = SAMPLE_VALUES) -> None:
     if not _GCODE_LINE.fullmatch(code):
         raise TemplateError(f"{code!r} is not G-code words (expected words such as G21 or T1 separated by one "
                             "space, or %)")
+
+
+def check_klartext_blocks(template: Template, values: dict = SAMPLE_VALUES) -> None:
+    """Raise :class:`TemplateError` unless ``template``'s code text, rendered with ``values``, is one
+    Heidenhain conversational block of the kinds a post's own lines print (see ``_KLARTEXT_LINE``).
+
+    Examples
+    --------
+    >>> check_klartext_blocks(parse_template("TOOL CALL {tool} Z S{spindle} ; {title}", "semicolon"))
+    >>> check_klartext_blocks(parse_template("0", "semicolon"))
+    Traceback (most recent call last):
+    ...
+    camcam.post.template.TemplateError: '0' is not a Klartext block (expected e.g. BEGIN PGM, TOOL CALL, L ... R0 FMAX, M30, STOP, CYCL DEF, Q1=+1 or END PGM)
+    """
+    text = template.render(values)
+    code = _COMMENT[template.comment].sub("", text).strip()
+    if not _KLARTEXT_LINE.fullmatch(code):
+        raise TemplateError(f"{code!r} is not a Klartext block (expected e.g. BEGIN PGM, TOOL CALL, L ... R0 FMAX, "
+                            "M30, STOP, CYCL DEF, Q1=+1 or END PGM)")
 
 
 def _bad_char(text: str) -> str | None:

@@ -55,6 +55,23 @@ def test_user_post_by_path_and_validation(tmp_path):
         load_post(str(tmp_path / "missing.toml"))
 
 
+@pytest.mark.parametrize("line", ["0", "G21", "TOOL CALL", "L X+10 FMAX", "end pgm cam mm"])
+def test_a_heidenhain_post_line_must_be_a_klartext_block(tmp_path, line):
+    # regression (tests/cli/test_bad_input_sweep.py found it): a Heidenhain post's footer ["0"] loaded, and
+    # the program ended with the block "10 0", which the TNC refuses; G-code posts had their words checked,
+    # Heidenhain's lines were not checked at all
+    text = (load_post.__globals__["_post_dir"]() / "heidenhain.toml").read_text()
+    bad = tmp_path / "tnc.toml"
+    bad.write_text(text.replace('footer = ["STOP M5", "END PGM {name} MM"]', f'footer = ["STOP M5", "{line}"]'))
+    with pytest.raises(InputError, match=rf"^post tnc: footer\[1\]: '{re.escape(line)}' is not a Klartext block"):
+        load_post(str(bad))
+    # what a user's TNC post prints besides camcam's own lines loads
+    bad.write_text(text.replace('footer = ["STOP M5", "END PGM {name} MM"]',
+                                'footer = ["L Z+100 R0 FMAX M5", "M30 ; end", "BLK FORM 0.1 Z X-50 Y-50 Z-20", '
+                                '"CYCL CALL", "Q1=+5", "END PGM {name} MM"]'))
+    assert load_post(str(bad)).footer[-1] == "END PGM {name} MM"
+
+
 @pytest.mark.parametrize("name", ["linuxcnc", "fanuc", "haas", "grbl", "sinumerik", "heidenhain"])
 def test_deterministic_and_dialect(name):
     tp = contour_toolpath(CIRCLE, CUT, "demo")
