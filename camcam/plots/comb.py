@@ -6,7 +6,7 @@ import numpy as np
 
 from camcam.geometry.curve import PlanarCurve, curvature, left_normal
 from camcam.lifttable.curvature import lift_curvature
-from camcam.plots.render import plt, png_bytes
+from camcam.plots.render import png_bytes, subplots
 
 __all__ = ["lift_comb_png", "profile_comb_png"]
 
@@ -27,7 +27,7 @@ def lift_comb_png(before, after, x0: float, x1: float, unit: str = "mm", title: 
     span = max(np.ptp(yb), 1e-9)
     sb = 0.35 * span / max(np.max(np.abs(kb)), 1e-300)
     sa = 0.35 * span / max(np.max(np.abs(ka)), 1e-300)
-    fig, axes = plt.subplots(3, 1, figsize=(9, 9), sharex=True)
+    fig, axes = subplots(3, 1, figsize=(9, 9), sharex=True)
     _comb(axes[0], x, yb, kb, sb, "C3")
     axes[0].set_title(f"before fairing: max |κ| {np.max(np.abs(kb)):.3g}")
     _comb(axes[1], x, ya, ka, sa, "C2")
@@ -56,7 +56,7 @@ def profile_comb_png(curve: PlanarCurve, title: str = "", per_piece: int = 32) -
     size = max(np.ptp(p[:, 0]), np.ptp(p[:, 1]), 1e-9)
     scale = 0.15 * size / max(np.max(np.abs(k)), 1e-300)
     tips = p - scale * k[:, None] * n
-    fig, ax = plt.subplots(figsize=(7, 7))
+    fig, ax = subplots(figsize=(7, 7))
     ax.plot(*p.T, color="k", lw=1.2)
     for a, c in zip(p, tips):
         ax.plot([a[0], c[0]], [a[1], c[1]], color="C0", lw=0.4)

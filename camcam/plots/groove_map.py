@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from camcam.plots.render import plt, png_bytes
+from camcam.plots.render import png_bytes, subplots
 
 __all__ = ["groove_map_png"]
 
@@ -18,7 +18,7 @@ def groove_map_png(groove, tolerance_mm: float, title: str) -> bytes:
     dev = np.asarray(groove.deviation_mm)
     finite = np.abs(dev[np.isfinite(dev)])
     span = max(2.0 * tolerance_mm, float(np.percentile(finite, 99.5)) if finite.size else tolerance_mm)
-    fig, axes = plt.subplots(2, 1, figsize=(8.5, 5.4), sharex=True)
+    fig, axes = subplots(2, 1, figsize=(8.5, 5.4), sharex=True)
     ang, rad = np.asarray(groove.cam_angle_deg), np.asarray(groove.radii_mm)
     mesh = None
     for w, ax in zip(groove.walls, axes):

@@ -10,7 +10,7 @@ import numpy as np
 from camcam.geometry.analysis import convex_curvature, flat_radius
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.cylindrical import CylindricalCam
-from camcam.plots.render import plt, png_bytes
+from camcam.plots.render import Circle, figure, png_bytes
 
 __all__ = ["cam_png", "LAYOUT"]
 
@@ -33,7 +33,7 @@ def _draw_disc(ax, cam) -> None:
     for k, th in enumerate(np.radians([0.0, 90.0, 180.0, 270.0])):
         if cam.pitch is not None:
             c = cam.pitch.evaluate([th])[0]
-            ax.add_patch(plt.Circle(c, cam.roller_radius, fill=False, color="C2", lw=0.8, label="roller" if k == 0 else None))
+            ax.add_patch(Circle(c, cam.roller_radius, fill=False, color="C2", lw=0.8, label="roller" if k == 0 else None))
         else:
             q = cam.profile.evaluate([th])[0]
             n = cam.normal([th])[0]
@@ -60,7 +60,7 @@ def _draw_developed(ax, cam: CylindricalCam) -> None:
 
 def cam_png(built: BuiltCam, title: str = "") -> bytes:
     cam, an = built.cam, built.analysis
-    fig = plt.figure(figsize=(11, 6))
+    fig = figure(figsize=(11, 6))
     ax0 = fig.add_subplot(1, 2, 1)
     ax1, ax2 = fig.add_subplot(2, 2, 2), fig.add_subplot(2, 2, 4)
     cyl = isinstance(cam, CylindricalCam)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from camcam.plots.render import plt, png_bytes
+from camcam.plots.render import png_bytes, subplots
 
 __all__ = ["deviation_png", "fitted_motion_png", "DEVIATION_LAYOUT", "FITTED_LAYOUT"]
 
@@ -16,7 +16,7 @@ FITTED_LAYOUT = dict(left=0.14, right=0.965, bottom=0.07, top=0.94, hspace=0.3)
 
 def deviation_png(angles_deg: np.ndarray, deviation_mm: np.ndarray, tolerance_mm: float, title: str) -> bytes:
     """Signed deviation against cam angle with the ±tolerance band."""
-    fig, ax = plt.subplots(figsize=(8, 3.2))
+    fig, ax = subplots(figsize=(8, 3.2))
     ax.axhspan(-tolerance_mm, tolerance_mm, color="C2", alpha=0.12, label=f"±{tolerance_mm:g} mm tolerance")
     ax.plot(angles_deg, deviation_mm, color="C0", lw=1.0, label="printed path − exact")
     ax.axhline(0, color="0.3", lw=0.6)
@@ -38,7 +38,7 @@ def fitted_motion_png(angles_deg: np.ndarray, design: np.ndarray, fitted: np.nda
     ``design`` and ``fitted`` are (4, n) over ``angles_deg`` (n,), in ``units`` (4 strings).
     """
     names = ["lift", "velocity", "acceleration", "jerk"]
-    fig, axes = plt.subplots(4, 1, figsize=(8, 8.5), sharex=True)
+    fig, axes = subplots(4, 1, figsize=(8, 8.5), sharex=True)
     for k, ax in enumerate(axes):
         ax.plot(angles_deg, design[k], color="0.2", lw=1.6, label="design")
         style = dict(ls="none", marker=".", ms=2.5) if k == 3 else dict(lw=0.9)

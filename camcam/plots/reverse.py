@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from camcam.plots.render import plt, png_bytes
+from camcam.plots.render import png_bytes, subplots
 
 __all__ = ["reverse_png"]
 
 
 def reverse_png(angles_deg, recovered, unit: str, point_angles_deg, point_lift, design=None, title: str = "") -> bytes:
     """Three stacked axes; ``recovered`` and ``design`` are (n, 3) columns (lift, per-degree velocity, acceleration)."""
-    fig, axes = plt.subplots(3, 1, figsize=(8, 7.5), sharex=True)
+    fig, axes = subplots(3, 1, figsize=(8, 7.5), sharex=True)
     units = [unit, f"{unit}/deg", f"{unit}/deg²"]
     names = ["lift", "velocity", "acceleration"]
     for k, ax in enumerate(axes):

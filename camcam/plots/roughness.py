@@ -3,14 +3,14 @@
 from __future__ import annotations
 
 from camcam.lifttable.roughness import Roughness
-from camcam.plots.render import plt, png_bytes
+from camcam.plots.render import png_bytes, subplots
 
 __all__ = ["roughness_png"]
 
 
 def roughness_png(before: Roughness, after: Roughness, bad_deg=(), unit: str = "mm", title: str = "") -> bytes:
     """First and second difference quotients of the raw and the faired table; bad points marked."""
-    fig, axes = plt.subplots(2, 1, figsize=(9, 6.5), sharex=True)
+    fig, axes = subplots(2, 1, figsize=(9, 6.5), sharex=True)
     for ax, attr, lab in ((axes[0], "first", f"{unit}/deg"), (axes[1], "second", f"{unit}/deg²")):
         ax.plot(before.angles_deg, getattr(before, attr), color="C3", lw=0.7, label="table as read")
         ax.plot(after.angles_deg, getattr(after, attr), color="C2", lw=1.3, label="faired")

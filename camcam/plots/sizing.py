@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from camcam.plots.render import plt, png_bytes
+from camcam.plots.render import Line2D, Rectangle, png_bytes, subplots
 
 __all__ = ["sizing_png", "main_axes", "anchor_design"]
 
@@ -54,7 +54,7 @@ def sizing_png(result, name: str) -> bytes:
     lim_pa = result.limits.max_pressure_angle_deg
     params = result.grid.design(anchor)[0]
     lim_rho = float(result.limits.curvature_limit(params.get("roller_radius", 0.0)))
-    fig, ax = plt.subplots(figsize=(8.4, 6.0))
+    fig, ax = subplots(figsize=(8.4, 6.0))
     star = dict(marker="*", s=260, color="#d62728", edgecolor="black", zorder=5, label="best design")
     if len(axes) >= 2:
         ia, ib = axes[0], axes[1]
@@ -81,11 +81,11 @@ def sizing_png(result, name: str) -> bytes:
             ax.scatter([params[result.grid.axes[ia][0]]], [params[result.grid.axes[ib][0]]], **star)
         ax.set_xlabel(LABELS.get(result.grid.axes[ia][0], result.grid.axes[ia][0]))
         ax.set_ylabel(LABELS.get(result.grid.axes[ib][0], result.grid.axes[ib][0]))
-        handles = [plt.Line2D([], [], color="#1f5fa8", lw=1.2, label="max pressure angle (°)"),
-                   plt.Line2D([], [], color="#e07b00", lw=1.2, ls="--", label="min radius of curvature (mm)"),
-                   plt.Rectangle((0, 0), 1, 1, color="#b7e4c7", label="feasible")]
+        handles = [Line2D([], [], color="#1f5fa8", lw=1.2, label="max pressure angle (°)"),
+                   Line2D([], [], color="#e07b00", lw=1.2, ls="--", label="min radius of curvature (mm)"),
+                   Rectangle((0, 0), 1, 1, color="#b7e4c7", label="feasible")]
         if result.best is not None:
-            handles.append(plt.Line2D([], [], marker="*", color="#d62728", ls="", markersize=14, label="best design"))
+            handles.append(Line2D([], [], marker="*", color="#d62728", ls="", markersize=14, label="best design"))
         ax.legend(handles=handles, loc="upper right", fontsize=8, framealpha=0.9)
     elif len(axes) == 1:
         ia = axes[0]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from camcam.motion.program import MotionProgram
-from camcam.plots.render import plt, png_bytes
+from camcam.plots.render import png_bytes, subplots
 
 __all__ = ["svaj_png", "LAYOUT"]
 
@@ -15,7 +15,7 @@ LAYOUT = dict(left=0.14, right=0.965, bottom=0.07, top=0.945, hspace=0.15)
 
 def svaj_png(program: MotionProgram, title: str = "", points_per_degree: int = 4) -> bytes:
     """Four stacked axes with units; segment boundaries dashed; jumps drawn as jumps."""
-    fig, axes = plt.subplots(4, 1, figsize=(8, 8.5), sharex=True)
+    fig, axes = subplots(4, 1, figsize=(8, 8.5), sharex=True)
     names = ["displacement", "velocity", "acceleration", "jerk"]
     for seg in program.segments:
         n = max(2, int((seg.end_deg - seg.start_deg) * points_per_degree) + 1)

@@ -5,14 +5,14 @@ import subprocess
 
 import pytest
 
-from camcam.plots.render import plt, png_bytes
+from camcam.plots.render import png_bytes, subplots
 from camcam.report.html import DataTable, Figure, KeyValues, Paragraph, Section, render_html
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 
 
 def sample_page() -> str:
-    fig, ax = plt.subplots(figsize=(4, 2))
+    fig, ax = subplots(figsize=(4, 2))
     ax.plot([0, 1, 2], [0, 1, 0])
     return render_html(
         "demo cam",
