@@ -43,16 +43,32 @@ class ChebyshevCurve:
             raise ValueError(f"order must be 0..3, got {order!r}")
         t = np.atleast_1d(np.asarray(t, float))
         idx = np.clip(np.searchsorted(self.knots, t, side="right") - 1, 0, len(self.series) - 1)
-        lo, hi = self.knots[idx], self.knots[idx + 1]
+        table = self._tables[order]  # (n+1, n_sub, 2)
+        if t.size and (idx == idx[0]).all():
+            # the usual call (a fitter's chord samples): one sub-interval, whose terms broadcast over the
+            # points; gathering a copy of them per point cost about a third of the call
+            j = int(idx[0])
+            lo, hi = self.knots[j], self.knots[j + 1]
+            c = table[:, j]  # (n+1, 2)
+        else:
+            lo, hi = self.knots[idx], self.knots[idx + 1]
+            c = table[:, idx]  # (n+1, m, 2): every sub-interval at once, one term per contiguous slab
         u = ((2.0 * t - lo - hi) / (hi - lo))[:, None]
-        c = self._tables[order][:, idx]  # (n+1, m, 2): every sub-interval at once, one term per contiguous slab
-        # Clenshaw's recurrence for Σ c_k T_k(u), vectorised over the points
+        # Clenshaw's recurrence for Σ c_k T_k(u), vectorised over the points, in place: each step is
+        # (c_k + 2u·b1) − b2 as written out, the same operations in the same order, so the same bits
         u2 = 2.0 * u
         b1 = np.zeros((t.size, 2))
         b2 = np.zeros((t.size, 2))
+        step = np.empty((t.size, 2))
         for k in range(c.shape[0] - 1, 0, -1):
-            b1, b2 = c[k] + u2 * b1 - b2, b1
-        return c[0] + u * b1 - b2
+            np.multiply(u2, b1, out=step)
+            step += c[k]
+            step -= b2
+            b1, b2, step = step, b1, b2
+        out = u * b1
+        out += c[0]
+        out -= b2
+        return out
 
     @property
     def _tables(self) -> tuple:
