@@ -63,10 +63,15 @@ def lines_fit(piece, t0: float, ts, tol: float) -> np.ndarray:
     ts = np.atleast_1d(np.asarray(ts, float))
     k = len(ts)
     q0 = piece.point(t0)[0]
-    # one evaluation for both sample sets (the curve is evaluated point by point, so the values are those
-    # of separate calls); a linspace ends exactly at its stop, so the chords' ends are cp[:, -1]
-    both = piece.point(np.concatenate([np.linspace(t0, ts, 41, axis=1).ravel(), np.linspace(t0, ts, 81, axis=1).ravel()]))
-    cp, dense = both[:41 * k].reshape(k, 41, 2), both[41 * k:].reshape(k, 81, 2)
+    # the 41 chord-test samples are every other one of the 81 polyline samples, to the bit: linspace's
+    # i-th value is i·(Δ/div) + t0, and Δ/80 is Δ/40 halved exactly (unless it is subnormal: a span under
+    # 1e-290 takes the two sets apart), so 2i·(Δ/80) and i·(Δ/40) are the one product rounded once
+    # (tests/toolpath/test_fitcore.py); the curve is evaluated point by point, so one evaluation of the 81
+    # gives both sets, as two calls would.  A linspace ends exactly at its stop: the chords' ends are cp[:, -1]
+    dense = piece.point(np.linspace(t0, ts, 81, axis=1).ravel()).reshape(k, 81, 2)
+    cp = dense[:, ::2]
+    if np.any(np.abs(ts - t0) < 1e-290):
+        cp = piece.point(np.linspace(t0, ts, 41, axis=1).ravel()).reshape(k, 41, 2)
     q1 = cp[:, -1]
     d = q1 - q0
     L2 = np.einsum("kj,kj->k", d, d)
