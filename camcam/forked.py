@@ -43,7 +43,7 @@ from typing import Any, Callable
 
 from camcam.interrupts import SIGNALS, Interrupted
 
-__all__ = ["ChildError", "Pending", "later", "resolve", "ChildGroup", "parallel_map", "Server", "Prepared", "call_target",
+__all__ = ["ChildError", "Pending", "later", "spare", "resolve", "ChildGroup", "parallel_map", "Server", "Prepared", "call_target",
            "preload"]
 
 _OK, _FAILED = b"K", b"E"
@@ -198,6 +198,30 @@ def later(fn: Callable, *args, **kwargs) -> Pending | Any:
         os.waitpid(pid, 0)
 
     return Pending(fetch, cancel)
+
+
+def _niced(niceness: int, fn: Callable, args, kwargs):
+    try:
+        os.nice(niceness)
+    except OSError:
+        pass  # only a priority: the work is the same at any
+    return fn(*args, **kwargs)
+
+
+def spare(fn: Callable, *args, niceness: int = 10, **kwargs) -> Pending:
+    """``fn(*args, **kwargs)`` started at once in a forked child of lower priority (``os.nice(niceness)``): work
+    that may turn out not to be needed, done on a core nothing else wants meanwhile.  :meth:`Pending.cancel`
+    drops it; without fork it runs in process when its result is first asked for (never, if cancelled).
+
+    Examples
+    --------
+    >>> job = spare(sum, [2, 3])
+    >>> resolve(job)
+    5
+    """
+    if not hasattr(os, "fork"):
+        return Pending(lambda: fn(*args, **kwargs))
+    return later(_niced, niceness, fn, args, kwargs)
 
 
 class ChildGroup:

@@ -2,6 +2,7 @@
 
 import functools
 import math
+import os
 from dataclasses import replace
 from pathlib import Path
 
@@ -285,3 +286,30 @@ def test_further_starts_in_two_processes_give_the_same_spline():
                          closed=True, budget=budget, workers=2)
     # the same marches in the same order of choice: the very same elements (no tolerance)
     assert one.elements == two.elements
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="without fork the second start is marched in process")
+def test_the_second_start_beside_the_first_gives_the_same_spline():
+    """With two workers the second start is marched beside the first (camcam.forked.spare) and dropped when
+    the first meets the goal: the same spline as with one worker, for a goal the first start meets, one only
+    the second meets, and one none meets; no child is left behind."""
+    import dataclasses
+
+    from camcam.toolpath.arcspline import SplineBudget
+    from tests.test_forked import _children
+
+    curve = polar_cam()
+    q = Quantizer(4)
+    kw = dict(quantizer=q, max_sweep=math.radians(120), sag=5e-6, closed=True)
+    shifts = (0.12, 0.0, -0.12)  # the first start the worst (17 arcs against 16 when this was written)
+    base = SplineBudget(start_shifts=shifts, stretches=1, wide_tries=0, tries=3)
+    alone = [len(fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=dataclasses.replace(base, start_shifts=(s,),
+                                tries=1), lower_bound=1.0, **kw).elements) for s in shifts]
+    assert alone[1] < alone[0], alone  # else "only the second meets it" could not be told from "the first does"
+    before = _children()
+    for goal in (alone[0], alone[1], 0):  # met by the first start; by the second only; by none
+        budget = dataclasses.replace(base, goal=(0.0, float(goal)))
+        one = fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=budget, lower_bound=1.0, workers=1, **kw)
+        two = fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=budget, lower_bound=1.0, workers=2, **kw)
+        assert one.elements == two.elements, goal  # no tolerance: the same marches chosen in the same order
+    assert _children() <= before
