@@ -260,17 +260,33 @@ class ChildGroup:
         return False
 
 
-def _share(fn: Callable, items: list) -> list:
-    return [fn(x) for x in items]
+_TICKET = struct.Struct("<I")  # one item's index on a parallel_map's ticket pipe
+#: The most items a ticket pipe holds without a reader (64 KiB, a pipe's least size, of 4-byte tickets).
+_MAX_TICKETS = 65536 // _TICKET.size
+
+
+def _take(fn: Callable, items: list, tickets: int) -> dict:
+    """{index: fn(items[index])} for every ticket this process takes off the pipe ``tickets`` until it is empty.
+
+    The tickets were all written before any process reads, in 4-byte reads of a pipe that holds a multiple
+    of 4 bytes, so each read takes one whole ticket, and each ticket goes to exactly one process."""
+    done = {}
+    while len(ticket := os.read(tickets, _TICKET.size)) == _TICKET.size:
+        i = _TICKET.unpack(ticket)[0]
+        done[i] = fn(items[i])
+    return done
 
 
 def parallel_map(fn: Callable, items, workers: int = 1) -> list:
-    """``[fn(x) for x in items]``, the items dealt round-robin to ``workers`` processes.
+    """``[fn(x) for x in items]``, the items shared by ``workers`` processes as each becomes free.
 
-    The calling process works through its own share while ``workers − 1``
-    forked children work through theirs (they read ``fn`` and the items from
-    the memory they inherited; only their results are pickled back).  Each
-    ``fn(x)`` is the same call as in a plain loop, so the results are the same;
+    The calling process and ``workers − 1`` forked children (which read ``fn``
+    and the items from the memory they inherited; only their results are
+    pickled back) take the items' indices in order off one pipe, the next as
+    each finishes its last: items of unequal cost keep both busy (a barrel
+    cam's passes took 0.81 and 1.10 s dealt round-robin, its radii 0.71 and
+    0.49 s).  Each ``fn(x)`` is the same call as in a plain loop, whichever
+    process makes it, so the results are the same, in the items' order;
     with ``workers`` ≤ 1, one item, or no fork, it is a plain loop.
 
     Examples
@@ -282,13 +298,23 @@ def parallel_map(fn: Callable, items, workers: int = 1) -> list:
     workers = max(1, min(int(workers), len(items)))
     if workers == 1 or not hasattr(os, "fork"):
         return [fn(x) for x in items]
-    with ChildGroup() as group:
-        children = [group.later(_share, fn, items[k::workers]) for k in range(1, workers)]
-        shares = [_share(fn, items[0::workers])] + [resolve(c) for c in children]
-    out: list = [None] * len(items)
-    for k, share in enumerate(shares):
-        out[k::workers] = share
-    return out
+    if len(items) > _MAX_TICKETS:
+        raise ValueError(f"parallel_map takes at most {_MAX_TICKETS} items, got {len(items)}")
+    read_fd, write_fd = os.pipe()
+    try:
+        _write_all(write_fd, b"".join(_TICKET.pack(i) for i in range(len(items))))
+        os.close(write_fd)  # every ticket is in: an empty pipe is the end of the work
+        write_fd = None
+        with ChildGroup() as group:
+            children = [group.later(_take, fn, items, read_fd) for _ in range(1, workers)]
+            done = _take(fn, items, read_fd)
+            for child in children:
+                done.update(resolve(child))
+    finally:
+        os.close(read_fd)
+        if write_fd is not None:
+            os.close(write_fd)
+    return [done[i] for i in range(len(items))]
 
 
 class _ServerPipes:

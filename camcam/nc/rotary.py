@@ -155,10 +155,14 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
         return fit_printed(curve, tol, "lines", post.quantizer, post.max_arc_sweep_deg, printed, f"{name} {label}")
 
     # the passes' fits and the smallest-tool search are independent: they share the workers (the same
-    # results as one by one, camcam.forked.parallel_map); the search is only needed for a thinner tool
+    # results as one by one, camcam.forked.parallel_map); the search is only needed for a thinner tool.
+    # The dearest first, so that the workers end together: the search, then the passes from the last (the
+    # walls' finishing passes before the rough centre; cylindrical-translating-small-tool: 0.46, 0.31,
+    # 0.32 and 0.18 CPU s, 0.64 s for each of two workers against 0.49 and 0.78 in plan order)
     thinner = cam.kind == "translating-roller" and r_t < cam.roller_radius - SAME_TOOL_MM
-    done = parallel_map(job, list(plan) + ([None] if thinner else []), workers)
-    smallest = done.pop() if thinner else None
+    results = parallel_map(job, ([None] if thinner else []) + list(plan)[::-1], workers)
+    smallest = results[0] if thinner else None
+    done = results[1 if thinner else 0:][::-1]
     contours, paths = [], []
     for k, ((label, curve, offset, kind), (fit, path, dev, segs)) in enumerate(zip(plan, done)):
         pts = np.array([fit.elements[0].start] + [e.end for e in fit.elements])
