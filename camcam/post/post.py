@@ -66,7 +66,7 @@ from pathlib import Path
 
 from camcam.errors import InputError
 from camcam.inputs import os_reason, read_limited
-from camcam.post.template import SAMPLE_VALUES, TemplateError, check_gcode_words, check_klartext_blocks, parse_template
+from camcam.post.template import SAMPLE_VALUES, TemplateError, check_line, parse_template
 from camcam.nc.result import Program
 from camcam.nc.settings import WORK_OFFSETS, ProgramSetup
 from camcam.post.gcode import write_program
@@ -246,10 +246,7 @@ def parse_post(data: dict, name: str) -> Post:
     for (key, i), line in lines.items():
         try:
             templates[(key, i)] = parse_template(line, comment)
-            if dialect == "gcode":
-                check_gcode_words(templates[(key, i)], values)
-            else:
-                check_klartext_blocks(templates[(key, i)], values)
+            check_line(templates[(key, i)], dialect, values)
         except TemplateError as err:
             fail(key if i is None else f"{key}[{i}]", str(err))
     units = data["units"]

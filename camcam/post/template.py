@@ -21,8 +21,7 @@ from dataclasses import dataclass
 
 from camcam.post.text import encode_comment, program_name
 
-__all__ = ["FIELDS", "Template", "parse_template", "MAX_WIDTH", "TemplateError", "check_gcode_words",
-           "check_klartext_blocks", "SAMPLE_VALUES"]
+__all__ = ["FIELDS", "Template", "parse_template", "MAX_WIDTH", "TemplateError", "check_line", "SAMPLE_VALUES"]
 
 #: Field name → kind: ``comment`` (free text, only inside a comment), ``name`` (a program
 #: name), ``word`` (a word camcam checked, e.g. the units word), ``int`` (a whole number).
@@ -112,42 +111,36 @@ class Template:
         return "".join(out)
 
 
-def check_gcode_words(template: Template, values: dict = SAMPLE_VALUES) -> None:
-    """Raise :class:`TemplateError` unless ``template``'s code text, rendered with ``values``,
-    is G-code words only.
+#: Per dialect: what one of a post's own lines must be, and what the error says was expected.
+_DIALECT_LINES = {
+    "gcode": (_GCODE_LINE, "is not G-code words (expected words such as G21 or T1 separated by one space, or %)"),
+    "heidenhain": (_KLARTEXT_LINE, "is not a Klartext block (expected e.g. BEGIN PGM, TOOL CALL, L ... R0 FMAX, "
+                                   "M30, STOP, CYCL DEF, Q1=+1 or END PGM)"),
+}
+
+
+def check_line(template: Template, dialect: str, values: dict = SAMPLE_VALUES) -> None:
+    """Raise :class:`TemplateError` unless ``template``'s code text, rendered with ``values``, is a line
+    the ``dialect``'s controller reads: G-code words only (``"gcode"``), or one Heidenhain conversational
+    block of the kinds a post's own lines print (``"heidenhain"``, see ``_KLARTEXT_LINE``).
 
     Examples
     --------
-    >>> check_gcode_words(parse_template("O{program_number:04d} ({title})", "parentheses"))
-    >>> check_gcode_words(parse_template("0", "parentheses"))
+    >>> check_line(parse_template("O{program_number:04d} ({title})", "parentheses"), "gcode")
+    >>> check_line(parse_template("0", "parentheses"), "gcode")
     Traceback (most recent call last):
     ...
     camcam.post.template.TemplateError: '0' is not G-code words (expected words such as G21 or T1 separated by one space, or %)
-    """
-    text = template.render(values)
-    code = _COMMENT[template.comment].sub("", text).strip()
-    if not _GCODE_LINE.fullmatch(code):
-        raise TemplateError(f"{code!r} is not G-code words (expected words such as G21 or T1 separated by one "
-                            "space, or %)")
-
-
-def check_klartext_blocks(template: Template, values: dict = SAMPLE_VALUES) -> None:
-    """Raise :class:`TemplateError` unless ``template``'s code text, rendered with ``values``, is one
-    Heidenhain conversational block of the kinds a post's own lines print (see ``_KLARTEXT_LINE``).
-
-    Examples
-    --------
-    >>> check_klartext_blocks(parse_template("TOOL CALL {tool} Z S{spindle} ; {title}", "semicolon"))
-    >>> check_klartext_blocks(parse_template("0", "semicolon"))
+    >>> check_line(parse_template("TOOL CALL {tool} Z S{spindle} ; {title}", "semicolon"), "heidenhain")
+    >>> check_line(parse_template("0", "semicolon"), "heidenhain")
     Traceback (most recent call last):
     ...
     camcam.post.template.TemplateError: '0' is not a Klartext block (expected e.g. BEGIN PGM, TOOL CALL, L ... R0 FMAX, M30, STOP, CYCL DEF, Q1=+1 or END PGM)
     """
-    text = template.render(values)
-    code = _COMMENT[template.comment].sub("", text).strip()
-    if not _KLARTEXT_LINE.fullmatch(code):
-        raise TemplateError(f"{code!r} is not a Klartext block (expected e.g. BEGIN PGM, TOOL CALL, L ... R0 FMAX, "
-                            "M30, STOP, CYCL DEF, Q1=+1 or END PGM)")
+    pattern, expected = _DIALECT_LINES[dialect]
+    code = _COMMENT[template.comment].sub("", template.render(values)).strip()
+    if not pattern.fullmatch(code):
+        raise TemplateError(f"{code!r} {expected}")
 
 
 def _bad_char(text: str) -> str | None:
