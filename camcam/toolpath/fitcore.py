@@ -69,9 +69,10 @@ def lines_fit(piece, t0: float, ts, tol: float) -> np.ndarray:
     # (tests/toolpath/test_fitcore.py); the curve is evaluated point by point, so one evaluation of the 81
     # gives both sets, as two calls would.  A linspace ends exactly at its stop: the chords' ends are cp[:, -1]
     dense = piece.point(np.linspace(t0, ts, 81, axis=1).ravel()).reshape(k, 81, 2)
-    cp = dense[:, ::2]
     if np.any(np.abs(ts - t0) < 1e-290):
         cp = piece.point(np.linspace(t0, ts, 41, axis=1).ravel()).reshape(k, 41, 2)
+    else:
+        cp = dense[:, ::2]
     q1 = cp[:, -1]
     d = q1 - q0
     L2 = np.einsum("kj,kj->k", d, d)
