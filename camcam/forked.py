@@ -10,18 +10,12 @@ more cores they can run beside the NC work:
   parent has computed (nothing is pickled on the way in), calls the function
   and sends its result back pickled through a pipe; the parent goes on at once
   and collects the result with :meth:`Pending.result`.
-* :class:`Server` forks one child that runs a first batch of jobs on the
-  memory it inherited, then serves later jobs sent to it (pickled), one at a
-  time, importing the modules they name itself.  So the parent never imports
-  matplotlib: the server imports it once, on the other core.  `camcam run`
-  starts its plot server before anything else (matplotlib's import then runs
-  beside the run's own imports); the cam and the plots' data go to it pickled.
-* :class:`Prepared` forks one child that imports modules at once and runs one
-  job sent to it later, which, unlike a server's, may fork children of its
-  own.  `camcam run` starts one before the NC step: it imports ezdxf and
-  scipy (the DXF's splines, the material check's k-d trees) beside the NC
-  work, then takes the printed program and writes the drawing while the
-  material check runs in its children, which inherit those modules.
+* :func:`spare` is :func:`later` at lower priority, for work that may turn
+  out not to be needed; :func:`parallel_map` shares a list's items between
+  processes; :class:`ChildGroup` stops a group of children together.
+* Children that stay and take jobs over pipes, :class:`camcam.servers.Server`
+  (the plot server) and :class:`camcam.servers.Prepared` (the drawing's
+  child), are in :mod:`camcam.servers`.
 
 The child runs the very same function on the very same data as an in-process
 call would, so the results are the same.  Fork is what makes this cheap, so it
@@ -43,11 +37,11 @@ from typing import Any, Callable
 
 from camcam.interrupts import SIGNALS, Interrupted
 
-__all__ = ["ChildError", "Pending", "later", "spare", "resolve", "ChildGroup", "parallel_map", "Server", "Prepared", "call_target",
-           "preload"]
+__all__ = ["ChildError", "Pending", "later", "spare", "resolve", "ChildGroup", "parallel_map", "call_target", "preload",
+           # the child protocol camcam.servers shares: a job's payload, its decoding, the fork, whole writes
+           "child_payload", "decode_payload", "fork_child", "write_all", "PAYLOAD_OK", "PAYLOAD_FAILED"]
 
-_OK, _FAILED = b"K", b"E"
-_FRAME = struct.Struct("<Q")  # the length of one server reply
+PAYLOAD_OK, PAYLOAD_FAILED = b"K", b"E"
 
 
 class ChildError(RuntimeError):
@@ -66,8 +60,8 @@ def preload(*modules: str) -> None:
         importlib.import_module(name)
 
 
-def _payload(fn: Callable, args, kwargs) -> bytes:
-    """_OK + the pickled result, or _FAILED + the pickled (exception or None, traceback text): every
+def child_payload(fn: Callable, args, kwargs) -> bytes:
+    """PAYLOAD_OK + the pickled result, or PAYLOAD_FAILED + the pickled (exception or None, traceback text): every
     failure goes back to the parent, the exception itself when it pickles (a user's error stays one).
 
     A SIGINT, SIGTERM or SIGHUP the child receives is an :class:`~camcam.interrupts.Interrupted`
@@ -88,7 +82,7 @@ def _payload(fn: Callable, args, kwargs) -> bytes:
         value = fn(*args, **kwargs)
         if came:
             raise Interrupted(came[0])
-        return _OK + pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+        return PAYLOAD_OK + pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
     except BaseException as err:  # noqa: BLE001
         text = traceback.format_exc()
         try:
@@ -96,15 +90,15 @@ def _payload(fn: Callable, args, kwargs) -> bytes:
             pickle.loads(data)  # an exception whose arguments do not rebuild it travels as text only
         except Exception:  # noqa: BLE001
             data = None
-        return _FAILED + pickle.dumps((data, text), protocol=pickle.HIGHEST_PROTOCOL)
+        return PAYLOAD_FAILED + pickle.dumps((data, text), protocol=pickle.HIGHEST_PROTOCOL)
 
 
-def _decode(raw: bytes, what: str):
+def decode_payload(raw: bytes, what: str):
     """The child's result, or its failure raised here: the child's own exception (chained to a
     :class:`ChildError` with its traceback) when it pickled, else a :class:`ChildError`."""
-    if raw[:1] == _OK:
+    if raw[:1] == PAYLOAD_OK:
         return pickle.loads(raw[1:])
-    if raw[:1] != _FAILED:
+    if raw[:1] != PAYLOAD_FAILED:
         raise ChildError(f"{what} failed: the child process ended without a result")
     data, text = pickle.loads(raw[1:])
     where = ChildError(f"{what} failed: {text.strip()}")
@@ -113,7 +107,7 @@ def _decode(raw: bytes, what: str):
     raise where
 
 
-def _fork(child: Callable[[], None]) -> int:
+def fork_child(child: Callable[[], None]) -> int:
     """Fork; the child runs ``child()`` and leaves without running the parent's exit handlers."""
     for stream in (sys.stdout, sys.stderr):  # nothing buffered may be written twice
         stream.flush()
@@ -181,16 +175,16 @@ def later(fn: Callable, *args, **kwargs) -> Pending | Any:
     def child():
         os.close(read_fd)
         with os.fdopen(write_fd, "wb") as fh:
-            fh.write(_payload(fn, args, kwargs))
+            fh.write(child_payload(fn, args, kwargs))
 
-    pid = _fork(child)
+    pid = fork_child(child)
     os.close(write_fd)
 
     def fetch():
         with os.fdopen(read_fd, "rb") as fh:
             raw = fh.read()
         os.waitpid(pid, 0)
-        return _decode(raw, getattr(fn, "__name__", "job"))
+        return decode_payload(raw, getattr(fn, "__name__", "job"))
 
     def cancel():
         os.kill(pid, signal.SIGKILL)
@@ -302,7 +296,7 @@ def parallel_map(fn: Callable, items, workers: int = 1) -> list:
         raise ValueError(f"parallel_map takes at most {_MAX_TICKETS} items, got {len(items)}")
     read_fd, write_fd = os.pipe()
     try:
-        _write_all(write_fd, b"".join(_TICKET.pack(i) for i in range(len(items))))
+        write_all(write_fd, b"".join(_TICKET.pack(i) for i in range(len(items))))
         os.close(write_fd)  # every ticket is in: an empty pipe is the end of the work
         write_fd = None
         with ChildGroup() as group:
@@ -317,377 +311,8 @@ def parallel_map(fn: Callable, items, workers: int = 1) -> list:
     return [done[i] for i in range(len(items))]
 
 
-class _ServerPipes:
-    """The server child's two pipe ends, each served by a thread of its own.
-
-    A reader thread takes every request frame off the request pipe as soon as
-    it arrives, so the parent's (blocking) write of a request returns at once,
-    whatever job the child is busy with: a pickled cam is larger than a pipe
-    holds, and the parent, busy with the NC step, must not wait for the child's
-    current job to end.  A writer thread writes the replies in order, blocking
-    while the reply pipe is full, so the next job starts while the parent has
-    not yet read the last reply (a plot's PNG alone fills a pipe).  A parent
-    that is gone (a broken pipe) ends the writing; the jobs then end with the
-    request pipe.  The threads live only in the server child, whose jobs do not fork.
-    """
-
-    def __init__(self, requests, replies) -> None:
-        import queue
-        import threading
-
-        self._requests, self._replies = requests, replies
-        self.jobs: queue.SimpleQueue = queue.SimpleQueue()  # request bodies; None at the end
-        self._out: queue.SimpleQueue = queue.SimpleQueue()  # reply bodies; None at the end
-        self._reader = threading.Thread(target=self._read, name="camcam-server-requests", daemon=True)
-        self._writer = threading.Thread(target=self._write, name="camcam-server-replies", daemon=True)
-
-    def _read(self) -> None:
-        try:
-            while True:
-                head = self._requests.read(_FRAME.size)
-                if len(head) < _FRAME.size or _FRAME.unpack(head)[0] == 0:
-                    break  # an empty frame (or the pipe closed): done
-                self.jobs.put(self._requests.read(_FRAME.unpack(head)[0]))
-        finally:
-            self.jobs.put(None)
-
-    def _write(self) -> None:
-        broken = False
-        while (data := self._out.get()) is not None:
-            if broken:
-                continue
-            try:
-                self._replies.write(_FRAME.pack(len(data)) + data)
-                self._replies.flush()
-            except OSError:  # the parent closed its end: nobody reads any more replies
-                broken = True
-
-    def reply(self, data: bytes) -> None:
-        """Queue one reply (written in order by the writer thread)."""
-        self._out.put(data)
-
-    def __enter__(self) -> "_ServerPipes":
-        self._reader.start()
-        self._writer.start()
-        return self
-
-    def __exit__(self, *exc) -> bool:
-        self._out.put(None)
-        self._writer.join()  # every reply written (the reader ends with the request pipe)
-        return False
-
-
-def _read_exactly(fd: int, n: int) -> bytes:
-    """``n`` bytes from ``fd``, fewer only at end of file."""
-    parts, got = [], 0
-    while got < n:
-        chunk = os.read(fd, min(n - got, 1 << 20))
-        if not chunk:
-            break
-        parts.append(chunk)
-        got += len(chunk)
-    return b"".join(parts)
-
-
-def _read_frame(fd: int) -> bytes:
-    """One frame's body from ``fd`` (b"" for an empty frame or end of file)."""
-    head = _read_exactly(fd, _FRAME.size)
-    if len(head) < _FRAME.size:
-        return b""
-    return _read_exactly(fd, _FRAME.unpack(head)[0])
-
-
-def _write_all(fd: int, data: bytes) -> None:
+def write_all(fd: int, data: bytes) -> None:
+    """Write all of ``data`` to ``fd`` (a pipe takes it in as many steps as it needs)."""
     view = memoryview(data)
     while view:
         view = view[os.write(fd, view):]
-
-
-def _reap(pid: int, *fds: int | None) -> None:
-    """Close the parent's pipe ends ``fds`` (None: closed already) and wait for child ``pid``; returns None
-    (the child's pid once reaped)."""
-    for fd in fds:
-        if fd is not None:
-            os.close(fd)
-    os.waitpid(pid, 0)
-    return None
-
-
-def _pipes() -> tuple[tuple[int, int], tuple[int, int]]:
-    """A request pipe and a reply pipe, ((read, write), (read, write)), each widened (:func:`_widen`)."""
-    req, rep = os.pipe(), os.pipe()
-    _widen(req[1])
-    _widen(rep[1])
-    return req, rep
-
-
-def _widen(fd: int) -> None:
-    """Let a pipe hold 1 MiB where the platform allows it (Linux): fewer wake-ups for a large message."""
-    try:
-        import fcntl
-
-        fcntl.fcntl(fd, fcntl.F_SETPIPE_SZ, 1 << 20)
-    except (ImportError, AttributeError, OSError):
-        pass  # only an optimisation: the pipe's own size works, in more steps
-
-
-class Server:
-    """One forked child that runs jobs for the parent, in the order they are given.
-
-    ``Server(first)`` forks at once; the child runs each ``(target, args,
-    kwargs)`` of ``first`` on the memory it inherited (nothing pickled), then
-    the :meth:`submit` jobs, whose arguments are pickled to it.  A target is
-    ``"package.module:function"``, imported in the child (:func:`call_target`);
-    :func:`preload` as a first job imports modules ahead of the jobs that need
-    them.  :meth:`submit` returns at once (the child takes requests off the
-    pipe while it works, see :class:`_ServerPipes`); :meth:`close` ends the
-    child once every reply was read.  Without fork every job runs at once, in
-    process.  Jobs must not fork (the child runs two threads for its pipes).
-
-    Examples
-    --------
-    >>> s = Server([("operator:add", (1, 2), {})])
-    >>> first = s.first[0]
-    >>> later_job = s.submit("operator:mul", 3, 4)
-    >>> resolve(first), resolve(later_job)
-    (3, 12)
-    >>> s.close()
-    """
-
-    def __init__(self, first=()) -> None:
-        first = [(t, tuple(a), dict(k)) for t, a, k in first]
-        self._replies: dict[int, bytes] = {}
-        self._names: list[str] = []
-        self._next_reply = 0
-        self._pid: int | None = None
-        if not hasattr(os, "fork"):
-            self.first = tuple(call_target(t, *a, **k) for t, a, k in first)
-            return
-        (req_r, req_w), (rep_r, rep_w) = _pipes()
-
-        def child():
-            os.close(req_w), os.close(rep_r)
-            with os.fdopen(req_r, "rb") as requests, os.fdopen(rep_w, "wb") as replies, \
-                    _ServerPipes(requests, replies) as pipes:
-                for t, a, k in first:
-                    pipes.reply(_payload(call_target, (t, *a), k))
-                while (raw := pipes.jobs.get()) is not None:
-                    t, a, k = pickle.loads(raw)
-                    pipes.reply(_payload(call_target, (t, *a), k))
-
-        self._pid = _fork(child)
-        os.close(req_r), os.close(rep_w)
-        self._req_fd, self._rep_fd = req_w, rep_r
-        self._buffer = bytearray()
-        self.first = tuple(self._pending(t) for t, _, _ in first)
-
-    def _pending(self, target: str) -> Pending:
-        index = len(self._names)
-        self._names.append(target)
-        return Pending(lambda: self._reply(index))
-
-    def _take(self, chunk: bytes) -> None:
-        """Add bytes read from the server; file every whole reply frame."""
-        self._buffer += chunk
-        while len(self._buffer) >= _FRAME.size:
-            n = _FRAME.unpack_from(self._buffer)[0]
-            if len(self._buffer) < _FRAME.size + n:
-                break
-            self._replies[self._next_reply] = bytes(self._buffer[_FRAME.size:_FRAME.size + n])
-            del self._buffer[:_FRAME.size + n]
-            self._next_reply += 1
-
-    def _read_some(self) -> None:
-        chunk = os.read(self._rep_fd, 1 << 20)
-        if not chunk:
-            what = self._names[self._next_reply] if self._next_reply < len(self._names) else "the plot server"
-            raise ChildError(f"{what} failed: the server process ended without a reply")
-        self._take(chunk)
-
-    def _reply(self, index: int):
-        if self._pid is None and index >= self._next_reply:
-            raise ChildError(f"{self._names[index]} failed: the server was stopped before it replied")
-        self._pump(until=index)
-        return _decode(self._replies.pop(index), self._names[index])
-
-    def _pump(self, until: int) -> None:
-        """Read replies until reply ``until`` is in."""
-        while until >= self._next_reply:
-            self._read_some()
-
-    def _send(self, frame: bytes) -> None:
-        """Write a whole request frame (the child's reader thread takes it off the pipe as it comes)."""
-        try:
-            _write_all(self._req_fd, frame)
-        except BrokenPipeError:
-            raise ChildError("the server process ended before it took its jobs") from None
-
-    def submit(self, target: str, *args, **kwargs) -> Pending | Any:
-        """Run ``target(*args, **kwargs)`` in the server (arguments and result must pickle); returns at once."""
-        if self._pid is None:
-            return call_target(target, *args, **kwargs)
-        data = pickle.dumps((target, args, kwargs), protocol=pickle.HIGHEST_PROTOCOL)
-        self._send(_FRAME.pack(len(data)) + data)
-        return self._pending(target)
-
-    def kill(self) -> None:
-        """End the child at once (a run that failed): replies not yet read are lost (idempotent)."""
-        if self._pid is None:
-            return
-        os.kill(self._pid, signal.SIGKILL)
-        self._pid = _reap(self._pid, self._req_fd, self._rep_fd)
-
-    def close(self) -> None:
-        """Read every reply still due, end the child and wait for it (idempotent)."""
-        if self._pid is None:
-            return
-        try:
-            # an empty frame ends the child (not EOF: other children hold the pipe too)
-            self._send(_FRAME.pack(0))
-            if self._names:
-                self._pump(until=len(self._names) - 1)
-        except ChildError:
-            pass  # the missing replies raise when their results are asked for
-        self._pid = _reap(self._pid, self._req_fd, self._rep_fd)
-
-
-class Prepared:
-    """One forked child that imports ``modules`` and runs ``first`` at once, and one job sent to it later.
-
-    ``Prepared(modules, first)`` forks at once; the child imports the modules
-    and runs each ``(function, args, kwargs)`` of ``first`` on the memory it
-    inherited (nothing pickled), in its main thread, while a reader thread
-    takes the job off the request pipe as soon as it comes, so :meth:`submit`
-    returns at once whatever the size of the job's arguments (pickled).  The
-    reader ends before the job runs, so, unlike a :class:`Server` job, the job
-    may fork children of its own (a :func:`later` in it), and they inherit
-    the modules imported.  Every reply (``first``'s, then the job's) is sent
-    once the job has run, so the child never waits on a parent that is busy
-    elsewhere: ``first``'s results can be had once :meth:`submit` or
-    :meth:`close` was called.  The child leads a process group of its own:
-    :meth:`kill` (a run that failed) ends it and every child it started, at
-    once.  Without fork, ``first`` runs at once and the job when it is
-    submitted, in process.  A failed import fails every job.
-
-    Examples
-    --------
-    >>> p = Prepared(["fractions"], first=[(sum, ([1, 2],), {})])
-    >>> job = p.submit("fractions:Fraction", 3, 6)
-    >>> resolve(p.first[0]), resolve(job)
-    (3, Fraction(1, 2))
-    """
-
-    def __init__(self, modules=(), first=()) -> None:
-        self._modules = tuple(modules)
-        first = [(fn, tuple(a), dict(k)) for fn, a, k in first]
-        self._pid: int | None = None
-        self._sent = False  # the job, or an empty frame, was sent
-        self._replies: list[bytes] = []
-        if not hasattr(os, "fork"):
-            preload(*self._modules)
-            self.first = tuple(fn(*a, **k) for fn, a, k in first)
-            return
-        (req_r, req_w), (rep_r, rep_w) = _pipes()
-
-        def child():
-            import threading
-
-            os.setpgid(0, 0)
-            # a process group of its own is not the terminal's foreground one: with ``stty tostop`` a write to
-            # the terminal (a library's warning) would stop it; ignoring SIGTTOU lets the write through
-            if hasattr(signal, "SIGTTOU"):
-                signal.signal(signal.SIGTTOU, signal.SIG_IGN)
-            os.close(req_w), os.close(rep_r)
-            box: list[bytes] = []
-            reader = threading.Thread(target=lambda: box.append(_read_frame(req_r)), name="camcam-prepared-job",
-                                      daemon=True)
-            reader.start()
-            loaded = _payload(preload, self._modules, {})
-            replies = [loaded if loaded[:1] != _OK else _payload(fn, a, k) for fn, a, k in first]
-            reader.join()  # one thread again: the job may fork
-            os.close(req_r)
-            if box and box[0]:
-                target, args, kwargs = pickle.loads(box[0])
-                replies.append(loaded if loaded[:1] != _OK else _payload(call_target, (target, *args), kwargs))
-            try:
-                for data in replies:
-                    _write_all(rep_w, _FRAME.pack(len(data)) + data)
-            except BrokenPipeError:
-                pass  # the parent is gone or stopped waiting
-            os.close(rep_w)
-
-        self._pid = _fork(child)
-        try:
-            os.setpgid(self._pid, self._pid)  # also here: a kill() before the child ran must reach its group
-        except OSError:
-            pass  # the child did it first (or has ended already)
-        os.close(req_r), os.close(rep_w)
-        self._req_fd, self._rep_fd = req_w, rep_r
-        self._names = [getattr(fn, "__name__", "job") for fn, _, _ in first]
-        self.first = tuple(Pending(lambda k=k: self._reply(k), self.kill) for k in range(len(first)))
-
-    def _reply(self, index: int):
-        """Reply ``index`` (``first``'s in order, then the job's), read off the pipe as far as needed."""
-        if not self._sent:
-            raise ChildError("a prepared child's results come after its job was submitted, or it was closed")
-        what = self._names[index]
-        while len(self._replies) <= index:
-            if self._pid is None:
-                raise ChildError(f"{what} failed: the prepared process was stopped before it replied")
-            body = _read_frame(self._rep_fd)
-            if not body:  # the child ended without it
-                self._reap()
-                raise ChildError(f"{what} failed: the prepared process ended without a result")
-            self._replies.append(body)
-            if len(self._replies) == len(self._names):
-                self._reap()  # every reply is in
-        return _decode(self._replies[index], what)
-
-    def _send(self, frame: bytes, what: str) -> None:
-        self._sent = True
-        try:
-            _write_all(self._req_fd, frame)
-        except BrokenPipeError:
-            raise ChildError(f"{what} failed: the prepared process ended before it took its job") from None
-        finally:
-            os.close(self._req_fd)
-            self._req_fd = None
-
-    def submit(self, target: str, *args, **kwargs) -> Pending | Any:
-        """Run ``target(*args, **kwargs)`` in the child (arguments and result must pickle); returns at once.
-        One job per child."""
-        if self._sent:
-            raise RuntimeError("a prepared child runs one job")
-        if self._pid is None and not hasattr(os, "fork"):
-            self._sent = True
-            return call_target(target, *args, **kwargs)
-        self._names.append(target)
-        index = len(self._names) - 1
-        data = pickle.dumps((target, args, kwargs), protocol=pickle.HIGHEST_PROTOCOL)
-        self._send(_FRAME.pack(len(data)) + data, target)
-        return Pending(lambda: self._reply(index), self.kill)
-
-    def _reap(self) -> None:
-        self._pid = _reap(self._pid, self._req_fd, self._rep_fd)
-        self._req_fd = None
-
-    def kill(self) -> None:
-        """End the child and every child it started at once, and reap it (idempotent)."""
-        if self._pid is None:
-            return
-        try:
-            os.killpg(self._pid, signal.SIGKILL)
-        except ProcessLookupError:
-            pass
-        self._reap()
-
-    def close(self) -> None:
-        """No job for the child (an empty frame): ``first``'s results then follow (idempotent)."""
-        if self._sent or self._pid is None:
-            return
-        try:
-            self._send(_FRAME.pack(0), "the prepared process")
-        except ChildError:
-            pass  # the missing replies raise when their results are asked for
-        if not self._names:
-            self._reap()

@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from camcam.forked import ChildError, Server, call_target, later, resolve
+from camcam.forked import ChildError, call_target, later, resolve
+from camcam.servers import Server
 
 needs_fork = pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork on this platform: jobs run in process")
 
@@ -274,7 +275,7 @@ def _forks_and_adds(a, b):
 
 @needs_fork
 def test_prepared_first_jobs_then_the_job_which_may_fork():
-    from camcam.forked import Prepared
+    from camcam.servers import Prepared
 
     p = Prepared(["fractions"], first=[(np.arange, (4,), {}), (os.getpid, (), {})])
     job = p.submit(f"{__name__}:_forks_and_adds", np.ones(3), 2.0)
@@ -288,7 +289,7 @@ def test_prepared_first_jobs_then_the_job_which_may_fork():
 def test_prepared_takes_a_big_job_while_it_imports_and_the_parent_goes_on():
     # the job's arguments (a pickled cam and program, up to about a megabyte) are far larger than a pipe;
     # the child's first job holds it at a gate, so only its reader thread can take them: submit returns
-    from camcam.forked import Prepared
+    from camcam.servers import Prepared
 
     gate_r, gate_w = os.pipe()
     try:
@@ -303,7 +304,7 @@ def test_prepared_takes_a_big_job_while_it_imports_and_the_parent_goes_on():
 
 @needs_fork
 def test_prepared_failures_are_reported_on_their_jobs():
-    from camcam.forked import Prepared
+    from camcam.servers import Prepared
 
     p = Prepared(first=[(_boom, ("first",), {})])
     job = p.submit(f"{__name__}:_boom", "the job")
@@ -322,7 +323,7 @@ def test_prepared_failures_are_reported_on_their_jobs():
 
 @needs_fork
 def test_prepared_closed_without_a_job_gives_its_first_results():
-    from camcam.forked import Prepared
+    from camcam.servers import Prepared
 
     p = Prepared(first=[(sum, ([1, 2],), {})])
     with pytest.raises(ChildError, match="after its job was submitted"):
@@ -348,7 +349,7 @@ def _report_and_sleep(fd):
 @needs_fork
 @needs_proc
 def test_prepared_kill_ends_the_children_its_job_started():
-    from camcam.forked import Prepared
+    from camcam.servers import Prepared
 
     before = _children()
     pid_r, pid_w = os.pipe()
@@ -380,7 +381,7 @@ def test_prepared_kill_ends_the_children_its_job_started():
 
 
 def test_prepared_without_fork_runs_in_process(monkeypatch):
-    from camcam.forked import Prepared
+    from camcam.servers import Prepared
 
     monkeypatch.delattr(os, "fork")
     p = Prepared(["fractions"], first=[(sum, ([1, 2],), {})])

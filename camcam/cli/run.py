@@ -60,7 +60,7 @@ def drawing_and_check(built, machining, machining_spec):
     """:func:`drawing` and the program's material check (:func:`camcam.nc.material_check`, None for a job
     without a blank): (files, part outline deviation, removal report or None).
 
-    `camcam run` calls this in a prepared child (:class:`camcam.forked.Prepared`) that imported ezdxf and
+    `camcam run` calls this in a prepared child (:class:`camcam.servers.Prepared`) that imported ezdxf and
     scipy while the NC step ran: the check runs in a child of its own (which inherits them) beside the
     drawing, so the run's own process never imports scipy."""
     from camcam.forked import ChildGroup, resolve
@@ -131,10 +131,11 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
     (:func:`plot_server`) already started, which this call closes; without one, the call starts its own.
     """
     from camcam.cli.motion import SVAJ_PLOT, motion_outputs, motion_summary, svaj_title
-    from camcam.forked import ChildGroup, Prepared, resolve
+    from camcam.forked import ChildGroup, resolve
+    from camcam.servers import Prepared
 
     verdict = Verdict(())
-    # one child process draws every plot, and only it imports matplotlib (camcam.forked.Server): the
+    # one child process draws every plot, and only it imports matplotlib (camcam.servers.Server): the
     # plots' data goes to it pickled (a cam pickles in about a millisecond)
     plots = plot_server() if plots is None else plots
     # the run's other child processes: stopped if the run fails before it collects them
@@ -216,9 +217,9 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
 
 
 def plot_server():
-    """The child process that draws a run's plots (:class:`camcam.forked.Server`), started at once: it
+    """The child process that draws a run's plots (:class:`camcam.servers.Server`), started at once: it
     imports matplotlib (about a second) while the run itself reads the spec and designs the cam."""
-    from camcam.forked import Server
+    from camcam.servers import Server
 
     return Server([(PRELOAD, PLOT_MODULES, {})])
 
