@@ -9,7 +9,8 @@ This script checks REV out into a temporary git worktree and runs each sample
 with the two trees alternately (old, new, old, new, …), so the machine's load
 hits both alike, then prints the sorted wall seconds and the medians.  Both use
 this tree's interpreter and libraries; each tree's bytecode is compiled first
-(as in speed.py).  SAMPLE defaults to the default disc, disc-groove and
+(as in speed.py).  A SAMPLE written NAME@TOL runs at ``tolerance = TOL`` mm
+(speed.py's copy of the spec).  SAMPLE defaults to the default disc, disc-groove and
 cylindrical-translating-small-tool.  No test asserts any of these figures.
 """
 
@@ -24,6 +25,8 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "benchmarks"))
+from speed import fine_spec  # noqa: E402  (a script beside this one)
 SAMPLES = ("disc-translating-roller", "disc-groove", "cylindrical-translating-small-tool")
 
 
@@ -41,7 +44,7 @@ def _wall(tree: Path, spec: Path, out: Path) -> float:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("rev", help="the earlier commit (anything git rev-parse takes)")
-    ap.add_argument("samples", nargs="*", default=list(SAMPLES), help="sample names under samples/")
+    ap.add_argument("samples", nargs="*", default=list(SAMPLES), help="sample names under samples/, NAME@TOL at tolerance TOL mm")
     ap.add_argument("--repeat", type=int, default=6, help="runs per tree and sample (default 6)")
     args = ap.parse_intermixed_args()
     rev = subprocess.run(["git", "rev-parse", "--short", args.rev], capture_output=True, text=True, cwd=ROOT,
@@ -59,7 +62,10 @@ def main() -> int:
             print(f"| sample | {rev} wall s (sorted) | now wall s (sorted) | median {rev} | median now | change |")
             print("|---|---|---|---|---|---|")
             for name in args.samples:
-                spec = ROOT / "samples" / f"{name}.toml"
+                stem, _, tol = name.partition("@")
+                spec = ROOT / "samples" / f"{stem}.toml"
+                if tol:
+                    spec = fine_spec(spec, Path(tmp), float(tol))
                 times: dict[Path, list[float]] = {old: [], ROOT: []}
                 for _ in range(args.repeat):
                     for tree in (old, ROOT):

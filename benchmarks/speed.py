@@ -62,10 +62,10 @@ def _timed(argv: list[str], env: dict) -> tuple[float, float]:
     return wall, cpu
 
 
-def _fine_spec(spec: Path, out_dir: Path) -> Path:
-    """A copy of ``spec`` with ``[machining] tolerance = 0.001``."""
+def fine_spec(spec: Path, out_dir: Path, tolerance_mm: float = FINE_TOLERANCE_MM) -> Path:
+    """A copy of ``spec`` in ``out_dir`` with ``[machining] tolerance = tolerance_mm`` (also used by ab.py)."""
     text = spec.read_text()
-    fine, n = re.subn(r"(?m)^tolerance\s*=\s*[0-9.eE+-]+", f"tolerance = {FINE_TOLERANCE_MM}", text)
+    fine, n = re.subn(r"(?m)^tolerance\s*=\s*[0-9.eE+-]+", f"tolerance = {tolerance_mm}", text)
     if n != 1:
         raise SystemExit(f"{spec}: expected one `tolerance = …` line, found {n}")
     path = out_dir / f"{spec.stem}-fine.toml"
@@ -93,7 +93,7 @@ def _jobs(out_dir: Path, only: str | None) -> list[tuple[str, str, list[str]]]:
         kind = "cylindrical" if cam.get("kind") == "cylindrical" else "disc"
         runs.append((f"run {spec.stem}", kind, spec))
         if kind == "disc":
-            runs.append((f"run {spec.stem} @ {FINE_TOLERANCE_MM} mm", kind, _fine_spec(spec, out_dir)))
+            runs.append((f"run {spec.stem} @ {FINE_TOLERANCE_MM} mm", kind, fine_spec(spec, out_dir)))
     for k, (label, kind, spec) in enumerate(runs):
         jobs.append((label, kind, cli + ["run", str(spec), "-o", str(out_dir / f"out{k}"), "--force"]))
     return jobs

@@ -78,6 +78,9 @@ def check(names: list[str]) -> int:
 def main() -> int:
     if sys.argv[1:2] == ["--check"]:
         return check(sys.argv[2:])
+    if sys.argv[1:]:  # ``--help`` or a typo must not rewrite the record
+        print("\n\n".join(__doc__.split("\n\n")[1:4]), file=sys.stderr)
+        return 2
     from camcam.cli import main as camcam
 
     record = {}

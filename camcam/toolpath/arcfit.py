@@ -33,6 +33,7 @@ from typing import Callable
 import numpy as np
 
 from camcam.errors import FitError, InputError
+from camcam.forked import parallel_map
 from camcam.geometry.curve import PlanarCurve, curvature, speed
 from camcam.toolpath.arcspline import fit_arc_spline, g1_sections
 from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
@@ -210,24 +211,35 @@ def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",
                          budget, workers)
     targets = tuple(budget.targets(band, quantizer))  # lines: the sag and sweep limits concern arcs only
     margin = budget.margin_mm(tolerance_mm)
-    all_elems, blocks = [], []
-    worst = None
     edges = pieces(curve, a, b)
-    for lo, hi in edges:
+    lbs = line_estimate_pieces(exact, tolerance_mm, edges)
+
+    def fit_piece(k):
+        """Piece k's printed lines and their deviation, or its FitError (raised below in piece order)."""
+        lo, hi = edges[k]
         piece = Piece(curve, lo, hi)
         for target in targets:
-            raw = _fit_lines_piece(piece, target)
-            elems = quantizer.snap_elements(raw)
+            elems = quantizer.snap_elements(_fit_lines_piece(piece, target))
             dev = measure_deviation(exact, printed(elems), lo, hi, margin_mm=margin)
             if dev.max_deviation_mm <= tolerance_mm:
-                break
-        else:
-            raise FitError(f"cannot fit the curve on t ∈ [{lo:g}, {hi:g}] within {tolerance_mm:g} mm: the printed "
-                           f"path stays {dev.max_deviation_mm:.4g} mm off after {budget.attempts} attempts")
+                return elems, dev
+        return FitError(f"cannot fit the curve on t ∈ [{lo:g}, {hi:g}] within {tolerance_mm:g} mm: the printed "
+                        f"path stays {dev.max_deviation_mm:.4g} mm off after {budget.attempts} attempts")
+
+    # the pieces are independent: shared by ``workers`` processes, the dearest (most lines estimated) first
+    # so that they end together (disc-oscillating-flat at 0.001 mm: 229, 192, 113 and 98 lines); each is the
+    # same call as in a plain loop, so the same lines
+    order = sorted(range(len(edges)), key=lambda k: -lbs[k])
+    fitted = dict(zip(order, parallel_map(fit_piece, order, workers)))
+    all_elems, blocks = [], []
+    worst = None
+    for k in range(len(edges)):
+        if isinstance(fitted[k], FitError):
+            raise fitted[k]
+        elems, dev = fitted[k]
         all_elems.extend(elems)
         blocks.append(len(elems))
         if worst is None or dev.max_deviation_mm > worst.max_deviation_mm:
             worst = dev
-    lbs = line_estimate_pieces(exact, tolerance_mm, edges)
     return FitResult(tuple(all_elems), mode, tolerance_mm, quantizer.decimals, worst, float(sum(lbs)),
                      tuple(blocks), tuple(lbs))

@@ -121,6 +121,34 @@ def test_lines_mode_chordal():
     assert est <= len(fit.elements) <= 1.3 * est + 4
 
 
+def test_lines_pieces_shared_by_two_processes_fit_the_same():
+    # the ellipse's four quarter pieces go to two processes, the dearest first: the same lines, pieces and
+    # deviation as one after the other (each piece is the same call)
+    E = ellipse()
+    one = fit_contour(E, 0.002, mode="lines")
+    two = fit_contour(E, 0.002, mode="lines", workers=2)
+    assert len(one.piece_blocks) == 4
+    assert (two.elements, two.piece_blocks, two.deviation) == (one.elements, one.piece_blocks, one.deviation)
+
+
+def test_lines_failure_names_the_first_piece_in_order(monkeypatch):
+    # every piece misses (a deviation said to be 1 mm); the error is the first piece's, as one after the
+    # other would raise it, although the pieces are taken dearest first by two processes
+    import dataclasses
+
+    import camcam.toolpath.arcfit as arcfit
+
+    real = arcfit.measure_deviation
+    monkeypatch.setattr(arcfit, "measure_deviation",
+                        lambda *a, **k: dataclasses.replace(real(*a, **k), max_deviation_mm=1.0))
+    from camcam.errors import FitError
+
+    W = wavy()  # two pieces, the second dearer (65.0 and 73.7 lines estimated at 0.002 mm): taken first
+    for workers in (1, 2):
+        with pytest.raises(FitError, match=r"t ∈ \[0, 60\]"):
+            fit_contour(W, 0.002, mode="lines", workers=workers)
+
+
 def test_arcs_beat_lines_at_a_micron():
     E, arcs = fitted(("ellipse", 0.001))
     est_lines = line_estimate_blocks(E, 0.001)
