@@ -67,7 +67,10 @@ def drawing_and_check(built, machining, machining_spec):
     from camcam.nc import material_check
 
     with ChildGroup() as group:
-        check = group.later(material_check, machining, built, machining_spec) if machining.blank is not None else None
+        # the check's slabs are swept by two processes (camcam.nc.sweep): the top slab, which every deeper
+        # move cuts too, beside the others
+        check = group.later(material_check, machining, built, machining_spec, min(2, os.cpu_count() or 1)) \
+            if machining.blank is not None else None
         files, part_deviation = drawing(built, machining)
         return files, part_deviation, resolve(check)
 

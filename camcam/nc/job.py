@@ -117,12 +117,13 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEF
     result = machine_program(built, m, name, stock, workers)
     if result.blank is None:
         return result  # a barrel cam: measured in 3-D by its own job
-    return with_removal(result, material_check(result, built, m))
+    return with_removal(result, material_check(result, built, m, workers))
 
 
-def material_check(result: MachiningResult, built: BuiltCam, m: MachiningSpec) -> RemovalReport:
-    """The material-removal check of ``result``'s printed program against its blank (:mod:`camcam.nc.removal`)."""
-    return check_program(result.program.text, result.post, result.blank, m, built)
+def material_check(result: MachiningResult, built: BuiltCam, m: MachiningSpec, workers: int = 1) -> RemovalReport:
+    """The material-removal check of ``result``'s printed program against its blank (:mod:`camcam.nc.removal`),
+    its slabs swept by ``workers`` processes (the same report for any count)."""
+    return check_program(result.program.text, result.post, result.blank, m, built, workers)
 
 
 def with_removal(result: MachiningResult, removal: RemovalReport) -> MachiningResult:

@@ -34,13 +34,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
-from shapely.geometry import LineString, Point
 
 from camcam.forked import ChildGroup, resolve
 from camcam.nc.passes import SLOT_KINDS
 from camcam.nc.readback import read_program
 from camcam.nc.roughing import polygon_distance
 from camcam.nc.stock import bore_region
+from camcam.nc.sweep import PROBE_INSET_MM, SAMPLE_MM, TOUCH_MM, moves_of, parse_marker, sweep_slabs, where
 from camcam.verdict import Check
 
 if TYPE_CHECKING:  # imported where a tree is built (_tree)
@@ -48,87 +48,11 @@ if TYPE_CHECKING:  # imported where a tree is built (_tree)
 
 __all__ = ["RemovalReport", "check_moves", "check_program", "SAMPLE_MM", "PROBE_INSET_MM", "parse_marker"]
 
-#: Spacing of the samples along a move for engagement and plunge tests (mm).
-SAMPLE_MM = 0.5
 #: Spacing of path samples for the material-left / overcut distances (mm): error (h/2)²/(2 r_t), < 1e-5 mm.
 DENSE_MM = 0.02
 #: The material-left search looks first at path points this far beyond the tool radius from the part (mm):
 #: a finishing pass; the boundary points it leaves farther are searched among all (the same figure).
 LEFT_FIRST_MM = 0.1
-#: The engagement probe runs this far inside the tool's edge (mm): the swept regions are polygons within
-#: 2.4e-3 mm of their circles, so a probe on the edge would find slivers that are not there.
-PROBE_INSET_MM = 0.01
-#: A disc overlapping material by less than this is touching, not cutting (mm): above the 2.4e-3 mm by which
-#: a swept region (a polygon, 128 sides per circle) falls short of its circles.
-TOUCH_MM = 5e-3
-#: Probes across the tool's front semicircle (evenly spaced across the direction of travel).
-PROBE_STEPS = 97
-
-
-def parse_marker(text: str) -> tuple[str, str] | None:
-    """``"pass 3/9: rough, spiral…, Z-6"`` → ("rough", the whole text); other comments → None."""
-    if not text.startswith("pass ") or ":" not in text:
-        return None
-    kind = text.split(":", 1)[1].strip().split(",")[0].strip()
-    return kind, text
-
-
-@dataclass(frozen=True)
-class _Move:
-    kind: str  # rapid, line, arc
-    p0: tuple
-    p1: tuple
-    centre: tuple | None
-    ccw: bool
-    pass_kind: str
-    pass_label: str
-
-    def samples(self, spacing: float) -> np.ndarray:
-        """(n, 3) points along the move, ends included, z linear in XY length (or in z for a vertical move)."""
-        (x0, y0, z0), (x1, y1, z1) = self.p0, self.p1
-        if self.kind == "arc":
-            c = self.centre
-            a0 = math.atan2(y0 - c[1], x0 - c[0])
-            a1 = math.atan2(y1 - c[1], x1 - c[0])
-            sweep = (a1 - a0) if self.ccw else (a0 - a1)
-            sweep = sweep % (2 * math.pi) or 2 * math.pi
-            r0, r1 = math.hypot(x0 - c[0], y0 - c[1]), math.hypot(x1 - c[0], y1 - c[1])
-            n = max(2, int(math.ceil(0.5 * (r0 + r1) * sweep / spacing)) + 1)
-            u = np.linspace(0.0, 1.0, n)
-            ang = a0 + (1.0 if self.ccw else -1.0) * sweep * u
-            r = r0 + (r1 - r0) * u
-            return np.column_stack([c[0] + r * np.cos(ang), c[1] + r * np.sin(ang), z0 + (z1 - z0) * u])
-        L = math.hypot(x1 - x0, y1 - y0)
-        n = max(2, int(math.ceil(max(L, abs(z1 - z0)) / spacing)) + 1)
-        u = np.linspace(0.0, 1.0, n)[:, None]
-        return (1 - u) * np.array(self.p0) + u * np.array(self.p1)
-
-    @property
-    def xy_length(self) -> float:
-        (x0, y0, _), (x1, y1, _) = self.p0, self.p1
-        if self.kind == "arc":
-            return float(np.hypot(*np.diff(self.samples(0.05)[:, :2], axis=0).T).sum())
-        return math.hypot(x1 - x0, y1 - y0)
-
-
-def _moves(events) -> list[_Move]:
-    out, pos, kind, label = [], None, "", ""
-    for ev in events:
-        if isinstance(ev, str):
-            mk = parse_marker(ev)
-            if mk is not None:
-                kind, label = mk
-            continue
-        p1 = (ev.x, ev.y, ev.z)
-        if pos is not None and p1 != pos:
-            out.append(_Move(ev.kind, pos, p1, ev.centre, ev.ccw, kind, label))
-        pos = p1
-    return out
-
-
-def _where(label: str, p) -> str:
-    return f"{label or 'before the first pass'} at X{p[0]:.3f} Y{p[1]:.3f} Z{p[2]:.3f}"
-
 
 @dataclass(frozen=True)
 class RemovalReport:
@@ -192,63 +116,20 @@ class RemovalReport:
         }
 
 
-def _probe(slab, pts, t, n, r_p, v):
-    """Whether the front-semicircle points at perpendicular coordinates ``v`` (per sample) lie in ``slab``."""
-    along = np.sqrt(np.maximum(r_p * r_p - v * v, 0.0))
-    x = pts[:, 0, None] + along * t[:, 0, None] + v * n[:, 0, None]
-    y = pts[:, 1, None] + along * t[:, 1, None] + v * n[:, 1, None]
-    return shapely.contains_xy(slab, x.ravel(), y.ravel()).reshape(x.shape)
-
-
-def _front_extent(slab, pts: np.ndarray, tangents: np.ndarray, r_probe: float) -> np.ndarray:
-    """Width across travel of the material the tool's leading semicircle meets, per sample (mm).
-
-    Probes on the semicircle at :data:`PROBE_STEPS` perpendicular coordinates;
-    each end of the engaged span is then bisected to 1/64 of a step.  An end
-    at the tool's edge counts the probe's inset too.
-    """
-    t = tangents
-    n = np.column_stack([-t[:, 1], t[:, 0]])
-    v = np.linspace(-r_probe, r_probe, PROBE_STEPS)
-    inside = _probe(slab, pts, t, n, r_probe, np.broadcast_to(v, (len(pts), len(v))))
-    hit = inside.any(axis=1)
-    if not hit.any():
-        return np.zeros(len(pts))
-    idx = np.arange(len(v))
-    k_lo = np.where(inside, idx, len(v)).min(axis=1)
-    k_hi = np.where(inside, idx, -1).max(axis=1)
-    p, tt, nn = pts[hit], t[hit], n[hit]
-    k_lo, k_hi = k_lo[hit], k_hi[hit]
-    # both ends of the span bisected at once: rows [0, m) the low end, [m, 2m) the high end
-    k = np.concatenate([k_lo, k_hi])
-    outward = np.repeat([-1, 1], len(k_lo))
-    at_edge = np.where(outward < 0, k == 0, k == len(v) - 1)
-    good = v[k].copy()  # in material
-    bad = np.where(at_edge, good, v[np.clip(k + outward, 0, len(v) - 1)])  # out of material
-    p2, t2, n2 = (np.concatenate([x, x]) for x in (p, tt, nn))
-    for _ in range(6):
-        mid = 0.5 * (good + bad)
-        ins = _probe(slab, p2, t2, n2, r_probe, mid[:, None])[:, 0]
-        good, bad = np.where(ins, mid, good), np.where(ins, bad, mid)
-    ends = np.where(at_edge, good + outward * PROBE_INSET_MM, good)
-    width = np.zeros(len(pts))
-    width[hit] = ends[len(k_lo):] - ends[:len(k_lo)]
-    return width
-
-
 def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_radius_mm: float, stepover_mm: float,
                 ramp_angle_deg: float, tolerance_mm: float, allowance_mm: float, decimals: int,
-                slot_kinds=SLOT_KINDS) -> RemovalReport:
+                slot_kinds=SLOT_KINDS, workers: int = 1) -> RemovalReport:
     """Check interpreted ``events`` (moves and comment strings) against the blank ``region`` (shapely).
 
     ``keep`` is the material that must remain at the final depth (shapely),
     ``boundary`` dense points (n, 2) on the parts of its outline the program
-    machines (from the exact curves).
+    machines (from the exact curves); the slabs are swept by ``workers``
+    processes (:func:`~camcam.nc.sweep.sweep_slabs`: the same figures for any count).
     """
     r_t = tool_radius_mm
     keep = shapely.Polygon(keep) if keep.geom_type == "Polygon" else shapely.MultiPolygon(keep)
     shapely.prepare(keep)
-    moves = _moves(events)
+    moves = moves_of(events)
     cut_moves = [m for m in moves if m.kind != "rapid"]
     levels = sorted({round(m.p1[2], 6) for m in cut_moves if m.p0[2] == m.p1[2] and m.p1[2] < top_z - 1e-9},
                     reverse=True)
@@ -264,11 +145,10 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
     # stopped if the removal fails
     with ChildGroup() as finishing:
         finish = finishing.later(_finish_figures, cut_moves, levels, top_z, keep, boundary, r_t)
-        slabs, eng, eng_at, slot_eng, plunges, plunge_at, rapids, rapid_at = _remove(
-            moves, slabs, bounds, r_t, slope, rounding, slot_kinds)
+        swept = sweep_slabs(moves, slabs, bounds, r_t, slope, rounding, slot_kinds, workers)
         left, left_at, over, over_at, clearance, clear_at = resolve(finish)
     keep_band = keep.buffer(tolerance_mm, quad_segs=32)
-    for i, s in enumerate(slabs):
+    for i, s in enumerate(swept.slabs):
         rest = s.difference(keep_band)
         if rest.area <= 1e-6:
             continue
@@ -297,7 +177,8 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
                            "not cut")
                 break
     return RemovalReport(r_t, stepover_mm, ramp_angle_deg, tolerance_mm, allowance_mm, tuple(levels), passes,
-                         eng, eng_at, slot_eng, plunges, plunge_at, rapids, rapid_at, left, left_at, over, over_at,
+                         swept.engagement_mm, swept.engagement_where, swept.slot_engagement_mm, swept.plunges,
+                         swept.plunge_where, swept.rapids, swept.rapid_where, left, left_at, over, over_at,
                          clearance, clear_at)
 
 
@@ -320,74 +201,6 @@ def _uncut(tree, pts: np.ndarray, r_t: float) -> np.ndarray:
         return np.ones(len(pts), bool)
     d, _ = tree.query(pts, distance_upper_bound=r_t + (DENSE_MM / 2) ** 2 / (2 * r_t))
     return ~np.isfinite(d)
-
-
-def _remove(moves, slabs: list, bounds: list, r_t: float, slope: float, rounding: float, slot_kinds) -> tuple:
-    """Take each move's cut out of the slabs, in program order, and find on the way the largest engagement
-    (and in slots), the plunges into material and the rapids that touch it.
-
-    ``slabs[i]`` is the material between ``bounds[i + 1]`` and ``bounds[i]``;
-    returns (slabs after the program, engagement, where, slot engagement,
-    plunges, where, rapids, where).
-    """
-    slabs = list(slabs)
-    eng, eng_at, slot_eng = 0.0, "", 0.0
-    plunges, plunge_at, rapids, rapid_at = 0, "", 0, ""
-
-    def slab_hits(i, geom) -> bool:
-        return float(shapely.distance(slabs[i], geom)) < r_t - TOUCH_MM if not slabs[i].is_empty else False
-
-    for m in moves:
-        z0, z1 = m.p0[2], m.p1[2]
-        zlo = min(z0, z1)
-        if m.kind == "rapid":
-            geom = LineString([m.p0[:2], m.p1[:2]]) if m.p0[:2] != m.p1[:2] else Point(m.p1[:2])
-            for i in range(len(slabs)):
-                if bounds[i] > zlo + 1e-6 and slab_hits(i, geom):
-                    rapids += 1
-                    rapid_at = rapid_at or _where(m.pass_label, m.p1)
-                    break
-            continue
-        pts = m.samples(SAMPLE_MM)
-        xy_len = m.xy_length
-        if z1 < z0 - 1e-9 and (z0 - z1) > xy_len * slope + rounding:
-            geom = LineString(pts[:, :2]) if xy_len > 0 else Point(m.p1[:2])
-            for i in range(len(slabs)):
-                if bounds[i] > z1 + 1e-6 and bounds[i + 1] < z0 - 1e-6 and slab_hits(i, geom):
-                    plunges += 1
-                    plunge_at = plunge_at or _where(m.pass_label, m.p1)
-                    break
-        if xy_len > 0 and len(pts) > 1:
-            d = np.diff(pts[:, :2], axis=0)
-            norm = np.hypot(d[:, 0], d[:, 1])
-            ok = norm > 0
-            probe_pts, tang, zs = pts[1:][ok], d[ok] / norm[ok, None], pts[1:, 2][ok]
-            for i in range(len(slabs)):
-                sel = zs <= bounds[i + 1] + 1e-6
-                if not sel.any() or slabs[i].is_empty:
-                    continue
-                w = _front_extent(slabs[i], probe_pts[sel, :2], tang[sel], r_t - PROBE_INSET_MM)
-                k = int(np.argmax(w))
-                if m.pass_kind in slot_kinds:
-                    slot_eng = max(slot_eng, float(w[k]))
-                elif w[k] > eng:
-                    eng, eng_at = float(w[k]), _where(m.pass_label, probe_pts[sel][k])
-        for i in range(len(slabs)):
-            below = pts[:, 2] <= bounds[i + 1] + 1e-6
-            if not below.any() or slabs[i].is_empty:
-                continue
-            runs = np.split(np.arange(len(pts)), np.where(np.diff(below.astype(int)) != 0)[0] + 1)
-            cuts = []
-            for run in runs:
-                if not below[run[0]]:
-                    continue
-                seg = pts[run, :2]
-                geom = LineString(seg) if len(seg) > 1 and np.ptp(seg, axis=0).max() > 0 else Point(seg[0])
-                cuts.append(geom.buffer(r_t, quad_segs=32))
-            if cuts:
-                slabs[i] = slabs[i].difference(shapely.union_all(cuts))
-                shapely.prepare(slabs[i])
-    return slabs, eng, eng_at, slot_eng, plunges, plunge_at, rapids, rapid_at
 
 
 def _tree(points: np.ndarray) -> cKDTree:
@@ -476,14 +289,14 @@ def _finish_figures(moves, levels, top_z, keep, boundary, r_t):
             continue
         k = int(np.argmin(sd[lo:hi]))
         if np.isfinite(sd[lo + k]) and r_t - sd[lo + k] > over:
-            over, over_at = float(r_t - sd[lo + k]), _where(m.pass_label, q[lo + k])
+            over, over_at = float(r_t - sd[lo + k]), where(m.pass_label, q[lo + k])
         if m.pass_kind == "rough":
             if not np.isfinite(sd[lo + k]):
                 distant.append(i)
                 continue
             c = float(sd[lo + k] - r_t)
             if clear is None or c < clear:
-                clear, clear_at = c, _where(m.pass_label, q[lo + k])
+                clear, clear_at = c, where(m.pass_label, q[lo + k])
     if clear is None:  # no roughing move comes near: the true distances of those that are far (else they lose)
         for i in sorted(distant):
             p = moves[i].samples(DENSE_MM)
@@ -495,7 +308,7 @@ def _finish_figures(moves, levels, top_z, keep, boundary, r_t):
             k = int(np.argmin(s_))
             c = float(s_[k] - r_t)
             if clear is None or c < clear:
-                clear, clear_at = c, _where(moves[i].pass_label, p[k])
+                clear, clear_at = c, where(moves[i].pass_label, p[k])
     return max(left, 0.0), left_at, max(over, 0.0), over_at, clear, clear_at
 
 
@@ -520,13 +333,14 @@ def _far_moves(moves, tree, keep, near: float, top_z: float) -> list[bool]:
     return out
 
 
-def check_program(text: str, post, blank, m, built) -> RemovalReport:
-    """Read the printed ``text`` back and check it against ``blank`` (the NC stage's in-process check)."""
+def check_program(text: str, post, blank, m, built, workers: int = 1) -> RemovalReport:
+    """Read the printed ``text`` back and check it against ``blank`` (the NC stage's in-process check), its
+    slabs swept by ``workers`` processes."""
     events = read_program(text, post)
     keep, boundary = design_keep(blank, built)
     return check_moves(events, blank.region, blank.top_z_mm, keep, boundary, m.tool_diameter_mm / 2, m.stepover_mm,
                        m.ramp_angle_deg, m.tolerance_mm, m.finish_allowance_mm if not blank.groove else 0.0,
-                       post.decimals)
+                       post.decimals, workers=workers)
 
 
 def design_keep(blank, built, spacing_mm: float = DENSE_MM):

@@ -159,7 +159,7 @@ def test_a_failing_removal_stops_the_finishing_child(monkeypatch):
     def broken(*args, **kw):
         raise ZeroDivisionError("a bug in the removal")
 
-    monkeypatch.setattr(removal, "_remove", broken)
+    monkeypatch.setattr(removal, "sweep_slabs", broken)
     events = ["pass 1/1: finish, test", _rapid(-10.0, 20.0 + R_T, 5.0), _line(-10.0, 20.0 + R_T, -1.0),
               _line(110.0, 20.0 + R_T, -1.0)]
     before = _children()

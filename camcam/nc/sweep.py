@@ -1,0 +1,270 @@
+"""The tool's sweep through the slabs, move by move: engagement, plunges, rapids (:mod:`camcam.nc.removal`).
+
+The material is one shapely region per slab between consecutive cutting
+levels; each feed move, in program order, is measured against the material
+its slabs still hold (the width its front semicircle meets, whether it plunges
+or a rapid touches) and then takes its swept disc out of them.  A slab's
+material depends only on the moves that cut it, so the slabs are swept
+independently (:func:`sweep_slabs`, shared between processes) and their
+figures combined as one pass over all of them would find them.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from shapely.geometry import LineString, Point
+
+from camcam.forked import parallel_map
+from camcam.nc.passes import SLOT_KINDS
+
+__all__ = ["Move", "moves_of", "parse_marker", "where", "front_extent", "cut_below", "sweep_slabs", "Sweep",
+           "SAMPLE_MM", "PROBE_INSET_MM", "TOUCH_MM", "PROBE_STEPS"]
+
+#: Spacing of the samples along a move for engagement and plunge tests (mm).
+SAMPLE_MM = 0.5
+#: The engagement probe runs this far inside the tool's edge (mm): the swept regions are polygons within
+#: 2.4e-3 mm of their circles, so a probe on the edge would find slivers that are not there.
+PROBE_INSET_MM = 0.01
+#: A disc overlapping material by less than this is touching, not cutting (mm): above the 2.4e-3 mm by which
+#: a swept region (a polygon, 128 sides per circle) falls short of its circles.
+TOUCH_MM = 5e-3
+#: Probes across the tool's front semicircle (evenly spaced across the direction of travel).
+PROBE_STEPS = 97
+
+
+def parse_marker(text: str) -> tuple[str, str] | None:
+    """``"pass 3/9: rough, spiral…, Z-6"`` → ("rough", the whole text); other comments → None."""
+    if not text.startswith("pass ") or ":" not in text:
+        return None
+    kind = text.split(":", 1)[1].strip().split(",")[0].strip()
+    return kind, text
+
+
+@dataclass(frozen=True)
+class Move:
+    """One interpreted move: kind (rapid, line, arc), ends, arc centre and direction, the pass it belongs to."""
+
+    kind: str  # rapid, line, arc
+    p0: tuple
+    p1: tuple
+    centre: tuple | None
+    ccw: bool
+    pass_kind: str
+    pass_label: str
+
+    def samples(self, spacing: float) -> np.ndarray:
+        """(n, 3) points along the move, ends included, z linear in XY length (or in z for a vertical move)."""
+        (x0, y0, z0), (x1, y1, z1) = self.p0, self.p1
+        if self.kind == "arc":
+            c = self.centre
+            a0 = math.atan2(y0 - c[1], x0 - c[0])
+            a1 = math.atan2(y1 - c[1], x1 - c[0])
+            sweep = (a1 - a0) if self.ccw else (a0 - a1)
+            sweep = sweep % (2 * math.pi) or 2 * math.pi
+            r0, r1 = math.hypot(x0 - c[0], y0 - c[1]), math.hypot(x1 - c[0], y1 - c[1])
+            n = max(2, int(math.ceil(0.5 * (r0 + r1) * sweep / spacing)) + 1)
+            u = np.linspace(0.0, 1.0, n)
+            ang = a0 + (1.0 if self.ccw else -1.0) * sweep * u
+            r = r0 + (r1 - r0) * u
+            return np.column_stack([c[0] + r * np.cos(ang), c[1] + r * np.sin(ang), z0 + (z1 - z0) * u])
+        L = math.hypot(x1 - x0, y1 - y0)
+        n = max(2, int(math.ceil(max(L, abs(z1 - z0)) / spacing)) + 1)
+        u = np.linspace(0.0, 1.0, n)[:, None]
+        return (1 - u) * np.array(self.p0) + u * np.array(self.p1)
+
+    @property
+    def xy_length(self) -> float:
+        (x0, y0, _), (x1, y1, _) = self.p0, self.p1
+        if self.kind == "arc":
+            return float(np.hypot(*np.diff(self.samples(0.05)[:, :2], axis=0).T).sum())
+        return math.hypot(x1 - x0, y1 - y0)
+
+
+def moves_of(events) -> list[Move]:
+    """The moves of interpreted ``events`` (moves and comment strings), each with its pass marker's kind and text."""
+    out, pos, kind, label = [], None, "", ""
+    for ev in events:
+        if isinstance(ev, str):
+            mk = parse_marker(ev)
+            if mk is not None:
+                kind, label = mk
+            continue
+        p1 = (ev.x, ev.y, ev.z)
+        if pos is not None and p1 != pos:
+            out.append(Move(ev.kind, pos, p1, ev.centre, ev.ccw, kind, label))
+        pos = p1
+    return out
+
+
+def where(label: str, p) -> str:
+    """The report's place of a figure: the pass and the point."""
+    return f"{label or 'before the first pass'} at X{p[0]:.3f} Y{p[1]:.3f} Z{p[2]:.3f}"
+
+
+def _probe(slab, pts, t, n, r_p, v):
+    """Whether the front-semicircle points at perpendicular coordinates ``v`` (per sample) lie in ``slab``."""
+    along = np.sqrt(np.maximum(r_p * r_p - v * v, 0.0))
+    x = pts[:, 0, None] + along * t[:, 0, None] + v * n[:, 0, None]
+    y = pts[:, 1, None] + along * t[:, 1, None] + v * n[:, 1, None]
+    return shapely.contains_xy(slab, x.ravel(), y.ravel()).reshape(x.shape)
+
+
+def front_extent(slab, pts: np.ndarray, tangents: np.ndarray, r_probe: float) -> np.ndarray:
+    """Width across travel of the material the tool's leading semicircle meets, per sample (mm).
+
+    Probes on the semicircle at :data:`PROBE_STEPS` perpendicular coordinates;
+    each end of the engaged span is then bisected to 1/64 of a step.  An end
+    at the tool's edge counts the probe's inset too.
+    """
+    t = tangents
+    n = np.column_stack([-t[:, 1], t[:, 0]])
+    v = np.linspace(-r_probe, r_probe, PROBE_STEPS)
+    inside = _probe(slab, pts, t, n, r_probe, np.broadcast_to(v, (len(pts), len(v))))
+    hit = inside.any(axis=1)
+    if not hit.any():
+        return np.zeros(len(pts))
+    idx = np.arange(len(v))
+    k_lo = np.where(inside, idx, len(v)).min(axis=1)
+    k_hi = np.where(inside, idx, -1).max(axis=1)
+    p, tt, nn = pts[hit], t[hit], n[hit]
+    k_lo, k_hi = k_lo[hit], k_hi[hit]
+    # both ends of the span bisected at once: rows [0, m) the low end, [m, 2m) the high end
+    k = np.concatenate([k_lo, k_hi])
+    outward = np.repeat([-1, 1], len(k_lo))
+    at_edge = np.where(outward < 0, k == 0, k == len(v) - 1)
+    good = v[k].copy()  # in material
+    bad = np.where(at_edge, good, v[np.clip(k + outward, 0, len(v) - 1)])  # out of material
+    p2, t2, n2 = (np.concatenate([x, x]) for x in (p, tt, nn))
+    for _ in range(6):
+        mid = 0.5 * (good + bad)
+        ins = _probe(slab, p2, t2, n2, r_probe, mid[:, None])[:, 0]
+        good, bad = np.where(ins, mid, good), np.where(ins, bad, mid)
+    ends = np.where(at_edge, good + outward * PROBE_INSET_MM, good)
+    width = np.zeros(len(pts))
+    width[hit] = ends[len(k_lo):] - ends[:len(k_lo)]
+    return width
+
+
+@dataclass(frozen=True)
+class Sweep:
+    """The program's sweep through the slabs: the material left in each and the figures found on the way."""
+
+    slabs: tuple  # shapely regions after the program, top slab first
+    engagement_mm: float  # largest width met outside slots, and where
+    engagement_where: str
+    slot_engagement_mm: float
+    plunges: int  # feed moves plunging into material, and the first
+    plunge_where: str
+    rapids: int  # rapids touching material, and the first
+    rapid_where: str
+
+
+@dataclass(frozen=True)
+class _SlabSweep:
+    """One slab's sweep: its material after the program, its largest engagement (width, move, where), its
+    slot engagement and the moves that plunge into it or touch it at rapid."""
+
+    slab: object
+    engagement: tuple[float, int, str]
+    slot_engagement_mm: float
+    plunge_moves: tuple[int, ...]
+    rapid_moves: tuple[int, ...]
+
+
+def _move_samples(m: Move, slope: float, rounding: float):
+    """A feed move's samples, whether it descends steeper than the ramp, and its probe points and directions."""
+    pts = m.samples(SAMPLE_MM)
+    xy_len = m.xy_length
+    z0, z1 = m.p0[2], m.p1[2]
+    steep = z1 < z0 - 1e-9 and (z0 - z1) > xy_len * slope + rounding
+    plunge_geom = (LineString(pts[:, :2]) if xy_len > 0 else Point(m.p1[:2])) if steep else None
+    probe = None
+    if xy_len > 0 and len(pts) > 1:
+        d = np.diff(pts[:, :2], axis=0)
+        norm = np.hypot(d[:, 0], d[:, 1])
+        ok = norm > 0
+        probe = pts[1:][ok], d[ok] / norm[ok, None], pts[1:, 2][ok]
+    return pts, plunge_geom, probe
+
+
+def _sweep_slab(i: int, slab, moves: list, samples: list, bounds: list, r_t: float, slot_kinds) -> _SlabSweep:
+    """Slab ``i`` (the material between ``bounds[i + 1]`` and ``bounds[i]``) swept by every move in program order."""
+    eng, eng_move, eng_at, slot_eng = 0.0, -1, "", 0.0
+    plunges, rapids = [], []
+    top, floor = bounds[i], bounds[i + 1]
+
+    def hits(geom) -> bool:
+        return not slab.is_empty and float(shapely.distance(slab, geom)) < r_t - TOUCH_MM
+
+    for j, (m, sampled) in enumerate(zip(moves, samples)):
+        z0, z1 = m.p0[2], m.p1[2]
+        if m.kind == "rapid":
+            geom = LineString([m.p0[:2], m.p1[:2]]) if m.p0[:2] != m.p1[:2] else Point(m.p1[:2])
+            if top > min(z0, z1) + 1e-6 and hits(geom):
+                rapids.append(j)
+            continue
+        pts, plunge_geom, probe = sampled
+        if plunge_geom is not None and top > z1 + 1e-6 and floor < z0 - 1e-6 and hits(plunge_geom):
+            plunges.append(j)
+        if probe is not None:
+            probe_pts, tang, zs = probe
+            sel = zs <= floor + 1e-6
+            if sel.any() and not slab.is_empty:
+                w = front_extent(slab, probe_pts[sel, :2], tang[sel], r_t - PROBE_INSET_MM)
+                k = int(np.argmax(w))
+                if m.pass_kind in slot_kinds:
+                    slot_eng = max(slot_eng, float(w[k]))
+                elif w[k] > eng:
+                    eng, eng_move, eng_at = float(w[k]), j, where(m.pass_label, probe_pts[sel][k])
+        slab = cut_below(slab, pts, floor, r_t)
+    return _SlabSweep(slab, (eng, eng_move, eng_at), slot_eng, tuple(plunges), tuple(rapids))
+
+
+def cut_below(slab, pts: np.ndarray, floor: float, r_t: float):
+    """``slab`` less the discs of radius ``r_t`` swept along the samples ``pts`` (n, 3) at or below ``floor``
+    (each run of such samples one swept region, 32 segments per quarter circle), prepared."""
+    below = pts[:, 2] <= floor + 1e-6
+    if not below.any() or slab.is_empty:
+        return slab
+    runs = np.split(np.arange(len(pts)), np.where(np.diff(below.astype(int)) != 0)[0] + 1)
+    cuts = []
+    for run in runs:
+        if not below[run[0]]:
+            continue
+        seg = pts[run, :2]
+        geom = LineString(seg) if len(seg) > 1 and np.ptp(seg, axis=0).max() > 0 else Point(seg[0])
+        cuts.append(geom.buffer(r_t, quad_segs=32))
+    if not cuts:
+        return slab
+    slab = slab.difference(shapely.union_all(cuts))
+    shapely.prepare(slab)
+    return slab
+
+
+def sweep_slabs(moves: list, slabs: list, bounds: list, r_t: float, slope: float, rounding: float,
+                slot_kinds=SLOT_KINDS, workers: int = 1) -> Sweep:
+    """Take each move's cut out of the slabs, in program order, and find on the way the largest engagement
+    (and in slots), the plunges into material and the rapids that touch it.
+
+    ``slabs[i]`` is the material between ``bounds[i + 1]`` and ``bounds[i]``.
+    The slabs are swept one per process, ``workers`` at a time, the top one
+    (which every deeper move cuts too) first; the figures are those of one
+    pass over moves and slabs together: a move counts once however many slabs
+    it plunges into or touches, the first move named, and the largest
+    engagement is the first met in (move, slab) order.
+    """
+    samples = [None if m.kind == "rapid" else _move_samples(m, slope, rounding) for m in moves]
+    swept = parallel_map(lambda i: _sweep_slab(i, slabs[i], moves, samples, bounds, r_t, slot_kinds),
+                         range(len(slabs)), workers)
+    best = max(((s.engagement[0], -s.engagement[1], -i) for i, s in enumerate(swept) if s.engagement[1] >= 0),
+               default=None)
+    eng, eng_at = (0.0, "") if best is None else (best[0], swept[-best[2]].engagement[2])
+    plunges = sorted({j for s in swept for j in s.plunge_moves})
+    rapids = sorted({j for s in swept for j in s.rapid_moves})
+    return Sweep(tuple(s.slab for s in swept), eng, eng_at, max((s.slot_engagement_mm for s in swept), default=0.0),
+                 len(plunges), where(moves[plunges[0]].pass_label, moves[plunges[0]].p1) if plunges else "",
+                 len(rapids), where(moves[rapids[0]].pass_label, moves[rapids[0]].p1) if rapids else "")

@@ -1,0 +1,136 @@
+"""The slabs swept one per process (camcam.nc.sweep) give the figures of one pass over moves and slabs together."""
+
+import numpy as np
+import shapely
+from hypothesis import HealthCheck, example, given, settings
+from hypothesis import strategies as st
+from shapely.geometry import LineString, Point
+
+from camcam.nc.sweep import (PROBE_INSET_MM, SAMPLE_MM, TOUCH_MM, cut_below, front_extent, moves_of, sweep_slabs, where)
+from camcam.verify.rs274 import CanonMove
+
+R_T = 5.0  # tool radius (Ø10)
+RECT = shapely.box(0.0, 0.0, 100.0, 50.0)  # the blank, top at Z0
+SLOT_KINDS = ("slot",)
+
+
+def _one_pass(moves, slabs, bounds, r_t, slope, rounding, slot_kinds):
+    """The sweep as it was before the slabs were split (camcam.nc.removal._remove at a161acf): every move in
+    program order against every slab in turn, each plunge and rapid counted once (the first slab that
+    meets it), the largest engagement the first met.  Kept here as the oracle."""
+    slabs = list(slabs)
+    eng, eng_at, slot_eng = 0.0, "", 0.0
+    plunges, plunge_at, rapids, rapid_at = 0, "", 0, ""
+
+    def slab_hits(i, geom) -> bool:
+        return float(shapely.distance(slabs[i], geom)) < r_t - TOUCH_MM if not slabs[i].is_empty else False
+
+    for m in moves:
+        z0, z1 = m.p0[2], m.p1[2]
+        zlo = min(z0, z1)
+        if m.kind == "rapid":
+            geom = LineString([m.p0[:2], m.p1[:2]]) if m.p0[:2] != m.p1[:2] else Point(m.p1[:2])
+            for i in range(len(slabs)):
+                if bounds[i] > zlo + 1e-6 and slab_hits(i, geom):
+                    rapids += 1
+                    rapid_at = rapid_at or where(m.pass_label, m.p1)
+                    break
+            continue
+        pts = m.samples(SAMPLE_MM)
+        xy_len = m.xy_length
+        if z1 < z0 - 1e-9 and (z0 - z1) > xy_len * slope + rounding:
+            geom = LineString(pts[:, :2]) if xy_len > 0 else Point(m.p1[:2])
+            for i in range(len(slabs)):
+                if bounds[i] > z1 + 1e-6 and bounds[i + 1] < z0 - 1e-6 and slab_hits(i, geom):
+                    plunges += 1
+                    plunge_at = plunge_at or where(m.pass_label, m.p1)
+                    break
+        if xy_len > 0 and len(pts) > 1:
+            d = np.diff(pts[:, :2], axis=0)
+            norm = np.hypot(d[:, 0], d[:, 1])
+            ok = norm > 0
+            probe_pts, tang, zs = pts[1:][ok], d[ok] / norm[ok, None], pts[1:, 2][ok]
+            for i in range(len(slabs)):
+                sel = zs <= bounds[i + 1] + 1e-6
+                if not sel.any() or slabs[i].is_empty:
+                    continue
+                w = front_extent(slabs[i], probe_pts[sel, :2], tang[sel], r_t - PROBE_INSET_MM)
+                k = int(np.argmax(w))
+                if m.pass_kind in slot_kinds:
+                    slot_eng = max(slot_eng, float(w[k]))
+                elif w[k] > eng:
+                    eng, eng_at = float(w[k]), where(m.pass_label, probe_pts[sel][k])
+        for i in range(len(slabs)):
+            slabs[i] = cut_below(slabs[i], pts, bounds[i + 1], r_t)  # the same cut as before, shared
+    return slabs, eng, eng_at, slot_eng, plunges, plunge_at, rapids, rapid_at
+
+
+_coord = st.sampled_from([-12.0, 0.0, 8.0, 25.0, 40.0, 60.0, 92.0, 112.0])
+_step = st.one_of(
+    st.tuples(st.just("marker"), st.sampled_from(["rough", "slot", "finish"])),
+    st.tuples(st.sampled_from(["line", "line", "rapid"]), _coord, _coord, st.sampled_from([5.0, 0.0, -1.0, -2.0, -3.0])))
+
+
+def _program(steps):
+    events, n = [], 0
+    for s in steps:
+        if s[0] == "marker":
+            n += 1
+            events.append(f"pass {n}/9: {s[1]}, test")
+        else:
+            events.append(CanonMove(s[0], s[1], s[2], s[3], 0.0))
+    return events
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(_step, min_size=3, max_size=9))
+# a plunge through three slabs, one into one, a rapid through two: each counted once
+@example([("marker", "rough"), ("rapid", 40.0, 25.0, 5.0), ("line", 40.0, 25.0, -3.0), ("line", 60.0, 25.0, -3.0),
+          ("rapid", 60.0, 25.0, 5.0), ("rapid", -12.0, 40.0, 5.0), ("line", -12.0, 40.0, -1.0),
+          ("line", 8.0, 40.0, -1.0), ("line", 8.0, 40.0, -2.0), ("line", 25.0, 40.0, -2.0), ("rapid", 92.0, 40.0, -2.0)])
+def test_split_sweep_is_the_one_pass_sweep(steps):
+    moves = moves_of(_program(steps))
+    levels = sorted({round(m.p1[2], 6) for m in moves if m.kind != "rapid" and m.p0[2] == m.p1[2] and m.p1[2] < 0.0},
+                    reverse=True)
+    bounds = [0.0] + levels
+    slope, rounding = np.tan(np.radians(3.0)), 2e-4
+
+    def fresh():
+        slabs = [shapely.Polygon(RECT) for _ in levels]
+        for s in slabs:
+            shapely.prepare(s)
+        return slabs
+
+    want = _one_pass(moves, fresh(), bounds, R_T, slope, rounding, SLOT_KINDS)
+    if len(steps) == 11:  # the example above
+        assert want[4] == 2 and want[6] == 1  # the plunges at X40 (three slabs) and X8 (one), the rapid
+    for workers in (1, 2):
+        got = sweep_slabs(moves, fresh(), bounds, R_T, slope, rounding, SLOT_KINDS, workers)
+        # the same figures to the bit and the same places: the same computations, only regrouped
+        assert (got.engagement_mm, got.engagement_where, got.slot_engagement_mm, got.plunges, got.plunge_where,
+                got.rapids, got.rapid_where) == want[1:]
+        assert len(got.slabs) == len(want[0])
+        assert all(a.equals_exact(b, 0.0) for a, b in zip(got.slabs, want[0]))
+
+
+def test_ties_go_to_the_first_move_and_slab():
+    # a ramp from Z0 to Z-3 through untouched material meets the full width 2·r at every sample of every slab;
+    # slab i probes only its samples at or below its floor, so each slab names a different first point: the
+    # figure is the top slab's (the first of the tie in (move, slab) order), at the first sample below Z-1.
+    # The flat cuts afterwards only make the levels (and meet the same width again, later: not named)
+    events = ["pass 1/2: rough, ramp", CanonMove("rapid", -12.0, 25.0, 5.0, 0.0), CanonMove("line", -12.0, 25.0, 0.0, 0.0),
+              CanonMove("line", 112.0, 25.0, -3.0, 0.0), "pass 2/2: rough, levels"]
+    for z in (-1.0, -2.0, -3.0):
+        events += [CanonMove("rapid", -12.0, 5.0, 5.0, 0.0), CanonMove("line", -12.0, 5.0, z, 0.0),
+                   CanonMove("line", 112.0, 5.0, z, 0.0), CanonMove("rapid", 112.0, 5.0, 5.0, 0.0)]
+    moves = moves_of(events)
+    bounds = [0.0, -1.0, -2.0, -3.0]
+    slope = np.tan(np.radians(3.0))
+    slabs = [shapely.Polygon(RECT) for _ in bounds[1:]]
+    got = sweep_slabs(moves, slabs, bounds, R_T, slope, 2e-4, SLOT_KINDS, 2)
+    want = _one_pass(moves, slabs, bounds, R_T, slope, 2e-4, SLOT_KINDS)
+    # both ends of the span at the tool's edge: (r − inset) + inset on each side, exactly 2·r up to rounding
+    assert abs(got.engagement_mm - 2 * R_T) < 1e-9
+    assert (got.engagement_mm, got.engagement_where) == want[1:3]
+    z = float(got.engagement_where.rsplit("Z", 1)[1])
+    assert "ramp" in got.engagement_where and -1.1 < z <= -1.0  # samples every 0.5 mm fall 0.012 mm in Z
