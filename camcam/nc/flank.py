@@ -27,7 +27,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import make_interp_spline
 
 from camcam.geometry.cylindrical import CylindricalCam
 from camcam.geometry.jet import Jet
@@ -148,6 +147,10 @@ class FlankPlan:
 
 def plan_flank(cam: CylindricalCam, tool_radius_mm: float, rho_d: float, per_segment: int = 49) -> FlankPlan:
     """Balanced displacements q(θ) for a flank pass of a tool of ``tool_radius_mm`` (see the module notes)."""
+    # imported here: a barrel job with a tool of the roller's size plans no flank, and its process then
+    # imports no scipy (0.5 CPU s; the drawing's child imports it anyway)
+    from scipy.interpolate import make_interp_spline
+
     br = cam.breaks
     splines, worst = [], 0.0
     radii = _radii(cam)

@@ -20,17 +20,21 @@ ROOT = Path(__file__).resolve().parents[2]
 SAMPLE = ROOT / "samples" / "disc-translating-roller.toml"
 
 
-def test_the_fitting_process_imports_no_plot_or_export_library(tmp_path):
+def _loaded_after_run(spec: Path, out: Path) -> dict:
     code = (
         "import json, sys\n"
         "from camcam.cli import main\n"
-        f"rc = main(['run', {str(SAMPLE)!r}, '-o', {str(tmp_path / 'out')!r}])\n"
+        f"rc = main(['run', {str(spec)!r}, '-o', {str(out)!r}])\n"
         "sys.stdout.flush()\n"
         "print(json.dumps({'rc': rc, 'loaded': [m for m in ('matplotlib', 'ezdxf', 'trimesh', 'scipy') "
         "if m in sys.modules]}))\n"
     )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
-    result = json.loads(r.stdout.strip().splitlines()[-1])
+    return json.loads(r.stdout.strip().splitlines()[-1])
+
+
+def test_the_fitting_process_imports_no_plot_or_export_library(tmp_path):
+    result = _loaded_after_run(SAMPLE, tmp_path / "out")
     # matplotlib is imported by the plot server, ezdxf, trimesh and scipy by the drawing's prepared child,
     # which also makes the mesh and forks the material check (camcam.forked): the process that fits the
     # NC path measures its deviations with shapely's STRtree, and imports no scipy at all
@@ -39,6 +43,13 @@ def test_the_fitting_process_imports_no_plot_or_export_library(tmp_path):
         "disc-translating-roller.ngc", "disc-translating-roller.dxf", "disc-translating-roller.stl",
         "disc-translating-roller-svaj.png", "disc-translating-roller-profile.png",
         "disc-translating-roller-deviation.png", "disc-translating-roller-fitted-motion.png"}
+
+
+def test_a_barrel_job_with_the_rollers_tool_imports_no_scipy(tmp_path):
+    # the flank plan (a thinner tool's quintic q(θ), scipy.interpolate) is the only scipy of the 4-axis job:
+    # with a tool of the roller's size there is none, and its import (0.5 CPU s) stays out of this process
+    result = _loaded_after_run(ROOT / "samples" / "cylindrical-translating.toml", tmp_path / "out")
+    assert result == {"rc": 0, "loaded": []}
 
 
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork: every run is in process already")
