@@ -65,6 +65,14 @@ def run_cli(args) -> tuple[int, str]:
 def check_outcome(code, stderr, out_dir):
     if code == 0:
         return
+    if code == 3:
+        # a valid spec whose job misses a check is written and says FAIL (hypothesis drew tolerance = 12 mm
+        # on disc-oscillating-flat: the coarse path meets 11.56 mm of material against the 8 mm stepover)
+        lines = error_lines(stderr)
+        assert lines and all(ln.startswith("camcam: FAIL: ") for ln in lines), stderr
+        assert "Traceback" not in stderr
+        assert any(p.suffix == ".ngc" for p in out_dir.iterdir()), "a failed check still writes the program"
+        return
     assert code == 2, (code, stderr)
     lines = error_lines(stderr)
     assert len(lines) == 1 and lines[0].startswith("camcam: error: "), stderr
@@ -107,6 +115,17 @@ def test_broken_motion_specs(data):
 @given(sample=st.sampled_from(["disc-translating-roller.toml", "disc-oscillating-flat.toml"]), data=st.data())
 def test_broken_cam_specs(sample, data):
     _sweep(sample, "run", data)
+
+
+def test_a_valid_spec_that_fails_a_check_is_written_and_exits_3(tmp_path):
+    # the sweep's find (2026-12-04): a 12 mm tolerance is no bad input, its program fails the engagement check
+    doc = tomllib.loads((ROOT / "samples" / "disc-oscillating-flat.toml").read_text())
+    doc["machining"]["tolerance"] = 12
+    spec = tmp_path / "spec.toml"
+    spec.write_text(tomli_w.dumps(doc))
+    code, err = run_cli(["run", str(spec), "-o", str(tmp_path / "out")])
+    assert code == 3 and "radial engagement" in err
+    check_outcome(code, err, tmp_path / "out")
 
 
 @settings(max_examples=40, deadline=None)
