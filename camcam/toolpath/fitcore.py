@@ -106,24 +106,30 @@ def greedy(t0, b, ok_many, guess):
     """Largest t1 in (t0, b] with ok(t0, t1), by expansion from ``guess`` then bisection.
 
     ``ok_many(t0, ts)`` judges a batch of candidate ends (bool array).  The
-    search is the one-at-a-time one (expand by 1.6 from ``guess`` until a
-    candidate fails, halve if the first fails, bisect to 1e-6 of the span),
-    with the candidates it may need next judged ahead in one batch: the
-    expansion's next :data:`GREEDY_BATCH` steps, the next
-    :data:`GREEDY_LEVELS` bisection levels.  So each decision, and the result,
+    search is the one-at-a-time one (b itself if it fits, else expand by 1.6
+    from ``guess`` until a candidate fails, halve if the first fails, bisect
+    to 1e-6 of the span), with the candidates it may need next judged ahead
+    in one batch: b with the expansion's first :data:`GREEDY_BATCH` steps
+    (a call of its own cost as much as 11 more candidates), then the next
+    steps, the next :data:`GREEDY_LEVELS` bisection levels.  So each decision, and the result,
     is that of the sequential search.
     """
-    if ok_many(t0, np.array([b]))[0]:
-        return b
     span = b - t0
     lo, hi = t0, None
     step = min(guess, span)
+    first = True
     while hi is None:  # expansion
         steps, s = [], step
         while len(steps) < GREEDY_BATCH and t0 + s < b:
             steps.append(s)
             s *= 1.6
-        ok = ok_many(t0, t0 + np.array(steps)) if steps else np.zeros(0, bool)
+        if first:  # the whole rest of the piece is judged with the first steps, in one batch: the answer if it fits
+            ok = ok_many(t0, np.concatenate([[b], t0 + np.array(steps, float)]))
+            if ok[0]:
+                return b
+            ok, first = ok[1:], False
+        else:
+            ok = ok_many(t0, t0 + np.array(steps)) if steps else np.zeros(0, bool)
         for s, good in zip(steps, ok):
             if good:
                 lo = t0 + s
