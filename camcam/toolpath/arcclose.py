@@ -17,7 +17,7 @@ import numpy as np
 
 from camcam.geometry.curve import curvature_rate, speed
 from camcam.toolpath.arcbatch import MIN_CHORD_STEPS, arc_batch, plain_element, printed_element, touch
-from camcam.toolpath.elements import Arc, element_distance, element_tangent
+from camcam.toolpath.elements import Arc, element_distance, element_distances, element_tangent
 
 __all__ = ["BIARC_RATIOS", "quiet_stretches", "closing_biarcs", "landings"]
 
@@ -106,6 +106,7 @@ def closing_biarcs(m, st, p1, t1, ratios, row: int) -> list:
     n = len(J)
     first = arc_batch(np.repeat(p0[None], n, axis=0), np.repeat(tan0[None], n, axis=0), J, m.q, m.sag)
     second = arc_batch(J, first[3], np.repeat(p1[None], n, axis=0), m.q, m.sag)
+    kept = []
     for joint, chord2, (c1, w1, l1, _, _, s1), (c2, w2, l2, _, _, s2) in zip(joints, chords, zip(*first), zip(*second)):
         if (not l1 and s1 > m.max_sweep) or (not l2 and s2 > m.max_sweep):
             continue
@@ -116,10 +117,17 @@ def closing_biarcs(m, st, p1, t1, ratios, row: int) -> list:
         if abs(math.atan2(t_end[0] * t1[1] - t_end[1] * t1[0], float(t_end @ t1))) > \
                 2 * 0.71 * m.q.step_mm / chord2 + 1e-9:
             continue
-        dev_c = float(np.minimum(element_distance(e1, q), element_distance(e2, q)).max())
-        # the joint is off the curve: the path → curve direction there as well
-        dev_j = float(np.hypot(*(q - joint).T).min())
-        dev = max(dev_c, dev_j)
+        kept.append((joint, e1, e2))
+    if not kept:
+        return out
+    # the kept biarcs measured together (element_distances: each row as element_distance gives it)
+    d = element_distances([e for _, e1, e2 in kept for e in (e1, e2)], q)
+    dev_c = np.minimum(d[0::2], d[1::2]).max(axis=1)
+    # the joint is off the curve: the path → curve direction there as well
+    J = np.array([joint for joint, _, _ in kept])[:, None, :]
+    dev_j = np.hypot(q[None, :, 0] - J[..., 0], q[None, :, 1] - J[..., 1]).min(axis=1)
+    for (_, e1, e2), dc, dj in zip(kept, dev_c.tolist(), dev_j.tolist()):
+        dev = max(dc, dj)
         if dev <= m.tol:
             out.append((dev, e1, e2))
     return out

@@ -54,3 +54,27 @@ def test_element_nearest_is_on_the_element_and_nearest():
         exact = np.hypot(*(q - p).T)
         assert np.all(exact <= brute + 1e-12)
         assert np.all(brute - exact <= 5e-4)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.floats(-5, 5), st.floats(-5, 5), st.floats(0.5, 30), st.floats(-3.1, 3.1),
+                          st.floats(0.01, 3.0), st.booleans(), st.floats(-1e-3, 1e-3), st.booleans()),
+                min_size=1, max_size=6),
+       st.integers(0, 2**32 - 1))
+def test_element_distances_is_element_distance_bit_for_bit(specs, seed):
+    # the closing biarcs' batched measurement must take the same decisions as one element at a time:
+    # every row equal to element_distance's to the last bit (no tolerance: the same arithmetic)
+    from camcam.toolpath.elements import element_distances
+
+    els = []
+    for cx, cy, r0, a0, sweep, ccw, dr, line in specs:
+        c = np.array([cx, cy])
+        s = 1 if ccw else -1
+        p0 = c + r0 * np.array([math.cos(a0), math.sin(a0)])
+        p1 = c + (r0 + dr) * np.array([math.cos(a0 + s * sweep), math.sin(a0 + s * sweep)])
+        els.append(Line(tuple(p0), tuple(p1)) if line else Arc(tuple(p0), tuple(p1), tuple(c), ccw))
+    q = np.random.default_rng(seed).uniform(-40, 40, (57, 2))
+    got = element_distances(els, q)
+    assert got.shape == (len(els), len(q))
+    for k, e in enumerate(els):
+        assert np.array_equal(got[k], element_distance(e, q))
