@@ -50,7 +50,16 @@ is Maier's free breakpoint where it pays.  After k arcs the states are
 thinned like a reachable region: per cell of (joint offset, tangent error)
 only the farthest survives (:func:`camcam.toolpath.beam._frontier`; the tangent error is measured
 in δ/h, the optimum's joints sit at ±10.4), then the ``beam`` whose next arc
-reaches farthest (one-step lookahead).
+reaches farthest (one-step lookahead).  The lookahead ranks the ``pool`` by
+the reach of each state's on-curve ray alone; only the ``beam`` kept get
+their off-curve rays (before 2026-12-04 all five rays of all 40 states were
+expanded and those of 24 thrown away after ranking).  Measured on 750
+marches (the five disc samples' first contours at 0.002, 0.001 and 0.0005
+mm, 25 start shifts × 2 stretches each): 34.00 arcs on average against
+34.04, 325 marches within the goal against 306, and one march 0.68 → 0.51
+CPU s on disc-translating-roller at 0.001 mm (0.72 → 0.53 on
+disc-oscillating-roller); every sample's output as before
+(``tests/data/sample_checksums.json``).
 
 Closing a closed contour.  The march starts at the middle of a stretch of
 near-constant curvature (a dwell, :func:`~camcam.toolpath.arcclose.quiet_stretches`) with its first
@@ -243,8 +252,13 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
     goal = budget.goal[0] * n_lb + budget.goal[1]
     # the longest stretch first; then the others at least half as long, each start shift in turn
     stretches = [st for st in stretches if st[1] >= 0.5 * stretches[0][1]][:budget.stretches]
-    starts = [a + (mid - a + shift * half) % (b - a)
-              for shift, (mid, half) in [(sh, st) for sh in budget.start_shifts for st in stretches][:budget.tries]]
+    def points(shifts):
+        return [a + (mid - a + shift * half) % (b - a) for shift, (mid, half) in
+                [(sh, st) for sh in shifts for st in stretches]]
+
+    first = points(budget.start_shifts)
+    starts = first[:budget.tries]
+    more = (first[budget.tries:] + points(budget.more_shifts))[:budget.more_tries]
 
     # a contour still over the goal after every start is marched from its first starts again with a wider
     # search (beam, pool, children): the fewest arcs of all marches kept (never more than before), and time
@@ -285,4 +299,12 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
             if met(spline):
                 return best
         k += n
+    # within ``near_miss`` blocks of the goal after all that: further starts, in the same rounds (the
+    # count is a step function of the start, so one more start is one more chance of a block fewer); a
+    # contour farther over the goal is left as it is (the starts would cost time and not reach it)
+    if len(best.elements) <= goal + budget.near_miss:
+        for k in range(0, len(more), n):
+            for spline in parallel_map(march_from, [(start, budget) for start in more[k:k + n]], n):
+                if met(spline):
+                    return best
     return best

@@ -43,7 +43,9 @@ class SplineBudget:
     of a closed section (× δ/h); ``wrap_joints``: first joints a closing biarc
     may replace.  A closed section still over ``goal`` after ``tries`` starts
     is marched from its first ``wide_tries`` starts once more with a wider
-    search, ``wide`` = (beam, pool, children).
+    search, ``wide`` = (beam, pool, children); one still over it by at most
+    ``near_miss`` blocks then from up to ``more_tries`` further starts (the
+    shifts left of ``start_shifts``, then ``more_shifts``).
     """
 
     samples: int = 28
@@ -63,6 +65,12 @@ class SplineBudget:
     goal: tuple[float, float] = (1.18, 4.0)
     wide: tuple[int, int, int] = (24, 60, 7)
     wide_tries: int = 2
+    # the rest of the 0.08 grid on (−1, 1), each the farthest from every shift before it (ties: the
+    # smaller |shift|, then the positive): chosen by that rule alone, not by any march's count
+    more_shifts: tuple[float, ...] = (0.96, -0.96, 0.8, -0.8, -0.24, 0.48, -0.48, 0.72, -0.72, 0.88, -0.88, 0.08,
+                                      -0.08, 0.16, -0.16, 0.32, -0.32, 0.4, -0.4, 0.56, -0.56, 0.64, -0.64)
+    near_miss: float = 1.0
+    more_tries: int = 50
 
 
 @dataclass(frozen=True)
@@ -113,7 +121,7 @@ class _March:
         ok = (dev <= self.tol) & (is_line | (sweep <= self.max_sweep)) & (i1 > i0) & long_enough
         return ok, (p1, centre, ccw, is_line, t_end, dev)
 
-    def expand(self, states, offsets) -> None:
+    def expand(self, states, offsets, append: bool = False) -> None:
         """Fill each state's rays (feasible next joints) and reach; all candidates of all states as one batch a pass.
 
         A state is tried along rays: next joints on the curve and offset from it
@@ -122,14 +130,16 @@ class _March:
         over [0.4, 1.8] × the state's last step; a ray whose candidates are all
         feasible widens, one with none narrows, until its farthest feasible
         joint is bracketed; one more pass refines between it and the next
-        infeasible candidate.
+        infeasible candidate.  Each ray's joints are its own (the same for any
+        other rays in the batch), so with ``append`` the rays at ``offsets`` are
+        added to a state's earlier ones, and its reach is then over all of them.
         """
         K = self.budget.candidates
         stop = self.stop
         grid = np.linspace(0.4, 1.8, K)
         rays = [_Ray(s, o * self.tol, max(s.h, 2.0)) for s in states for o in offsets]
         for s in states:
-            s.rays = [r for r in rays if r.state is s]
+            s.rays = (s.rays if append else []) + [r for r in rays if r.state is s]
         todo = rays
         brackets = []
         for _ in range(24):
@@ -338,9 +348,13 @@ def march(curve, a, b, tol, quantizer, max_sweep, sag, closed, budget, start) ->
             break
         # 3. keep the farthest child of each joint state (normal offset, tangent error), then the farthest W
         level = _frontier(m, children, budget.pool, budget.state_bins)
-        m.expand(level, budget.offsets)
-        level.sort(key=lambda c: -c.reach)  # one-step lookahead: the farthest next reach first
+        # 3b. one-step lookahead: the pool ranked by the reach of each state's on-curve ray alone (the first
+        # offset), the farthest W kept, and only they get their off-curve rays (the children come from all
+        # of a kept state's rays; the others' off-curve rays were never used but to rank)
+        m.expand(level, budget.offsets[:1])
+        level.sort(key=lambda c: -c.reach)
         level = level[:W]
+        m.expand(level, budget.offsets[1:], append=True)
     if best is None:
         raise InputError(f"cannot fit the curve on t ∈ [{a:g}, {b:g}] within {tol:g} mm")
     _, st, e1, e2, saved, _ = best

@@ -313,3 +313,24 @@ def test_the_second_start_beside_the_first_gives_the_same_spline():
         two = fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=budget, lower_bound=1.0, workers=2, **kw)
         assert one.elements == two.elements, goal  # no tolerance: the same marches chosen in the same order
     assert _children() <= before
+
+
+def test_a_near_miss_gets_the_further_starts_a_far_one_does_not():
+    """A closed section within ``near_miss`` blocks of the goal after its starts (and wide marches) is marched
+    from the further starts until one meets the goal; one farther over it is left as it is.  The same spline
+    for one and two workers."""
+    curve = polar_cam()
+    kw = dict(quantizer=Quantizer(4), max_sweep=math.radians(120), sag=5e-6, closed=True, lower_bound=1.0)
+    shifts = (0.12, 0.0, -0.12)  # the first start the worst (17 arcs against 16 when this was written)
+    base = SplineBudget(start_shifts=shifts[:1], more_shifts=shifts[1:], stretches=1, tries=1, wide_tries=0)
+
+    def fit(workers=1, **b):
+        return fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=replace(base, **b), workers=workers, **kw)
+
+    alone = [len(fit(start_shifts=(s,), more_tries=0).elements) for s in shifts]
+    assert alone[0] > min(alone[1:]), alone  # else a further start could not be told from none
+    goal = (0.0, float(alone[0] - 1))  # one block under the first start's count
+    assert len(fit(goal=goal, near_miss=1.0).elements) <= alone[0] - 1, alone  # a near miss: further starts
+    assert len(fit(goal=goal, near_miss=0.5).elements) == alone[0], alone  # farther over: the first start's
+    assert len(fit(goal=goal, near_miss=1.0, more_tries=0).elements) == alone[0], alone  # no further starts
+    assert fit(goal=goal, near_miss=1.0).elements == fit(2, goal=goal, near_miss=1.0).elements
