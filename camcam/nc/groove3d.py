@@ -64,7 +64,7 @@ import numpy as np
 from camcam.forked import parallel_map
 from camcam.geometry.cylindrical import CylindricalCam
 from camcam.nc.groove_motion import (Motion, ProgramMotion, RollerMotion, follower_poses, section_interval, side_extent,
-                                     wall_extents)
+                                     sincos_sum, wall_extents)
 from camcam.nc.toolposes import CylinderTool, ToolPoses, frozen_array
 
 __all__ = ["WallExtreme", "WallDeviation", "GrooveMeasurement", "measure_groove", "pose_step_for", "WALL_LABELS",
@@ -244,13 +244,25 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
         i1 = np.minimum(np.floor((hi_s - ak - g0) / dg).astype(int), i0 + k - 1)
         cnt = np.maximum(i1 - i0 + 1, 0)
         chunk = max(1, int(_PAIRS_PER_CHUNK // max(1, int(cnt.mean()) + 1)))
+        # every grid index a pair may take (before its wrap onto [0, k)): the angles g0 + i·dg as the pairs had
+        # them, with their sines and cosines, and each sample's pose with the sine and cosine of its a and B.
+        # A chunk's pairs gather their rows of these with one np.take along the columns (the same values; on
+        # 65 536 pairs 7 x faster than one gather per array)
+        i_min = int(i0.min(initial=0))
+        grid = g0 + np.arange(i_min, int((i0 + np.maximum(cnt, 1)).max(initial=1))) * dg
+        grid_sc = np.stack([np.sin(grid), np.cos(grid)])
+        sample_cols = np.stack([X, Y, Z, B, sincos[0], sincos[1], np.sin(a), np.cos(a)])
         for s0 in range(0, len(keep), chunk):
             c = cnt[s0:s0 + chunk]
             # pairs: sample j of the chunk with grid angles i0[j], i0[j] + 1, …, i0[j] + c[j] − 1
             js = np.repeat(keep[s0:s0 + chunk], c)
             ii = np.arange(c.sum()) - np.repeat(np.cumsum(c) - c - i0[s0:s0 + chunk], c)
-            lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, g0 + ii * dg,
-                                      (sincos[0][js], sincos[1][js]))
+            Xj, Yj, Zj, Bj, sin_b, cos_b, sin_a, cos_a = np.take(sample_cols, js, axis=1)
+            sin_g, cos_g = np.take(grid_sc, ii - i_min, axis=1)
+            # sin and cos of β = γ + a by the angle-addition formulas: one sine and cosine per grid angle and
+            # per sample instead of per pair (groove_motion.sincos_sum)
+            lo, hi = section_interval(Xj, Yj, Zj, None, Bj, r, L, rho, None, (sin_b, cos_b),
+                                      sincos_sum(sin_g, cos_g, sin_a, cos_a))
             ii = np.mod(ii, k)
             for side, v in enumerate(wall_extents(lo, hi)):
                 _scatter_best(ii, v, js, best_v[side], best_j[side])

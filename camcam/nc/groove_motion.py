@@ -19,22 +19,30 @@ import numpy as np
 from camcam.geometry.cylindrical import BarrelOscillatingRoller, CylindricalCam
 from camcam.nc.toolposes import A_AXIS_SENSE, CylinderTool, ToolPoses
 
-__all__ = ["section_interval", "wall_extents", "side_extent", "Motion", "ProgramMotion", "RollerMotion", "follower_poses"]
+__all__ = ["section_interval", "sincos_sum", "wall_extents", "side_extent", "Motion", "ProgramMotion", "RollerMotion", "follower_poses"]
 
 
-def section_interval(X, Y, Z, a, B, r, L, rho, gamma, sincos_B=None):
+def section_interval(X, Y, Z, a, B, r, L, rho, gamma, sincos_B=None, sincos_beta=None):
     """x-interval (lo, hi) of a posed cylinder on r = ρ at part angle γ; NaN where it misses.
 
     ``sincos_B`` is (sin B, cos B) when the caller has them (an envelope reuses
-    a sample's for each of its angles).  The arithmetic is done in place: at
-    tens of thousands of (pose, angle) pairs a call, fresh temporaries cost
-    more than the arithmetic; sin and cos are most of the rest.
+    a sample's for each of its angles).  ``sincos_beta`` is (sin β, cos β) of
+    β = γ + a when the caller has them (an envelope on a regular grid makes them
+    from its angles' and its samples' sines and cosines by the angle-addition
+    formulas, :func:`sincos_sum`); ``gamma`` and ``a`` are then not used
+    (None will do).  The arithmetic is done in place: at tens of thousands of
+    (pose, angle) pairs a call, fresh temporaries cost more than the
+    arithmetic; sin and cos are most of the rest.
     """
     shape = np.broadcast_shapes(np.shape(gamma), np.shape(a), np.shape(X), np.shape(Y), np.shape(Z), np.shape(B))
-    beta = np.add(gamma, a, out=np.empty(shape))  # every result below is an array of this shape (0-d too)
     sb, cb = (np.sin(B), np.cos(B)) if sincos_B is None else sincos_B
-    eta = np.sin(beta, out=np.empty(shape))
-    zeta = np.cos(beta, out=beta)
+    if sincos_beta is None:
+        beta = np.add(gamma, a, out=np.empty(shape))  # every result below is an array of this shape (0-d too)
+        eta = np.sin(beta, out=np.empty(shape))
+        zeta = np.cos(beta, out=beta)
+    else:
+        eta = np.array(np.broadcast_to(sincos_beta[0], shape), float)
+        zeta = np.array(np.broadcast_to(sincos_beta[1], shape), float)
     eta *= rho
     eta += Y
     zeta *= rho
@@ -73,6 +81,26 @@ def section_interval(X, Y, Z, a, B, r, L, rho, gamma, sincos_B=None):
     lo[miss] = np.nan
     hi[miss] = np.nan
     return lo, hi
+
+
+def sincos_sum(s1, c1, s2, c2):
+    """(sin(x + y), cos(x + y)) from sin and cos of x (``s1``, ``c1``) and of y (``s2``, ``c2``), arrays.
+
+    The angle-addition formulas: four products and two sums instead of a sine and a cosine.  They differ
+    from ``np.sin(x + y)`` by a few units in the last place (the sum x + y is not rounded first).
+
+    Examples
+    --------
+    >>> x, y = np.array([0.3, 2.0]), np.array([1.1, -4.0])
+    >>> s, c = sincos_sum(np.sin(x), np.cos(x), np.sin(y), np.cos(y))
+    >>> bool(np.allclose(s, np.sin(x + y), rtol=0, atol=1e-15)), bool(np.allclose(c, np.cos(x + y), rtol=0, atol=1e-15))
+    (True, True)
+    """
+    s = np.multiply(s1, c2)
+    s += c1 * s2
+    c = np.multiply(c1, c2)
+    c -= s1 * s2
+    return s, c
 
 
 def wall_extents(lo, hi):
