@@ -236,7 +236,6 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
     lo_s = np.arcsin(np.clip((-r - Y[keep]) / rho, -1, 1))
     hi_s = np.arcsin(np.clip((r - Y[keep]) / rho, -1, 1))
     ak = a[keep]
-    sincos = np.sin(B), np.cos(B)  # each sample's, taken for every angle it reaches
     best_v = np.full((2, k), -np.inf)
     best_j = np.full((2, k), -1)
     if regular:
@@ -245,19 +244,21 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
         cnt = np.maximum(i1 - i0 + 1, 0)
         chunk = max(1, int(_PAIRS_PER_CHUNK // max(1, int(cnt.mean()) + 1)))
         # every grid index a pair may take (before its wrap onto [0, k)): the angles g0 + i·dg as the pairs had
-        # them, with their sines and cosines, and each sample's pose with the sine and cosine of its a and B.
-        # A chunk's pairs gather their rows of these with one np.take along the columns (the same values; on
-        # 65 536 pairs 7 x faster than one gather per array)
+        # them, with their sines and cosines; and each kept sample's pose with the sines and cosines of its a
+        # and B (taken for every angle it reaches).  A chunk's pairs gather their columns of these with one
+        # np.take each (the same values as a gather per array, in two calls instead of ten)
         i_min = int(i0.min(initial=0))
         grid = g0 + np.arange(i_min, int((i0 + np.maximum(cnt, 1)).max(initial=1))) * dg
         grid_sc = np.stack([np.sin(grid), np.cos(grid)])
-        sample_cols = np.stack([X, Y, Z, B, sincos[0], sincos[1], np.sin(a), np.cos(a)])
+        Bk = B[keep]
+        kept = np.stack([X[keep], Y[keep], Z[keep], Bk, np.sin(Bk), np.cos(Bk), np.sin(ak), np.cos(ak)])
         for s0 in range(0, len(keep), chunk):
             c = cnt[s0:s0 + chunk]
             # pairs: sample j of the chunk with grid angles i0[j], i0[j] + 1, …, i0[j] + c[j] − 1
-            js = np.repeat(keep[s0:s0 + chunk], c)
+            local = np.repeat(np.arange(s0, s0 + len(c)), c)  # the pair's sample among the kept
+            js = keep[local]
             ii = np.arange(c.sum()) - np.repeat(np.cumsum(c) - c - i0[s0:s0 + chunk], c)
-            Xj, Yj, Zj, Bj, sin_b, cos_b, sin_a, cos_a = np.take(sample_cols, js, axis=1)
+            Xj, Yj, Zj, Bj, sin_b, cos_b, sin_a, cos_a = np.take(kept, local, axis=1)
             sin_g, cos_g = np.take(grid_sc, ii - i_min, axis=1)
             # sin and cos of β = γ + a by the angle-addition formulas: one sine and cosine per grid angle and
             # per sample instead of per pair (groove_motion.sincos_sum)
@@ -267,6 +268,7 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
             for side, v in enumerate(wall_extents(lo, hi)):
                 _scatter_best(ii, v, js, best_v[side], best_j[side])
     else:
+        sincos = np.sin(B), np.cos(B)  # each sample's, taken for every angle it reaches
         for i in range(k):
             d_lo = np.mod(gamma[i] + ak - lo_s + math.pi, 2 * math.pi) - math.pi
             d_hi = np.mod(hi_s - gamma[i] - ak + math.pi, 2 * math.pi) - math.pi
