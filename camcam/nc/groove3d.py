@@ -245,8 +245,9 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
         chunk = max(1, int(_PAIRS_PER_CHUNK // max(1, int(cnt.mean()) + 1)))
         # every grid index a pair may take (before its wrap onto [0, k)): the angles g0 + i·dg as the pairs had
         # them, with their sines and cosines; and each kept sample's pose with the sines and cosines of its a
-        # and B (taken for every angle it reaches).  A chunk's pairs gather their columns of these with one
-        # np.take each (the same values as a gather per array, in two calls instead of ten)
+        # and B (taken for every angle it reaches).  A chunk's pairs take their columns of these with one
+        # np.repeat (a sample's for each of its angles) and one np.take (the angles'): the same values as a
+        # gather per array, in two calls instead of ten
         i_min = int(i0.min(initial=0))
         grid = g0 + np.arange(i_min, int((i0 + np.maximum(cnt, 1)).max(initial=1))) * dg
         grid_sc = np.stack([np.sin(grid), np.cos(grid)])
@@ -255,10 +256,9 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
         for s0 in range(0, len(keep), chunk):
             c = cnt[s0:s0 + chunk]
             # pairs: sample j of the chunk with grid angles i0[j], i0[j] + 1, …, i0[j] + c[j] − 1
-            local = np.repeat(np.arange(s0, s0 + len(c)), c)  # the pair's sample among the kept
-            js = keep[local]
+            js = np.repeat(keep[s0:s0 + chunk], c)
             ii = np.arange(c.sum()) - np.repeat(np.cumsum(c) - c - i0[s0:s0 + chunk], c)
-            Xj, Yj, Zj, Bj, sin_b, cos_b, sin_a, cos_a = np.take(kept, local, axis=1)
+            Xj, Yj, Zj, Bj, sin_b, cos_b, sin_a, cos_a = np.repeat(kept[:, s0:s0 + chunk], c, axis=1)
             sin_g, cos_g = np.take(grid_sc, ii - i_min, axis=1)
             # sin and cos of β = γ + a by the angle-addition formulas: one sine and cosine per grid angle and
             # per sample instead of per pair (groove_motion.sincos_sum)
