@@ -252,17 +252,17 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
         grid = g0 + np.arange(i_min, int((i0 + np.maximum(cnt, 1)).max(initial=1))) * dg
         grid_sc = np.stack([np.sin(grid), np.cos(grid)])
         Bk = B[keep]
-        kept = np.stack([X[keep], Y[keep], Z[keep], Bk, np.sin(Bk), np.cos(Bk), np.sin(ak), np.cos(ak)])
+        kept = np.stack([X[keep], Y[keep], Z[keep], np.sin(Bk), np.cos(Bk), np.sin(ak), np.cos(ak)])
         for s0 in range(0, len(keep), chunk):
             c = cnt[s0:s0 + chunk]
             # pairs: sample j of the chunk with grid angles i0[j], i0[j] + 1, …, i0[j] + c[j] − 1
             js = np.repeat(keep[s0:s0 + chunk], c)
             ii = np.arange(c.sum()) - np.repeat(np.cumsum(c) - c - i0[s0:s0 + chunk], c)
-            Xj, Yj, Zj, Bj, sin_b, cos_b, sin_a, cos_a = np.repeat(kept[:, s0:s0 + chunk], c, axis=1)
+            Xj, Yj, Zj, sin_b, cos_b, sin_a, cos_a = np.repeat(kept[:, s0:s0 + chunk], c, axis=1)
             sin_g, cos_g = np.take(grid_sc, ii - i_min, axis=1)
             # sin and cos of β = γ + a by the angle-addition formulas: one sine and cosine per grid angle and
             # per sample instead of per pair (groove_motion.sincos_sum)
-            lo, hi = section_interval(Xj, Yj, Zj, None, Bj, r, L, rho, None, (sin_b, cos_b),
+            lo, hi = section_interval(Xj, Yj, Zj, None, None, r, L, rho, None, (sin_b, cos_b),
                                       sincos_sum(sin_g, cos_g, sin_a, cos_a))
             ii = np.mod(ii, k)
             for side, v in enumerate(wall_extents(lo, hi)):

@@ -26,7 +26,7 @@ def section_interval(X, Y, Z, a, B, r, L, rho, gamma, sincos_B=None, sincos_beta
     """x-interval (lo, hi) of a posed cylinder on r = ρ at part angle γ; NaN where it misses.
 
     ``sincos_B`` is (sin B, cos B) when the caller has them (an envelope reuses
-    a sample's for each of its angles).  ``sincos_beta`` is (sin β, cos β) of
+    a sample's for each of its angles); ``B`` is then not used (None will do).  ``sincos_beta`` is (sin β, cos β) of
     β = γ + a when the caller has them (an envelope on a regular grid makes them
     from its angles' and its samples' sines and cosines by the angle-addition
     formulas, :func:`sincos_sum`); ``gamma`` and ``a`` are then not used
