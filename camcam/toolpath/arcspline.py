@@ -127,6 +127,20 @@ against 106 over the 40 cases, a wide one costing 1.5–2 ordinary ones): no
 gain.  Eight wide starts on disc-translating-flat at 0.0005 mm: 40 or 41
 arcs on all 20 marches.
 
+Also tried (2026-12-05), to spare disc-oscillating-roller at 0.001 mm its 12
+marches (counts 36 36 36 37 37 37 38 36 37 36 36 35 from the 12 starts, the
+goal 35.9): (a) one march from all 8 start shifts of a dwell at once, each
+root's states ranked by their progress from their own root (by rows, or by
+the N_lb integrand ∫|κ′|^⅓ ds, the same): over the 6 disc curves at 0.01,
+0.002, 0.001 and 0.0005 mm 708 arcs against 704 for the first start alone,
+10 goals met against 12, so no better than one more start; (b) from every
+joint of a 36-arc march, a beam of 8 levels closing onto the spline's later
+joints (biarc, or a landing on a later arc's circle): no window of up to 8
+arcs could be done with fewer (33 windows on each of 2 marches), so the
+beam leaves no local slack and the count is set by the whole turn (the
+march's reach passes once round after 34.8–36.6 levels, its arcs covering
+0.9–0.98 of the optimum pattern's length in smooth stretches).
+
 Measured (``benchmarks/run_nc.py --arcs``, the eight disc samples at 0.1–0.0005 mm,
 band 0.95·δ): all 40 contour × tolerance cases within 1.2·N_lb + 4 (24
 with the biarc closure and one start; 27 with the landing closure alone; 38
