@@ -4,8 +4,9 @@
   memory it inherited, then serves later jobs sent to it (pickled), one at a
   time, importing the modules they name itself.  So the parent never imports
   matplotlib: the server imports it once, on the other core.  `camcam run`
-  starts its plot server before anything else (matplotlib's import then runs
-  beside the run's own imports); the cam and the plots' data go to it pickled.
+  starts its plot server before anything but numpy's import, which the server
+  inherits (matplotlib's import then runs beside the run's own imports); the
+  cam and the plots' data go to it pickled.
 * :class:`Prepared` forks one child that imports modules at once and runs one
   job sent to it later, which, unlike a server's, may fork children of its
   own.  `camcam run` starts one before the NC step: it imports ezdxf and
