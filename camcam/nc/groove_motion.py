@@ -58,9 +58,10 @@ def section_interval(X, Y, Z, a, B, r, L, rho, gamma, sincos_B=None, sincos_beta
     lo /= cb
     hi /= cb
     tilted = np.abs(sb) > 1e-15
-    if tilted.any():
+    every, some = bool(tilted.all()), bool(tilted.any())  # a 5-axis envelope's poses are all tilted, a 4-axis's none
+    if some:
         # the tip plane (axial position 0) and the end (L) bound a tilted cylinder's section
-        safe = np.where(tilted, sb, 1.0)
+        safe = sb if every else np.where(tilted, sb, 1.0)
         e0 = np.negative(zeta, out=np.empty(shape))
         e0 *= cb
         e0 /= safe
@@ -72,11 +73,12 @@ def section_interval(X, Y, Z, a, B, r, L, rho, gamma, sincos_B=None, sincos_beta
         ahi = np.where(up, e1, e0)
         np.maximum(lo, alo, out=alo)
         np.minimum(hi, ahi, out=ahi)
-        lo = np.where(tilted, alo, lo)
-        hi = np.where(tilted, ahi, hi)
+        lo = alo if every else np.where(tilted, alo, lo)
+        hi = ahi if every else np.where(tilted, ahi, hi)
     miss = np.less(q2, 0, out=np.empty(shape, bool))  # the negation of the old q2 >= 0 & ...: NaN-free here
     miss |= lo > hi
-    miss |= ~(tilted | ((zeta >= 0) & (zeta <= L)))
+    if not every:  # an untilted cylinder's section lies between its tip plane and its end
+        miss |= ~(tilted | ((zeta >= 0) & (zeta <= L)))
     lo += X
     hi += X
     lo[miss] = np.nan
