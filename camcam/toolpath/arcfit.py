@@ -39,7 +39,7 @@ from camcam.toolpath.arcspline import fit_arc_spline, g1_sections
 from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.toolpath.deviation import Deviation, measure_deviation
 from camcam.toolpath.elements import Arc, Line
-from camcam.toolpath.fitcore import Piece, greedy, lines_fit, pieces
+from camcam.toolpath.fitcore import Piece, greedy, lines_deviation, pieces
 from camcam.toolpath.lowerbound import line_estimate_blocks, line_estimate_pieces, lower_bound_blocks, lower_bound_pieces
 from camcam.toolpath.quantizer import Quantizer
 
@@ -80,8 +80,8 @@ def _fit_lines_piece(piece, tol):
     k = np.abs(curvature(piece.curve, piece.grid))
     v = speed(piece.curve, piece.grid)
 
-    def ok(t0, ts):
-        return lines_fit(piece, t0, ts, tol)
+    def deviations(t0, ts):
+        return lines_deviation(piece, t0, ts, tol)
 
     nodes = [a]
     while nodes[-1] < b:
@@ -89,7 +89,7 @@ def _fit_lines_piece(piece, tol):
         j = int(np.searchsorted(piece.grid, t0))
         j = min(j, len(piece.grid) - 1)
         step_mm = math.sqrt(8.0 * tol / max(k[j], 1e-12))  # seed paper eq. (8): δ = L²/8ρ
-        nodes.append(greedy(t0, b, ok, step_mm / max(v[j], 1e-12)))
+        nodes.append(greedy(t0, b, deviations, tol, step_mm / max(v[j], 1e-12)))
     pts = piece.point(np.array(nodes))
     return [Line(tuple(p), tuple(q)) for p, q in zip(pts[:-1], pts[1:])]
 
