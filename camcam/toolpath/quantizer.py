@@ -101,14 +101,39 @@ class Quantizer:
         """A point's coordinates as printed."""
         return tuple(self.snap(float(x)) for x in p)
 
+    def snap_points(self, points) -> list[tuple[float, ...]]:
+        """:meth:`snap_point` of each of ``points`` (any lengths), the coordinates counted as one array.
+
+        The same floats as point by point (the array :meth:`count` is the
+        correctly rounded count too), at a fraction of the cost: a contour's
+        hundreds of ends are counted in one call, not one exact decimal each.
+
+        Examples
+        --------
+        >>> q = Quantizer(4)
+        >>> q.snap_points([(292.66865, -0.00001), (1.0, 2.00005, 3.0)]) == [q.snap_point((292.66865, -0.00001)),
+        ...                                                                q.snap_point((1.0, 2.00005, 3.0))]
+        True
+        """
+        sizes = [len(p) for p in points]
+        flat = np.fromiter((float(x) for p in points for x in p), float, count=sum(sizes))
+        values = self.value(self.count(flat)).tolist() if len(flat) else []
+        out, i = [], 0
+        for n in sizes:
+            out.append(tuple(values[i:i + n]))
+            i += n
+        return out
+
     def snap_elements(self, elements) -> tuple:
         """Ends and centres on the printed grid (I/J form); elements that collapse are dropped."""
+        snapped = iter(self.snap_points([p for e in elements for p in _points(e)]))
         out = []
         for e in elements:
-            s, t = self.snap_point(e.start), self.snap_point(e.end)
+            s, t = next(snapped), next(snapped)
+            c = next(snapped) if isinstance(e, Arc) else None
             if s == t:
                 continue
-            out.append(Arc(s, t, self.snap_point(e.centre), e.ccw) if isinstance(e, Arc) else Line(s, t))
+            out.append(Arc(s, t, c, e.ccw) if isinstance(e, Arc) else Line(s, t))
         return tuple(out)
 
     def radius_count(self, start, centre) -> int:
@@ -123,9 +148,11 @@ class Quantizer:
         from the rounded ends and the printed radius (:meth:`radius_count`), on
         the short-arc side.
         """
+        snapped = iter(self.snap_points([p for e in elements for p in _points(e)]))
         out = []
         for e in elements:
-            s, t = self.snap_point(e.start), self.snap_point(e.end)
+            s, t = next(snapped), next(snapped)
+            c = next(snapped) if isinstance(e, Arc) else None
             if isinstance(e, Line):
                 out.append(Line(s, t))
             elif self.arc_format == "r":
@@ -138,5 +165,10 @@ class Quantizer:
                 side = 1.0 if e.ccw else -1.0  # short arc: centre on the turning side
                 out.append(Arc(s, t, (mx + side * h * nx, my + side * h * ny), e.ccw))
             else:
-                out.append(Arc(s, t, self.snap_point(e.centre), e.ccw))
+                out.append(Arc(s, t, c, e.ccw))
         return tuple(out)
+
+
+def _points(e) -> tuple:
+    """An element's points as printed in order: start, end, and an arc's centre."""
+    return (e.start, e.end, e.centre) if isinstance(e, Arc) else (e.start, e.end)

@@ -79,3 +79,27 @@ def test_budget_floor_is_derived():
     targets = list(DEFAULT_BUDGET.targets(0.01, Quantizer(4)))
     assert len(targets) == DEFAULT_BUDGET.attempts
     assert all(abs(t1 / t0 - DEFAULT_BUDGET.retry_factor) < 1e-12 for t0, t1 in zip(targets, targets[1:]))
+
+
+@st.composite
+def _coordinates(draw, decimals: int):
+    """Any coordinate, or a printed value or a half-way point between two, or a few ulps off one of those:
+    where the rounding is decided exactly."""
+    if draw(st.booleans()):
+        return draw(st.floats(-1e4, 1e4, allow_nan=False))
+    v = (draw(st.integers(-10**6, 10**6)) + draw(st.sampled_from([0.0, 0.5, -0.5]))) / 10**decimals
+    n = draw(st.integers(-4, 4))
+    for _ in range(abs(n)):
+        v = float(np.nextafter(v, np.inf if n > 0 else -np.inf))
+    return v
+
+
+@settings(max_examples=200, deadline=None)
+@given(data=st.data(), decimals=st.integers(0, 9))
+def test_snap_points_is_snap_point_of_each(data, decimals):
+    """The contour's points counted as one array give the same floats, bit for bit, as point by point."""
+    q = Quantizer(decimals)
+    points = data.draw(st.lists(st.lists(_coordinates(decimals), min_size=1, max_size=3), max_size=8))
+    got = q.snap_points(points)
+    want = [q.snap_point(p) for p in points]
+    assert [tuple(x.hex() for x in p) for p in got] == [tuple(x.hex() for x in p) for p in want]
