@@ -161,25 +161,49 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
         pieces = shapely.get_parts(rest)
         pts, owner = shapely.get_coordinates(pieces, return_index=True)
         dist = polygon_distance(keep, pts)  # shapely.distance's figures, through an R-tree of keep's edges
-        top = np.full(len(pieces), -np.inf)
-        np.maximum.at(top, owner, dist)
-        tree = None
-        for k in np.argsort(-top, kind="stable").tolist():  # the farthest piece first
-            if top[k] <= left:
-                break
-            tree = _centre_tree(cut_moves, bounds[i + 1]) if tree is None else tree
-            mine = np.flatnonzero(owner == k)
-            probe = np.vstack([pts[mine], shapely.get_coordinates(shapely.point_on_surface(pieces[k]))])
-            if _uncut(tree, probe, r_t).any():
-                j = int(mine[np.argmax(dist[mine])])
-                left = float(dist[j])
-                left_at = (f"slab Z{bounds[i + 1]:g}…Z{bounds[i]:g}: material at X{pts[j, 0]:.3f} Y{pts[j, 1]:.3f} "
-                           "not cut")
-                break
+        j = _first_uncut(pieces, pts, owner, dist, left, lambda: _centre_tree(cut_moves, bounds[i + 1]), r_t)
+        if j is not None:
+            left = float(dist[j])
+            left_at = (f"slab Z{bounds[i + 1]:g}…Z{bounds[i]:g}: material at X{pts[j, 0]:.3f} Y{pts[j, 1]:.3f} "
+                       "not cut")
     return RemovalReport(r_t, stepover_mm, ramp_angle_deg, tolerance_mm, allowance_mm, tuple(levels), passes,
                          swept.engagement_mm, swept.engagement_where, swept.slot_engagement_mm, swept.plunges,
                          swept.plunge_where, swept.rapids, swept.rapid_where, left, left_at, over, over_at,
                          clearance, clear_at)
+
+
+def _first_uncut(pieces, pts: np.ndarray, owner: np.ndarray, dist: np.ndarray, left: float, centres, r_t: float):
+    """Of the ``pieces`` a slab leaves (their vertices ``pts`` (n, 2), each vertex's piece ``owner``, ascending,
+    and its distance ``dist`` from the part), the farthest-reaching one farther than ``left`` that is really
+    there: some probe of it (a vertex, or a point inside) outside every tool disc (:func:`_uncut`; ``centres()``
+    makes the tree, only when a piece is to be probed).  Returns the index into ``pts`` of that piece's
+    farthest vertex, or None.
+
+    Every candidate's probes are measured in one query: the same verdicts as piece by piece, farthest first
+    (a slab strewn with slivers leaves a thousand pieces; tests/nc/test_removal.py keeps that search as the
+    oracle).
+    """
+    top = np.full(len(pieces), -np.inf)
+    np.maximum.at(top, owner, dist)
+    order = np.argsort(-top, kind="stable")
+    reach = order[top[order] > left]  # the farthest first
+    if len(reach) == 0:
+        return None
+    first = np.searchsorted(owner, np.arange(len(pieces) + 1))  # a piece's vertices: pts[first[k]:first[k + 1]]
+    inside = shapely.point_on_surface(pieces[reach])
+    n_in = (~shapely.is_empty(inside)).astype(int)  # a degenerate piece may have no point inside
+    inner = shapely.get_coordinates(inside)  # one row a point that is not empty, in the pieces' order
+    at = np.cumsum(n_in) - n_in
+    probes, group = [], []
+    for r, k in enumerate(reach.tolist()):
+        probes += [pts[first[k]:first[k + 1]], inner[at[r]:at[r] + n_in[r]]]
+        group.append(np.full(first[k + 1] - first[k] + n_in[r], r))
+    uncut = np.zeros(len(reach), bool)
+    np.logical_or.at(uncut, np.concatenate(group), _uncut(centres(), np.vstack(probes), r_t))
+    if not uncut.any():
+        return None
+    k = int(reach[np.argmax(uncut)])
+    return int(first[k] + np.argmax(dist[first[k]:first[k + 1]]))
 
 
 def _centre_tree(moves, floor_z: float):

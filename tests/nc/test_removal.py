@@ -226,3 +226,44 @@ def test_groove_at_a_fine_tolerance_is_not_failed_by_polygon_slivers(tmp_path, m
     monkeypatch.setattr(removal, "_uncut", lambda tree, pts, r_t: np.ones(len(pts), bool))
     old = check_program(result.program.text, m.post, result.blank, m, built)
     assert old.material_left_mm > 0.001 and old.left_where.startswith("slab"), old.left_where
+
+
+def _first_uncut_one_by_one(pieces, pts, owner, dist, left, centres, r_t):
+    """The search as check_moves made it before 2026-12-06 (the oracle): the pieces farthest first, each
+    probed on its own (its vertices, then a point inside), the first with an uncut probe counting."""
+    from camcam.nc.removal import _uncut
+
+    top = np.full(len(pieces), -np.inf)
+    np.maximum.at(top, owner, dist)
+    tree = None
+    for k in np.argsort(-top, kind="stable").tolist():
+        if top[k] <= left:
+            break
+        tree = centres() if tree is None else tree
+        mine = np.flatnonzero(owner == k)
+        probe = np.vstack([pts[mine], shapely.get_coordinates(shapely.point_on_surface(pieces[k]))])
+        if _uncut(tree, probe, r_t).any():
+            return int(mine[np.argmax(dist[mine])])
+    return None
+
+
+@settings(max_examples=60, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), n_pieces=st.integers(1, 40), n_centres=st.integers(0, 60),
+       left=st.sampled_from([0.0, 0.5, 2.0]))
+def test_first_uncut_piece_is_the_piece_by_piece_search(seed, n_pieces, n_centres, left):
+    """A slab's leftover pieces (small polygons, some under tool discs, some not, ties in reach among them)
+    give the same counting piece and vertex as probing them one by one."""
+    from camcam.nc.removal import _first_uncut, _tree
+    from camcam.nc.roughing import polygon_distance
+
+    rng = np.random.default_rng(seed)
+    keep = shapely.box(0.0, 0.0, 100.0, 20.0)
+    polys = [shapely.Point(rng.uniform(0, 100), rng.uniform(20, 50)).buffer(rng.uniform(0.05, 3.0), quad_segs=2)
+             for _ in range(n_pieces)]
+    pieces = shapely.get_parts(shapely.union_all(polys))
+    pts, owner = shapely.get_coordinates(pieces, return_index=True)
+    dist = np.round(polygon_distance(keep, pts), 1)  # rounded: pieces that reach equally far (ties)
+    centres = np.column_stack([rng.uniform(0, 100, n_centres), rng.uniform(15, 55, n_centres)])
+    tree_of = (lambda: _tree(centres)) if n_centres else (lambda: None)
+    want = _first_uncut_one_by_one(pieces, pts, owner, dist, left, tree_of, 4.0)
+    assert _first_uncut(pieces, pts, owner, dist, left, tree_of, 4.0) == want
