@@ -94,7 +94,10 @@ def lines_deviation(piece, t0: float, ts, tol: float) -> np.ndarray:
 
 
 def lines_fit(piece, t0: float, ts, tol: float) -> np.ndarray:
-    """Whether the chord from t0 to each of ``ts`` (k,) is within ``tol`` two-sided (:func:`lines_deviation`), (k,) bool."""
+    """Whether the chord from t0 to each of ``ts`` (k,) is within ``tol`` two-sided, (k,) bool.
+
+    The verdict of :func:`lines_deviation`.
+    """
     return lines_deviation(piece, t0, ts, tol) <= tol
 
 
