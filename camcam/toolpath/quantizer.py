@@ -124,13 +124,16 @@ class Quantizer:
             i += n
         return out
 
+    def _snapped(self, elements):
+        """Each element with its printed start, end and centre (None for a line), all counted as one array."""
+        snapped = iter(self.snap_points([p for e in elements for p in _points(e)]))
+        for e in elements:
+            yield e, next(snapped), next(snapped), next(snapped) if isinstance(e, Arc) else None
+
     def snap_elements(self, elements) -> tuple:
         """Ends and centres on the printed grid (I/J form); elements that collapse are dropped."""
-        snapped = iter(self.snap_points([p for e in elements for p in _points(e)]))
         out = []
-        for e in elements:
-            s, t = next(snapped), next(snapped)
-            c = next(snapped) if isinstance(e, Arc) else None
+        for e, s, t, c in self._snapped(elements):
             if s == t:
                 continue
             out.append(Arc(s, t, c, e.ccw) if isinstance(e, Arc) else Line(s, t))
@@ -148,11 +151,8 @@ class Quantizer:
         from the rounded ends and the printed radius (:meth:`radius_count`), on
         the short-arc side.
         """
-        snapped = iter(self.snap_points([p for e in elements for p in _points(e)]))
         out = []
-        for e in elements:
-            s, t = next(snapped), next(snapped)
-            c = next(snapped) if isinstance(e, Arc) else None
+        for e, s, t, c in self._snapped(elements):
             if isinstance(e, Line):
                 out.append(Line(s, t))
             elif self.arc_format == "r":
