@@ -173,6 +173,20 @@ idle (disc-groove at 0.001 mm, whose second start meets the goal: 3.79 →
 3.07 s median of 6 alternated runs on a loaded machine; the default sample
 2.16 → 2.01 s, within the spread).
 
+The optimised chain (2026-12-06).  A closed contour whose first march misses
+the goal is then optimised with the goal's count of arcs
+(:func:`camcam.toolpath.arcpolish.fewer_arcs`): the march's joints become a
+G1 chain fitted to the curve in the largest error by LP steps
+(:mod:`camcam.toolpath.arcchain`, joints and breakpoints free), a joint is
+dropped and the chain fitted again until the count is the goal's, and the
+chain is put on the grid (:mod:`camcam.toolpath.arcprint`) and measured.  The
+further starts below are marched only if that finds nothing.  On the 12
+contour × tolerance cases of ``benchmarks/run_nc.py --arcs`` whose first march
+misses the goal it finds the goal's count on 11 (disc-oscillating-roller at
+0.001 mm: 35 arcs after one march and 0.4 CPU s of LP, where the starts
+needed 12 marches, ≈ 5 s); disc-oscillating-flat at 0.0005 mm, which needs
+two arcs fewer than its first march, falls back to the starts.
+
 Vectorised.  The curve (the Chebyshev copy) is tabulated once; a joint is a
 table row, and every candidate arc of every state in a pass is built, put on
 the grid and measured against its curve samples as one set of numpy arrays
@@ -200,6 +214,7 @@ import numpy as np
 from camcam.forked import parallel_map, resolve, spare
 from camcam.toolpath.arcbatch import unit_rows
 from camcam.toolpath.arcclose import quiet_stretches
+from camcam.toolpath.arcpolish import fewer_arcs
 from camcam.toolpath.beam import ArcSpline, SplineBudget, march
 from camcam.toolpath.quantizer import Quantizer
 
@@ -309,6 +324,12 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
     try:
         if met(march_from(jobs[0])):
             return best
+        # the first march's spline optimised with the goal's count of arcs (camcam.toolpath.arcpolish): a few
+        # LP solves instead of the further starts' whole marches
+        if budget.fewer:
+            for spline in fewer_arcs(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, best, math.floor(goal)):
+                if met(spline):
+                    return best
         if second is not None and met(resolve(second)):
             return best
     finally:

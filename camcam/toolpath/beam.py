@@ -45,7 +45,10 @@ class SplineBudget:
     is marched from its first ``wide_tries`` starts once more with a wider
     search, ``wide`` = (beam, pool, children); one still over it by at most
     ``near_miss`` blocks then from up to ``more_tries`` further starts (the
-    shifts left of ``start_shifts``, then ``more_shifts``).
+    shifts left of ``start_shifts``, then ``more_shifts``).  With ``fewer``,
+    a closed section over the goal after its first start is first optimised
+    with the goal's count of arcs (:func:`camcam.toolpath.arcpolish.fewer_arcs`);
+    the further starts are marched only if that finds nothing.
     """
 
     samples: int = 28
@@ -71,6 +74,7 @@ class SplineBudget:
                                       -0.08, 0.16, -0.16, 0.32, -0.32, 0.4, -0.4, 0.56, -0.56, 0.64, -0.64)
     near_miss: float = 1.0
     more_tries: int = 50
+    fewer: bool = True
 
 
 @dataclass(frozen=True)

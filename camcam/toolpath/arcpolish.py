@@ -1,0 +1,115 @@
+"""One arc fewer, or more: a closed contour's march spline re-fitted with fewer arcs by optimisation.
+
+:func:`fewer_arcs` takes the beam march's spline of a closed contour
+(:mod:`camcam.toolpath.beam`) that has more arcs than the goal, and asks the
+chain optimiser (:mod:`camcam.toolpath.arcchain`) for the same contour with
+fewer: the march's joints are optimised as a chain, then one joint at a time
+is dropped and the chain optimised again, until the count is the goal's; the
+chain is then printed on the grid (:mod:`camcam.toolpath.arcprint`) and
+measured.  It replaces most of the further march starts the goal used to
+need (each a whole march, 0.3–0.5 s at 0.001 mm) with a few LP solves.
+
+Which joint to drop.  Dropping a joint and optimising again is local
+optimisation: the result depends on which joint goes (one drop can leave the
+chain at 0.72 of the band and its neighbour at 2).  Measured on the 12
+contour × tolerance cases of ``benchmarks/run_nc.py --arcs`` whose first march
+missed the goal, every joint dropped in turn from the optimised march (2026-12-06):
+the drops that fit sit at either end of a sliver (a closure's leftover arc,
+which prints badly anyway), at a dwell split into two long arcs, at the
+shortest arcs (where κ′ jumps) or between arcs with error to spare; the
+order of :func:`_removal_order` puts one of those first on all 12.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from camcam.toolpath.arcchain import (CurveTable, OnCurve, chain_errors, chain_samples, joints_of, minimax_chain,
+                                      on_curve)
+from camcam.toolpath.arcprint import measured_deviation, printed_spline
+from camcam.toolpath.beam import ArcSpline
+from camcam.toolpath.quantizer import Quantizer
+
+__all__ = ["fewer_arcs"]
+
+#: What printing the chain may add to its error, in grid steps: measured 0.0–0.35 steps on the 12 cases.
+PRINT_ALLOWANCE_STEPS = 0.4
+
+
+def _removal_order(oc: OnCurve, tab: CurveTable, per_arc: int) -> list[int]:
+    """Joints to try dropping, most promising first.
+
+    Measured on the 12 contour × tolerance cases of ``benchmarks/run_nc.py
+    --arcs`` whose first march missed the goal (every joint dropped in turn and
+    the chain optimised again): the good ones sit at a dwell split into two
+    long arcs, at either end of the shortest arcs (a closure's sliver, a
+    short arc where κ′ jumps), or between arcs with error to spare.  So: joints
+    between two arcs each longer than 2.5 × the median chord, then the
+    shortest-adjacent-arc order and the most-slack order taken in turn.
+    """
+    n = len(oc.t)
+    _, c, _, _, _ = oc.joints.arcs()
+    spans = np.mod(np.diff(np.concatenate([oc.t, oc.t[:1] + (oc.b - oc.a)])), oc.b - oc.a) / (oc.b - oc.a) * tab.n
+    res = chain_errors(oc.joints, tab, *chain_samples(oc, tab, max(1, int(float(np.median(spans)) / per_arc))))
+    ce = np.zeros(n)
+    np.maximum.at(ce, res[1], np.abs(res[0]))
+    prev = np.roll(c, 1)
+    med = float(np.median(c))
+    # a sliver (a closure's leftover) prints badly (its rounded ends turn its end tangent by up to 1.4 steps over
+    # its chord, which the next arc carries over its length), so its joints go first
+    sliver = [j for j in np.argsort(np.minimum(c, prev), kind="stable").tolist() if min(c[j], prev[j]) < 0.25 * med]
+    split = [j for j in range(n) if c[j] > 2.5 * med and prev[j] > 2.5 * med]
+    short = np.argsort(np.minimum(c, prev), kind="stable").tolist()
+    slack = np.argsort(ce + np.roll(ce, 1), kind="stable").tolist()
+    order: list[int] = []
+    for j in sliver + split + [x for pair in zip(short, slack) for x in pair]:
+        if j not in order:
+            order.append(j)
+    return order
+
+
+def fewer_arcs(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_sweep: float, sag: float,
+               spline: ArcSpline, n_arcs: int, *, tries: int = 12, per_arc: int = 24) -> tuple[ArcSpline, ...]:
+    """A printed closed G1 spline of ``n_arcs`` arcs within ``tol``, from a march's ``spline`` with more.
+
+    The march's joints are optimised as a chain (:func:`~camcam.toolpath.arcchain.minimax_chain`); then, while
+    the chain has more than ``n_arcs`` arcs, a joint is dropped: the first of :func:`_removal_order`, of at
+    most ``tries``, whose chain optimised again keeps within the band less :data:`PRINT_ALLOWANCE_STEPS` grid
+    steps.  The chain is printed (:func:`~camcam.toolpath.arcprint.printed_spline`) and measured both ways
+    on the curve's table (:func:`~camcam.toolpath.arcprint.measured_deviation`).
+
+    Returns
+    -------
+    tuple of ArcSpline
+        The one spline found, its elements starting at the curve parameters in ``starts``; or nothing, when
+        no drop keeps within the band, printing leaves it, or the band is too narrow for the grid.
+    """
+    m = len(spline.elements)
+    allowed = tol - PRINT_ALLOWANCE_STEPS * quantizer.step_mm
+    if m <= n_arcs or allowed <= 0.5 * tol or max_sweep > 0.9 * math.pi:
+        return ()
+    tab = CurveTable(curve, a, b, a, 16384)
+    jn = joints_of(spline.elements)
+    oc = on_curve(curve, a, b, jn, tab.t[tab.project(jn.J, np.zeros(m, int), tab.n // 2)])
+    oc, err, gap = minimax_chain(oc, tab, max_sweep=max_sweep, per_arc=per_arc)
+    while len(oc.t) > n_arcs:
+        for j in _removal_order(oc, tab, per_arc)[:tries]:
+            keep = np.arange(len(oc.t)) != j
+            trial = OnCurve(curve, a, b, oc.t[keep], oc.v[keep], oc.psi[keep], oc.w)
+            trial, err, gap = minimax_chain(trial, tab, max_sweep=max_sweep, per_arc=per_arc,
+                                            hopeless=1.05 * allowed)
+            if err <= allowed and gap <= 1e-3 * tol:
+                oc = trial
+                break
+        else:
+            return ()
+    elements, _ = printed_spline(oc, tab, quantizer, sag, max_sweep, tol)
+    if not elements:
+        return ()
+    rf = (oc.t - a) / (b - a) * tab.n
+    rf = rf[0] + np.mod(rf - rf[0], tab.n)
+    if measured_deviation(elements, tab, np.concatenate([rf, [rf[0] + tab.n]])) > tol:
+        return ()
+    return (ArcSpline(tuple(elements), tuple(float(t) for t in oc.t)),)
