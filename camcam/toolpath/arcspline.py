@@ -174,18 +174,16 @@ idle (disc-groove at 0.001 mm, whose second start meets the goal: 3.79 →
 2.16 → 2.01 s, within the spread).
 
 The optimised chain (2026-12-06).  A closed contour whose first march misses
-the goal is then optimised with the goal's count of arcs
-(:func:`camcam.toolpath.arcpolish.fewer_arcs`): the march's joints become a
-G1 chain fitted to the curve in the largest error by LP steps
-(:mod:`camcam.toolpath.arcchain`, joints and breakpoints free), a joint is
-dropped and the chain fitted again until the count is the goal's, and the
-chain is put on the grid (:mod:`camcam.toolpath.arcprint`) and measured.  The
-further starts below are marched only if that finds nothing.  On the 12
-contour × tolerance cases of ``benchmarks/run_nc.py --arcs`` whose first march
-misses the goal it finds the goal's count on 11 (disc-oscillating-roller at
-0.001 mm: 35 arcs after one march and 0.4 CPU s of LP, where the starts
-needed 12 marches, ≈ 5 s); disc-oscillating-flat at 0.0005 mm, which needs
-two arcs fewer than its first march, falls back to the starts.
+the goal is then re-fitted with the goal's count of arcs
+(:func:`camcam.toolpath.arcpolish.fewer_arcs`): a joint of the march is
+dropped and the rest fitted to the curve as a G1 chain in the largest error
+by LP steps (:mod:`camcam.toolpath.arcchain`, joints and breakpoints free),
+until the count is the goal's, and the chain is put on the grid
+(:mod:`camcam.toolpath.arcprint`) and measured.  The further starts below are
+marched only if that finds nothing.  All 12 contour × tolerance cases of
+``benchmarks/run_nc.py --arcs`` whose first march misses the goal reach it
+this way (disc-oscillating-roller at 0.001 mm: 35 arcs after one march and
+0.25 CPU s of LP, where the starts needed 12 marches, ≈ 5 s).
 
 Vectorised.  The curve (the Chebyshev copy) is tabulated once; a joint is a
 table row, and every candidate arc of every state in a pass is built, put on
