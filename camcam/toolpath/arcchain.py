@@ -371,13 +371,19 @@ def minimax_chain(start: OnCurve, tab: CurveTable, *, max_sweep: float, per_arc:
     spacing = max(1, int(float(np.median(spans)) / per_arc))
 
     def merit(o):
-        res = chain_errors(o.joints, tab, *chain_samples(o, tab, spacing))
+        # a step that collapses an arc (two joints met: k = 2 sin β / |chord|) scores inf and is refused
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            res = chain_errors(o.joints, tab, *chain_samples(o, tab, spacing))
         v, c, beta, k, g = res[5]
-        return float(np.abs(res[0]).max()), float(np.abs(g * c).max()), res
+        err, gap = float(np.abs(res[0]).max()), float(np.abs(g * c).max())
+        ok = math.isfinite(err + gap) and float(c.min()) > 1e-9
+        return (err, gap, res) if ok else (math.inf, math.inf, res)
 
     mu = 10.0  # weight of the G1 gap against the error: an exact penalty (the gap goes to 0 first)
     err, gap, res = merit(oc)
     score = err + mu * gap
+    if not math.isfinite(score):  # two joints on one point: no chain to step from
+        return oc, err, gap
     R_v = max(err, 1e-6)
     R_u = 0.25
     nv = 3 * n + 2  # δu, δv, δψ per joint; t (largest error), s (largest G1 gap × chord)

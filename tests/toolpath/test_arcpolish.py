@@ -143,3 +143,18 @@ def test_the_chain_finds_the_count_the_starts_needed_twelve_marches_for():
     assert c.fit.arc_blocks + c.fit.line_blocks == 35, (c.fit.arc_blocks, c.fit.line_blocks)
     assert c.fit.arc_blocks + c.fit.line_blocks <= 1.2 * c.lower_bound + 4  # issue 13's bound on the exact N_lb
     assert c.deviation.max_deviation_mm <= 0.001  # measured on the printed program against the exact curve
+
+
+def test_a_chain_with_two_joints_on_one_point_is_refused_quietly():
+    """Two joints at one curve parameter make an arc of no length (curvature 2 sin β / 0): the optimiser returns
+    the chain with an infinite error, the caller's sign that it does not fit, and numpy warns of nothing
+    (warnings are errors here)."""
+    import warnings
+
+    curve = polar_cam()
+    tab = CurveTable(curve, 0.0, 2 * np.pi, 0.0, 4096)
+    oc = OnCurve(curve, 0.0, 2 * np.pi, np.array([0.0, 1.0, 1.0, 3.0, 4.5]), np.zeros(5), np.zeros(5), 1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        _, err, gap = minimax_chain(oc, tab, max_sweep=KW["max_sweep"])
+    assert err == math.inf and gap == math.inf
