@@ -8,8 +8,8 @@ with a benchmark-only hook: each forked process says what it runs (the function 
 :mod:`camcam.servers` child was given), when it was forked and when it left, and its CPU seconds;
 the run's own steps (``Progress.step``) are timed too.  Seconds count from the start of the timed
 interpreter's first line (its own start-up, about 0.03 s, is before it).  ``--tolerance`` runs a copy of the spec at
-that ``[machining] tolerance`` (speed.py's copy).  A child that is killed (a spare arc-march start
-whose first start met the goal) has no end or CPU figure.
+that ``[machining] tolerance`` (speed.py's copy).  A child that is killed (a run's children when
+it fails) has no end or CPU figure.
 
 `benchmarks/speed.py` says whether a run meets its target; this says why not: a run whose CPU over
 the two cores is over its target needs less work, and the table shows whose.  The hooks cost a few
@@ -60,9 +60,8 @@ def named(fn):
 real_later = forked.later
 
 def later(fn, *args, **kwargs):
-    inner = args[1] if named(fn) == "_niced" else args[0] if named(fn) == "_take" else fn
-    label[0] = ("spare " if named(fn) == "_niced" else "parallel_map worker " if named(fn) == "_take" else "") \
-        + named(inner)
+    inner = args[0] if named(fn) == "_take" else fn
+    label[0] = ("parallel_map worker " if named(fn) == "_take" else "") + named(inner)
     try:
         return real_later(fn, *args, **kwargs)
     finally:

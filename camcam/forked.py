@@ -10,9 +10,8 @@ more cores they can run beside the NC work:
   parent has computed (nothing is pickled on the way in), calls the function
   and sends its result back pickled through a pipe; the parent goes on at once
   and collects the result with :meth:`Pending.result`.
-* :func:`spare` is :func:`later` at lower priority, for work that may turn
-  out not to be needed; :func:`parallel_map` shares a list's items between
-  processes; :class:`ChildGroup` stops a group of children together.
+* :func:`parallel_map` shares a list's items between processes;
+  :class:`ChildGroup` stops a group of children together.
 * Children that stay and take jobs over pipes, :class:`camcam.servers.Server`
   (the plot server) and :class:`camcam.servers.Prepared` (the drawing's
   child), are in :mod:`camcam.servers`.
@@ -37,7 +36,7 @@ from typing import Any, Callable
 
 from camcam.interrupts import SIGNALS, Interrupted
 
-__all__ = ["ChildError", "Pending", "later", "spare", "resolve", "ChildGroup", "parallel_map", "call_target", "preload",
+__all__ = ["ChildError", "Pending", "later", "resolve", "ChildGroup", "parallel_map", "call_target", "preload",
            # the child protocol camcam.servers shares: a job's payload, its decoding, the fork, whole writes
            "child_payload", "decode_payload", "fork_child", "write_all", "PAYLOAD_OK", "PAYLOAD_FAILED"]
 
@@ -192,30 +191,6 @@ def later(fn: Callable, *args, **kwargs) -> Pending | Any:
         os.waitpid(pid, 0)
 
     return Pending(fetch, cancel)
-
-
-def _niced(niceness: int, fn: Callable, args, kwargs):
-    try:
-        os.nice(niceness)
-    except OSError:
-        pass  # only a priority: the work is the same at any
-    return fn(*args, **kwargs)
-
-
-def spare(fn: Callable, *args, niceness: int = 10, **kwargs) -> Pending:
-    """``fn(*args, **kwargs)`` started at once in a forked child of lower priority (``os.nice(niceness)``): work
-    that may turn out not to be needed, done on a core nothing else wants meanwhile.  :meth:`Pending.cancel`
-    drops it; without fork it runs in process when its result is first asked for (never, if cancelled).
-
-    Examples
-    --------
-    >>> job = spare(sum, [2, 3])
-    >>> resolve(job)
-    5
-    """
-    if not hasattr(os, "fork"):
-        return Pending(lambda: fn(*args, **kwargs))
-    return later(_niced, niceness, fn, args, kwargs)
 
 
 class ChildGroup:

@@ -390,48 +390,23 @@ def test_prepared_without_fork_runs_in_process(monkeypatch):
     p.kill()
 
 
-# --- spare: work that may not be needed, at lower priority --------------------------------------------------
-
-
-def _niceness_and_sum(values):
-    return os.nice(0), sum(values)
-
-
-@needs_fork
-def test_spare_runs_at_lower_priority_and_gives_the_result():
-    from camcam.forked import spare
-
-    job = spare(_niceness_and_sum, [1, 2, 3], niceness=7)
-    nice, total = resolve(job)
-    assert total == 6
-    assert nice == min(os.nice(0) + 7, 19)  # the child's own priority, not this process's
+# --- cancel: a job whose result is no longer wanted ------------------------------------------------------------
 
 
 @needs_fork
 @needs_proc
-def test_spare_dropped_leaves_no_child():
-    from camcam.forked import spare
+def test_a_cancelled_job_leaves_no_child():
+    """Pending.cancel kills and reaps the child (a run that fails drops its children so): asking for the result
+    afterwards says it was cancelled, and no child is left behind."""
+    from camcam.forked import later
 
     before = _children()
     gate_r, gate_w = os.pipe()
     try:
-        job = spare(_wait_for_gate, gate_r)  # never let through: it runs until dropped
+        job = later(_wait_for_gate, gate_r)  # never let through: it runs until dropped
         job.cancel()
         with pytest.raises(ChildError, match="cancelled"):
             resolve(job)
     finally:
         os.close(gate_r), os.close(gate_w)
     assert _children() <= before
-
-
-def test_spare_without_fork_runs_only_when_asked(monkeypatch):
-    from camcam.forked import spare
-
-    monkeypatch.delattr(os, "fork")
-    ran = []
-    job = spare(lambda: ran.append(1) or len(ran))
-    assert ran == []  # not yet: without fork nothing runs beside
-    assert resolve(job) == 1 and ran == [1]
-    dropped = spare(lambda: ran.append(2))
-    dropped.cancel()
-    assert ran == [1]  # a dropped job never runs in process

@@ -164,14 +164,12 @@ one-step-lookahead march split at every break).  The remaining gap to
 an arc each), and the beam's myopia in smooth stretches (arcs reach
 0.85–0.97 of the optimum's length there).  The further starts cost time only
 where the first misses the goal: up to ``tries`` marches (≈ 3 s each at
-0.001 mm), 6–40 s of fit on the contours that need further starts.  With two workers the second start is
-marched beside the first in a spare child of lower priority
-(:func:`camcam.forked.spare`), so a contour that misses the goal at its first
-start has its second march (mostly) done when the first ends; one that meets
-it drops the child, which took only the CPU the run's other processes left
-idle (disc-groove at 0.001 mm, whose second start meets the goal: 3.79 →
-3.07 s median of 6 alternated runs on a loaded machine; the default sample
-2.16 → 2.01 s, within the spread).
+0.001 mm), 6–40 s of fit on the contours that need further starts, two at a
+time with two workers.  (Until 2026-12-06 the second start was marched beside
+the first in a spare child of lower priority and dropped when the first met
+the goal: disc-groove at 0.001 mm 3.79 → 3.07 s then; with the optimised
+chain below it is not needed, and its CPU cost 2–4 % of the wall time of the
+runs whose first start meets the goal, medians of 8 alternated runs.)
 
 The optimised chain (2026-12-06).  A closed contour whose first march misses
 the goal is then re-fitted with the goal's count of arcs
@@ -209,7 +207,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from camcam.forked import parallel_map, resolve, spare
+from camcam.forked import parallel_map
 from camcam.toolpath.arcbatch import unit_rows
 from camcam.toolpath.arcclose import quiet_stretches
 from camcam.toolpath.arcpolish import fewer_arcs
@@ -313,27 +311,20 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
             best = spline
         return len(best.elements) <= goal
 
-    # the first start here (most contours meet the goal there), the second meanwhile in a spare child of lower
-    # priority (camcam.forked.spare: it takes a core only when the run's other processes leave one idle, and
-    # is dropped when the first meets the goal); then rounds of ``workers`` starts at once
-    # (camcam.forked.parallel_map).  The marches are taken in the same order as one after the other: the
-    # same spline for any count of workers
-    second = spare(march_from, jobs[1]) if workers > 1 and len(jobs) > 1 else None
-    try:
-        if met(march_from(jobs[0])):
-            return best
-        # the first march's spline optimised with the goal's count of arcs (camcam.toolpath.arcpolish): a few
-        # LP solves instead of the further starts' whole marches
-        if budget.fewer:
-            for spline in fewer_arcs(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, best, math.floor(goal)):
-                if met(spline):
-                    return best
-        if second is not None and met(resolve(second)):
-            return best
-    finally:
-        if second is not None:
-            second.cancel()  # nothing happens to a collected result
-    k, n = (1 if second is None else 2), max(1, workers)
+    # the first start (most contours meet the goal there); then its spline optimised with the goal's count of
+    # arcs (camcam.toolpath.arcpolish: a few LP solves instead of the further starts' whole marches); then,
+    # only if that finds nothing, rounds of ``workers`` further starts at once (camcam.forked.parallel_map),
+    # taken in the same order as one after the other: the same spline for any count of workers.  (Until
+    # 2026-12-06 the second start was marched beside the first in a spare child of lower priority; with the
+    # optimised chain it was never needed on the 40 cases of run_nc.py --arcs, and its CPU cost the run
+    # 2-4 % of its wall time where the first start meets the goal.)
+    if met(march_from(jobs[0])):
+        return best
+    if budget.fewer:
+        for spline in fewer_arcs(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, best, math.floor(goal)):
+            if met(spline):
+                return best
+    k, n = 1, max(1, workers)
     while k < len(jobs):
         for spline in parallel_map(march_from, jobs[k:k + n], n):
             if met(spline):

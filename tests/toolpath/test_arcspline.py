@@ -288,11 +288,11 @@ def test_further_starts_in_two_processes_give_the_same_spline():
     assert one.elements == two.elements
 
 
-@pytest.mark.skipif(not hasattr(os, "fork"), reason="without fork the second start is marched in process")
-def test_the_second_start_beside_the_first_gives_the_same_spline():
-    """With two workers the second start is marched beside the first (camcam.forked.spare) and dropped when
-    the first meets the goal: the same spline as with one worker, for a goal the first start meets, one only
-    the second meets, and one none meets; no child is left behind."""
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="without fork the further starts are marched in process")
+def test_the_further_starts_in_two_processes_give_the_same_spline():
+    """With two workers the further starts are marched two at a time (camcam.forked.parallel_map): the same
+    spline as with one worker, for a goal the first start meets, one only the second meets, and one none
+    meets; no child is left behind."""
     import dataclasses
 
     from camcam.toolpath.arcspline import SplineBudget
