@@ -108,6 +108,15 @@ class CurveTable:
         self.T = d1 / np.hypot(d1[:, 0], d1[:, 1])[:, None]
         self.N = np.stack([-self.T[:, 1], self.T[:, 0]], -1)
 
+    def nearest(self, E, stride: int = 32):
+        """Table row nearest each point E (n, 2): the nearest of every ``stride``-th row, then ±``stride`` rows
+        about it (the same row as a search of the whole table for points near a curve that does not come
+        back near itself within ``stride`` rows, as a cam's does not)."""
+        coarse = np.arange(0, self.n, stride)
+        d = self.P[coarse][None, :, :] - E[:, None, :]
+        guess = coarse[np.argmin(np.einsum("ijk,ijk->ij", d, d), axis=1)]
+        return self.project(E, guess, stride)
+
     def project(self, E, guess, window):
         """Table row nearest each point E (n, 2), searched within ``window`` rows of ``guess`` (n,), cyclic."""
         off = np.arange(-window, window + 1)
@@ -319,7 +328,8 @@ def _solve_step(cost, lo, hi, Je, e, err, Jgc, gc, Jb, half, beta):
 
 
 def minimax_chain(start: OnCurve, tab: CurveTable, *, max_sweep: float, per_arc: int = 24,
-                  iterations: int = 30, hopeless: float = math.inf) -> tuple[OnCurve, float, float]:
+                  iterations: int = 30, hopeless: float = math.inf,
+                  enough: float = 0.0) -> tuple[OnCurve, float, float]:
     """The G1 chain of ``len(start.t)`` arcs nearest the curve in the largest error, by SLP from ``start``.
 
     Parameters
@@ -334,6 +344,9 @@ def minimax_chain(start: OnCurve, tab: CurveTable, *, max_sweep: float, per_arc:
     iterations : int
         LP steps at most; the loop ends sooner when a step gains less than
         1e-4 of the score or the trust region falls below 1e-9 mm.
+    enough : float
+        A step that leaves the chain within this error (mm), and G1 to 1e-3 of it, ends the loop: a caller
+        that needs only that much spares the steps that would lower it further.
     hopeless : float
         After half the ``iterations`` a chain still over this error (mm) is
         given up (:func:`camcam.toolpath.arcpolish.fewer_arcs` passes 1.05 ×
@@ -410,7 +423,7 @@ def minimax_chain(start: OnCurve, tab: CurveTable, *, max_sweep: float, per_arc:
             # the ratio of the achieved to the predicted fall sets the next trust region
             rho = (score - t_score) / max(score - predicted, 1e-300)
             if t_score < score:
-                done = score - t_score < 1e-4 * score
+                done = score - t_score < 1e-4 * score or (t_err <= enough and t_gap <= 1e-3 * enough)
                 oc, err, gap, res, score = trial, t_err, t_gap, t_res, t_score
                 if rho > 0.75:
                     R_v, R_u = min(2 * R_v, max(err, 1e-6) * 4), min(2 * R_u, 0.5)

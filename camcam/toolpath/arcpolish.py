@@ -90,13 +90,16 @@ def fewer_arcs(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_
         return ()
     tab = CurveTable(curve, a, b, a, 16384)
     jn = joints_of(spline.elements)
-    oc = on_curve(curve, a, b, jn, tab.t[tab.project(jn.J, np.zeros(m, int), tab.n // 2)])
+    oc = on_curve(curve, a, b, jn, tab.t[tab.nearest(jn.J)])
     while len(oc.t) > n_arcs:
+        # the last drop may stop once within the target (3 % to spare for printing); an earlier one is optimised
+        # to the end, which leaves the most room for the drops after it
+        enough = 0.97 * allowed if len(oc.t) == n_arcs + 1 else 0.0
         for j in _removal_order(oc, tab, per_arc)[:tries]:
             keep = np.arange(len(oc.t)) != j
             trial = OnCurve(curve, a, b, oc.t[keep], oc.v[keep], oc.psi[keep], oc.w)
             trial, err, gap = minimax_chain(trial, tab, max_sweep=max_sweep, per_arc=per_arc,
-                                            hopeless=1.05 * allowed)
+                                            hopeless=1.05 * allowed, enough=enough)
             if err <= allowed and gap <= 1e-3 * tol:
                 oc = trial
                 break

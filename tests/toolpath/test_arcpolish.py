@@ -158,3 +158,21 @@ def test_a_chain_with_two_joints_on_one_point_is_refused_quietly():
         warnings.simplefilter("error")
         _, err, gap = minimax_chain(oc, tab, max_sweep=KW["max_sweep"])
     assert err == math.inf and gap == math.inf
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.lists(st.tuples(st.floats(0, 2 * np.pi), st.floats(-0.05, 0.05)), min_size=1, max_size=20))
+def test_the_nearest_row_is_the_whole_table_search(points):
+    """CurveTable.nearest (every 32nd row, then ±32 rows about the nearest) gives the row a search of the whole
+    table gives, for points within 0.05 mm of the polar cam (a curve that does not come back near itself)."""
+    curve = polar_cam()
+    tab = CurveTable(curve, 0.0, 2 * np.pi, 0.0, 4096)
+    t = np.array([p[0] for p in points])
+    d1 = curve.evaluate(t, 1)
+    nrm = np.stack([-d1[:, 1], d1[:, 0]], -1) / np.hypot(d1[:, 0], d1[:, 1])[:, None]
+    E = curve.evaluate(t, 0) + np.array([p[1] for p in points])[:, None] * nrm
+    whole = np.argmin(((tab.P[None, :tab.n, :] - E[:, None, :]) ** 2).sum(-1), axis=1)
+    got = tab.nearest(E)
+    # ties (two rows at one distance) may go either way: compare the distances, exactly
+    dist = lambda rows: ((tab.P[rows] - E) ** 2).sum(-1)  # noqa: E731
+    assert np.array_equal(dist(got), dist(whole))
