@@ -47,11 +47,17 @@ def _start_tangents(p0, p1, centre, ccw, is_line) -> np.ndarray:
     return np.where(is_line[:, None], t_line, t_arc)
 
 
-def _kink_allowance(p0, p1, centre, is_line, step: float) -> np.ndarray:
-    """What rounding may turn a closing arc's end tangent by (its rounded ends, and the first arc's centre)."""
+def _radii(p0, centre, is_line) -> np.ndarray:
+    """The printed elements' start radii (rows; a line's is infinite)."""
+    return np.where(is_line, np.inf, np.hypot(*(p0 - centre).T))
+
+
+def _kink_allowance(p0, p1, first_radius, step: float) -> np.ndarray:
+    """What rounding may turn the closing arc p0 → p1 against the first arc's start (rows): the closing joint's
+    rounding over the closing chord, 2·0.71 steps, and the first arc's centre across its radius, 0.71 steps
+    (the bound ``tests/toolpath/test_arcspline.py`` holds every closed spline to, less the spirals' lean)."""
     chord = np.hypot(*(p1 - p0).T)
-    radius = np.where(is_line, np.inf, np.hypot(*(p0 - centre).T))
-    return 2 * 0.71 * step / chord + 0.71 * step / radius
+    return 2 * 0.71 * step / chord + 0.71 * step / first_radius
 
 
 def _angle_between(t0, t1) -> np.ndarray:
@@ -62,7 +68,7 @@ def printed_spline(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: floa
                    along: int = 6, beam: int = 12, samples: int = 48):
     """The printed form of an optimised chain: joints on the grid, each arc as the post prints it.
 
-    A beam over the grid points near each joint (:func:`_near_grid`): each
+    A beam over the grid points near each joint (:func:`near_grid`): each
     kept state (printed joint, the printed arc's end tangent, the worst
     deviation so far, its first arc's printed start tangent) is extended to
     every grid point near the next joint; the states kept are those whose
@@ -105,7 +111,7 @@ def printed_spline(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: floa
     keep = np.argsort(np.abs(d0[:, 1] * Tj[0, 0] - d0[:, 0] * Tj[0, 1]), kind="stable")[:beam]
     P0 = P0[keep]
     pts, tans, worst = P0, np.repeat(Tj[:1], len(keep), 0), np.zeros(len(keep))
-    first, t_first = pts.copy(), None
+    first, t_first, r_first = pts.copy(), None, None
     history = []
     for i in range(n - 1):
         j = i + 1
@@ -116,7 +122,10 @@ def printed_spline(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: floa
         (centre, ccw, is_line, t_end), dev = printed(pts[src], tans[src], tgt, i)
         new_worst = np.maximum(worst[src], dev)
         firsts = first[src]
-        t_firsts = _start_tangents(pts[src], tgt, centre, ccw, is_line) if i == 0 else t_first[src]
+        if i == 0:
+            t_firsts, r_firsts = _start_tangents(pts[src], tgt, centre, ccw, is_line), _radii(pts[src], centre, is_line)
+        else:
+            t_firsts, r_firsts = t_first[src], r_first[src]
         # what the offset and the end tangent's error will cost the next arc
         d = tgt - ch.J[j]
         dv = d[:, 1] * Tj[j, 0] - d[:, 0] * Tj[j, 1]
@@ -128,7 +137,7 @@ def printed_spline(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: floa
             # kinks more than rounding makes, or leaves the band, ranks last
             (c2, w2, l2, t2), dev2 = printed(tgt, t_end, firsts, j)
             kink = _angle_between(t2, t_firsts)
-            closes = kink <= _kink_allowance(tgt, firsts, c2, l2, step)
+            closes = kink <= _kink_allowance(tgt, firsts, r_firsts, step)
             rank = np.where(closes, np.maximum(new_worst, dev2), np.inf)
             new_worst = np.maximum(new_worst, dev2)
         keep = np.argsort(rank, kind="stable")[:beam]
@@ -143,7 +152,7 @@ def printed_spline(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: floa
             break
         history.append((src[keep], tgt[keep], centre[keep], ccw[keep], is_line[keep]))
         pts, tans, worst = tgt[keep], t_end[keep], new_worst[keep]
-        first, t_first = firsts[keep], t_firsts[keep]
+        first, t_first, r_first = firsts[keep], t_firsts[keep], r_firsts[keep]
     # back through the levels
     elements = [printed_element(*closing)]
     kk = k
