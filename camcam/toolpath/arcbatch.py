@@ -17,7 +17,7 @@ import numpy as np
 from camcam.toolpath.elements import Arc, Line
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["grid_near", "unit_rows", "grid_joint", "grid_centre", "arc_batch", "candidate_deviation", "peak_deviation",
+__all__ = ["grid_near", "unit_rows", "grid_joint", "grid_centre", "element_tangents", "arc_batch", "candidate_deviation", "peak_deviation",
            "MIN_CHORD_STEPS", "plain_element", "printed_element", "touch"]
 
 
@@ -64,6 +64,15 @@ def grid_centre(p0, c, q: Quantizer) -> np.ndarray:
     return grid_near(c, lambda d: np.abs(d[:, 0] * u[:, 1] - d[:, 1] * u[:, 0]), q)
 
 
+def element_tangents(p, centre, ccw, is_line, chord) -> np.ndarray:
+    """Printed elements' unit tangents (rows) at their point ``p``: across the radius there, in the travel
+    direction; a line's along its ``chord`` (end − start)."""
+    rad = unit_rows(np.where(is_line[:, None], 1.0, p - centre))
+    t_arc = np.where(ccw[:, None], np.stack([-rad[:, 1], rad[:, 0]], -1), np.stack([rad[:, 1], -rad[:, 0]], -1))
+    t_line = unit_rows(np.where(is_line[:, None], chord, 1.0))
+    return np.where(is_line[:, None], t_line, t_arc)
+
+
 def arc_batch(p0, tan0, p1, q: Quantizer, sag: float):
     """Printed arcs leaving p0 (N, 2) along tan0 (N, 2) to p1 (N, 2): centres, flags, end tangents.
 
@@ -81,12 +90,7 @@ def arc_batch(p0, tan0, p1, q: Quantizer, sag: float):
     r = chord2 / (2 * np.where(is_line, 1.0, h))  # a line's centre is never used (a tiny h would overflow)
     centre = grid_centre(p0, p0 + r[:, None] * nrm, q)
     ccw = r > 0
-    # end tangent of the printed element
-    rad = p1 - centre
-    rad = unit_rows(np.where(is_line[:, None], 1.0, rad))
-    t_arc = np.where(ccw[:, None], np.stack([-rad[:, 1], rad[:, 0]], -1), np.stack([rad[:, 1], -rad[:, 0]], -1))
-    t_line = unit_rows(np.where(is_line[:, None], v, 1.0))
-    t_end = np.where(is_line[:, None], t_line, t_arc)
+    t_end = element_tangents(p1, centre, ccw, is_line, v)
     a0 = np.arctan2(p0[:, 1] - centre[:, 1], p0[:, 0] - centre[:, 0])
     a1 = np.arctan2(p1[:, 1] - centre[:, 1], p1[:, 0] - centre[:, 0])
     sweep = np.mod(np.where(ccw, a1 - a0, a0 - a1), 2 * np.pi)

@@ -52,8 +52,8 @@ import numpy as np
 
 from camcam.toolpath.elements import element_tangent
 
-__all__ = ["Joints", "OnCurve", "CurveTable", "on_curve", "joints_of", "chain_samples", "chain_errors",
-           "step_jacobians", "minimax_chain"]
+__all__ = ["Joints", "OnCurve", "CurveTable", "on_curve", "joints_of", "joint_rows", "sample_spacing",
+           "chain_samples", "chain_errors", "step_jacobians", "minimax_chain"]
 
 
 class Joints:
@@ -98,15 +98,12 @@ def _dpoint_dk(theta, k, sigma):
 
 
 class CurveTable:
-    """The closed curve on ``rows`` parameters from ``t0`` once round: points, unit tangents and normals."""
+    """The closed curve on [a, b] at ``rows`` + 1 even parameters from ``a`` (the last row is the first again)."""
 
-    def __init__(self, curve, a, b, t0, rows):
+    def __init__(self, curve, a, b, rows):
         self.n = rows
-        self.t = a + np.mod(t0 - a + np.arange(rows + 1) * ((b - a) / rows), b - a)
+        self.t = a + np.mod(np.arange(rows + 1) * ((b - a) / rows), b - a)
         self.P = curve.evaluate(self.t, 0)
-        d1 = curve.evaluate(self.t, 1)
-        self.T = d1 / np.hypot(d1[:, 0], d1[:, 1])[:, None]
-        self.N = np.stack([-self.T[:, 1], self.T[:, 0]], -1)
 
     def nearest(self, E, stride: int = 32):
         """Table row nearest each point E (n, 2): the nearest of every ``stride``-th row, then ±``stride`` rows
@@ -123,6 +120,20 @@ class CurveTable:
         rows = np.mod(guess[:, None] + off[None, :], self.n)
         d = self.P[rows] - E[:, None, :]
         return rows[np.arange(len(E)), np.argmin(np.einsum("ijk,ijk->ij", d, d), axis=1)]
+
+
+def joint_rows(oc: "OnCurve", tab: "CurveTable") -> np.ndarray:
+    """The joints' fractional table rows once round from the first, and the first's again + ``tab.n``: (k + 1,)."""
+    rf = (oc.t - oc.a) / (oc.b - oc.a) * tab.n
+    rf = rf[0] + np.mod(rf - rf[0], tab.n)
+    return np.concatenate([rf, [rf[0] + tab.n]])
+
+
+def sample_spacing(oc: "OnCurve", tab: "CurveTable", per_arc: int) -> int:
+    """Table rows between samples: ``per_arc`` samples on an arc of the median span, every row at most."""
+    a, b = oc.a, oc.b
+    spans = np.mod(np.diff(np.concatenate([oc.t, oc.t[:1] + (b - a)])), b - a) / (b - a) * tab.n
+    return max(1, int(float(np.median(spans)) / per_arc))
 
 
 def chain_samples(oc: "OnCurve", tab: "CurveTable", spacing: int):
@@ -367,21 +378,16 @@ def minimax_chain(start: OnCurve, tab: CurveTable, *, max_sweep: float, per_arc:
     ...     c, s = np.cos(t), np.sin(t)
     ...     return 10 * np.stack([[c, s], [-s, c], [-c, -s], [s, -c]][k], -1)
     >>> C = FunctionCurve(circle, 0.0, 2 * np.pi, closed=True)
-    >>> tab = CurveTable(C, 0.0, 2 * np.pi, 0.0, 4096)
+    >>> tab = CurveTable(C, 0.0, 2 * np.pi, 4096)
     >>> t = np.array([0.1, 1.7, 3.3, 4.6])
     >>> start = OnCurve(C, 0.0, 2 * np.pi, t, np.full(4, 0.01), np.array([0.002, -0.001, 0.0, 0.001]), 1)
     >>> chain, err, gap = minimax_chain(start, tab, max_sweep=np.radians(120))
     >>> bool(err < 1e-6 and gap < 1e-9)
     True
     """
-    a, b = start.a, start.b
-    rows = tab.n
     n = len(start.t)
     oc = start
-
-    # samples every ``spacing`` rows: ``per_arc`` on an arc of the median span
-    spans = np.mod(np.diff(np.concatenate([start.t, start.t[:1] + (b - a)])), b - a) / (b - a) * rows
-    spacing = max(1, int(float(np.median(spans)) / per_arc))
+    spacing = sample_spacing(start, tab, per_arc)
 
     def merit(o):
         # a step that collapses an arc (two joints met: k = 2 sin β / |chord|) scores inf and is refused

@@ -27,7 +27,7 @@ import math
 import numpy as np
 
 from camcam.toolpath.arcchain import (CurveTable, OnCurve, chain_errors, chain_samples, joints_of, minimax_chain,
-                                      on_curve)
+                                      on_curve, sample_spacing)
 from camcam.toolpath.arcprint import measured_deviation, printed_spline
 from camcam.toolpath.beam import ArcSpline
 from camcam.toolpath.quantizer import Quantizer
@@ -48,8 +48,7 @@ def _removal_order(oc: OnCurve, tab: CurveTable, per_arc: int) -> list[int]:
     """
     n = len(oc.t)
     _, c, _, _, _ = oc.joints.arcs()
-    spans = np.mod(np.diff(np.concatenate([oc.t, oc.t[:1] + (oc.b - oc.a)])), oc.b - oc.a) / (oc.b - oc.a) * tab.n
-    res = chain_errors(oc.joints, tab, *chain_samples(oc, tab, max(1, int(float(np.median(spans)) / per_arc))))
+    res = chain_errors(oc.joints, tab, *chain_samples(oc, tab, sample_spacing(oc, tab, per_arc)))
     ce = np.zeros(n)
     np.maximum.at(ce, res[1], np.abs(res[0]))
     prev = np.roll(c, 1)
@@ -88,7 +87,7 @@ def fewer_arcs(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_
     allowed = tol - PRINT_ALLOWANCE_STEPS * quantizer.step_mm
     if m <= n_arcs or allowed <= 0.5 * tol or max_sweep > 0.9 * math.pi:
         return ()
-    tab = CurveTable(curve, a, b, a, 16384)
+    tab = CurveTable(curve, a, b, 16384)
     jn = joints_of(spline.elements)
     oc = on_curve(curve, a, b, jn, tab.t[tab.nearest(jn.J)])
     while len(oc.t) > n_arcs:
@@ -108,8 +107,6 @@ def fewer_arcs(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_
     elements, _ = printed_spline(oc, tab, quantizer, sag, max_sweep, tol)
     if not elements:
         return ()
-    rf = (oc.t - a) / (b - a) * tab.n
-    rf = rf[0] + np.mod(rf - rf[0], tab.n)
-    if measured_deviation(elements, tab, np.concatenate([rf, [rf[0] + tab.n]])) > tol:
+    if measured_deviation(elements, oc, tab) > tol:
         return ()
     return (ArcSpline(tuple(elements), tuple(float(t) for t in oc.t)),)

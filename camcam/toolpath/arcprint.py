@@ -19,8 +19,8 @@ import math
 
 import numpy as np
 
-from camcam.toolpath.arcbatch import arc_batch, candidate_deviation, printed_element
-from camcam.toolpath.arcchain import CurveTable, OnCurve
+from camcam.toolpath.arcbatch import arc_batch, candidate_deviation, element_tangents, printed_element
+from camcam.toolpath.arcchain import CurveTable, OnCurve, joint_rows
 from camcam.toolpath.elements import element_distance
 from camcam.toolpath.quantizer import Quantizer
 
@@ -35,16 +35,6 @@ def near_grid(J, T, quantizer: Quantizer, along: int) -> np.ndarray:
     base = J[None, :] + lam[:, None] * T[None, :]
     base = np.concatenate([base + o * step * N[None, :] for o in (-1.0, 0.0, 1.0)])
     return quantizer.value(np.unique(np.rint(base / step).astype(np.int64), axis=0))
-
-
-def _start_tangents(p0, p1, centre, ccw, is_line) -> np.ndarray:
-    """The printed elements' start tangents (rows): perpendicular to the start radius, or along a line."""
-    rad = p0 - centre
-    rad = rad / np.maximum(np.hypot(rad[:, 0], rad[:, 1]), 1e-300)[:, None]
-    t_arc = np.where(ccw[:, None], np.stack([-rad[:, 1], rad[:, 0]], -1), np.stack([rad[:, 1], -rad[:, 0]], -1))
-    v = p1 - p0
-    t_line = v / np.maximum(np.hypot(v[:, 0], v[:, 1]), 1e-300)[:, None]
-    return np.where(is_line[:, None], t_line, t_arc)
 
 
 def _radii(p0, centre, is_line) -> np.ndarray:
@@ -81,9 +71,7 @@ def printed_spline(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: floa
     n = len(oc.t)
     ch = oc.joints
     step = quantizer.step_mm
-    rf = (oc.t - oc.a) / (oc.b - oc.a) * tab.n
-    rf = rf[0] + np.mod(rf - rf[0], tab.n)
-    rf = np.concatenate([rf, [rf[0] + tab.n]])
+    rf = joint_rows(oc, tab)
     clear = (along + 1) * step * tab.n / max(float(np.hypot(*np.diff(tab.P, axis=0).T).sum()), 1e-300)
     Tj = np.stack([np.cos(ch.theta), np.sin(ch.theta)], -1)
     _, c_all, _, k_all, _ = ch.arcs()
@@ -123,7 +111,8 @@ def printed_spline(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: floa
         new_worst = np.maximum(worst[src], dev)
         firsts = first[src]
         if i == 0:
-            t_firsts, r_firsts = _start_tangents(pts[src], tgt, centre, ccw, is_line), _radii(pts[src], centre, is_line)
+            t_firsts = element_tangents(pts[src], centre, ccw, is_line, tgt - pts[src])
+            r_firsts = _radii(pts[src], centre, is_line)
         else:
             t_firsts, r_firsts = t_first[src], r_first[src]
         # what the offset and the end tangent's error will cost the next arc
@@ -165,13 +154,15 @@ def printed_spline(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: floa
     return elements, worst_k
 
 
-def measured_deviation(elements, tab: CurveTable, rf) -> float:
+def measured_deviation(elements, oc: OnCurve, tab: CurveTable) -> float:
     """The printed spline's deviation from the table's curve, both ways.
 
     Curve → path: every row of each element's span (and a few beyond) to the
     nearest of that element and its two neighbours.  Path → curve: each
-    joint to the table's polyline (the segment on either side of its row).
+    joint to the table's polyline (the segment on either side of its row).  ``elements`` start at the
+    joints of ``oc``.
     """
+    rf = joint_rows(oc, tab)
     n = len(elements)
     worst = 0.0
     for i in range(n):

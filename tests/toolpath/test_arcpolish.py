@@ -40,7 +40,7 @@ def test_the_step_derivatives_are_those_of_the_errors(seed, scale):
     t = np.sort(rng.uniform(0, 2 * np.pi, n))
     t = np.linspace(0, 2 * np.pi, n, endpoint=False) + 0.2 * (t - np.pi) / n
     oc = OnCurve(curve, 0.0, 2 * np.pi, t, rng.normal(0, 0.003 * scale, n), rng.normal(0, 2e-4 * scale, n), 1)
-    tab = CurveTable(curve, 0.0, 2 * np.pi, 0.0, 4096)
+    tab = CurveTable(curve, 0.0, 2 * np.pi, 4096)
     rows, arc = chain_samples(oc, tab, 16)
     res = chain_errors(oc.joints, tab, rows, arc)
     Je, Jg, Jb = step_jacobians(oc, res)
@@ -152,7 +152,7 @@ def test_a_chain_with_two_joints_on_one_point_is_refused_quietly():
     import warnings
 
     curve = polar_cam()
-    tab = CurveTable(curve, 0.0, 2 * np.pi, 0.0, 4096)
+    tab = CurveTable(curve, 0.0, 2 * np.pi, 4096)
     oc = OnCurve(curve, 0.0, 2 * np.pi, np.array([0.0, 1.0, 1.0, 3.0, 4.5]), np.zeros(5), np.zeros(5), 1)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
@@ -166,7 +166,7 @@ def test_the_nearest_row_is_the_whole_table_search(points):
     """CurveTable.nearest (every 32nd row, then ±32 rows about the nearest) gives the row a search of the whole
     table gives, for points within 0.05 mm of the polar cam (a curve that does not come back near itself)."""
     curve = polar_cam()
-    tab = CurveTable(curve, 0.0, 2 * np.pi, 0.0, 4096)
+    tab = CurveTable(curve, 0.0, 2 * np.pi, 4096)
     t = np.array([p[0] for p in points])
     d1 = curve.evaluate(t, 1)
     nrm = np.stack([-d1[:, 1], d1[:, 0]], -1) / np.hypot(d1[:, 0], d1[:, 1])[:, None]
