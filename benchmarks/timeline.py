@@ -68,6 +68,16 @@ def later(fn, *args, **kwargs):
         label[0] = "camcam run"
 
 forked.later = later
+real_call = servers.call_target
+
+def call_target(target, *args, **kwargs):
+    t, c = time.time() - T0, time.process_time()
+    try:
+        return real_call(target, *args, **kwargs)
+    finally:
+        say("job", os.getpid(), f"{t:.3f}", f"{time.time() - T0:.3f}", f"{time.process_time() - c:.3f}", target)
+
+servers.call_target = call_target
 for cls, what in ((servers.Server, "plot server"), (servers.Prepared, "drawing (prepared child)")):
     def init(self, *args, _real=cls.__init__, _what=what, **kwargs):
         label[0] = _what
@@ -107,11 +117,12 @@ def timeline(spec: Path) -> str:
         raise SystemExit(f"camcam run {spec} failed ({r.returncode}): {r.stderr.strip()[-300:]}")
     procs: dict[int, dict] = {}
     steps = []
+    jobs = []  # (pid, start, end, CPU, target) of each server job
     main_pid = None
     for line in r.stderr.splitlines():
         if not line.startswith("@@ "):
             continue
-        kind, *rest = line[3:].split(" ", 4 if line.startswith("@@ fork") else 3)
+        kind, *rest = line[3:].split(" ", {"fork": 4, "job": 5}.get(line[3:].split(" ", 1)[0], 3))
         if kind == "fork":
             pid, parent, at, what = int(rest[0]), int(rest[1]), float(rest[2]), rest[3]
             procs[pid] = {"what": what, "parent": parent, "start": at}
@@ -123,6 +134,8 @@ def timeline(spec: Path) -> str:
             procs[pid].update(end=at, cpu=cpu)
         elif kind == "step":
             steps.append((float(rest[0]), float(rest[1]), rest[2]))
+        elif kind == "job":
+            jobs.append((int(rest[0]), float(rest[1]), float(rest[2]), float(rest[3]), rest[4]))
     names = {main_pid: "run"}
     for k, pid in enumerate(p for p in procs if p != main_pid):
         names[pid] = f"c{k + 1}"
@@ -136,6 +149,8 @@ def timeline(spec: Path) -> str:
     rows.append(f"\nCPU of the processes that ended: {total:.2f} s\n")
     rows += ["| the run's step | start s | end s |", "|---|---|---|"]
     rows += [f"| {what} | {a:.2f} | {b:.2f} |" for a, b, what in steps]
+    rows += ["", "| server job | process | start s | end s | CPU s |", "|---|---|---|---|---|"]
+    rows += [f"| {target} | {names.get(pid, pid)} | {a:.2f} | {b:.2f} | {cpu:.2f} |" for pid, a, b, cpu, target in jobs]
     return "\n".join(rows)
 
 
