@@ -21,21 +21,22 @@ __all__ = ["grid_near", "unit_rows", "grid_joint", "grid_centre", "element_tange
            "MIN_CHORD_STEPS", "plain_element", "printed_element", "touch"]
 
 
+#: The four grid points around a point, in steps from the one below and left of it (the order ties go by).
+_CORNERS = np.array([[0, 0], [0, 1], [1, 0], [1, 1]], np.int64)
+
+
 def grid_near(p, weight, q: Quantizer) -> np.ndarray:
-    """Of the four grid points around each row of ``p``, the one with the least ``weight(candidate − p)``."""
-    lo = np.floor(np.asarray(p, float) / q.step_mm).astype(np.int64)
-    best, best_w = None, None
-    for dx in (0, 1):
-        for dy in (0, 1):
-            cand = q.value(lo + np.array([dx, dy]))
-            w = weight(cand - p)
-            if best is None:
-                best, best_w = cand, w
-            else:
-                take = w < best_w
-                best = np.where(take[:, None], cand, best)
-                best_w = np.where(take, w, best_w)
-    return best
+    """Of the four grid points around each row of ``p`` (N, 2), the one with the least weight (the first of equals).
+
+    ``weight(d, rows)`` gets the offsets ``d`` (4N, 2) of the candidates from their points, four rows a point
+    (in the order of :data:`_CORNERS`), and ``rows`` (4N,), the point each belongs to; it returns (4N,) weights.
+    """
+    p = np.asarray(p, float)
+    lo = np.floor(p / q.step_mm).astype(np.int64)
+    cand = q.value(lo[:, None, :] + _CORNERS[None, :, :])
+    rows = np.repeat(np.arange(len(p)), 4)
+    w = weight((cand - p[:, None, :]).reshape(-1, 2), rows).reshape(-1, 4)
+    return cand[np.arange(len(p)), np.argmin(w, axis=1)]
 
 
 def unit_rows(v):
@@ -48,7 +49,8 @@ def grid_joint(p, nrm, q: Quantizer) -> np.ndarray:
     A shift along the curve only moves where one arc hands over to the next;
     a shift across it is deviation.
     """
-    return grid_near(p, lambda d: np.abs(np.einsum("ij,ij->i", d, nrm)) + 1e-3 * np.hypot(d[:, 0], d[:, 1]), q)
+    return grid_near(p, lambda d, rows: np.abs(np.einsum("ij,ij->i", d, nrm[rows])) + 1e-3 * np.hypot(d[:, 0], d[:, 1]),
+                     q)
 
 
 def grid_centre(p0, c, q: Quantizer) -> np.ndarray:
@@ -61,7 +63,7 @@ def grid_centre(p0, c, q: Quantizer) -> np.ndarray:
     the grid unchanged).
     """
     u = unit_rows(c - p0)
-    return grid_near(c, lambda d: np.abs(d[:, 0] * u[:, 1] - d[:, 1] * u[:, 0]), q)
+    return grid_near(c, lambda d, rows: np.abs(d[:, 0] * u[rows, 1] - d[:, 1] * u[rows, 0]), q)
 
 
 def element_tangents(p, centre, ccw, is_line, chord) -> np.ndarray:
