@@ -5,8 +5,9 @@
 Runs ``camcam run SPEC`` once in this process's child (a fresh interpreter, as `camcam` itself runs)
 with a benchmark-only hook: each forked process says what it runs (the function a
 :func:`camcam.forked.later` job, a :func:`~camcam.forked.parallel_map` worker or a
-:mod:`camcam.servers` child was given), when it was forked and when it left, and its CPU seconds;
-the run's own steps (``Progress.step``) are timed too.  Seconds count from the start of the timed
+:mod:`camcam.servers` child was given), when it was forked and when it left, its CPU seconds and
+how many of them its cyclic garbage collector took (a ``gc.callbacks`` hook); the run's own steps
+(``Progress.step``) and each job a server child ran (its plots, the drawing) are timed too.  Seconds count from the start of the timed
 interpreter's first line (its own start-up, about 0.03 s, is before it).  ``--tolerance`` runs a copy of the spec at
 that ``[machining] tolerance`` (speed.py's copy).  A child that is killed (a run's children when
 it fails) has no end or CPU figure.
@@ -31,21 +32,31 @@ from speed import fine_spec  # noqa: E402  (a script beside this one)
 
 #: Runs in the timed child: installs the hooks, then `camcam run` (each event one line on stderr, "@@" first).
 HOOKED_RUN = r"""
-import os, sys, time
+import gc, os, sys, time
 T0 = time.time()
 label = ["camcam run"]
+collecting = [0.0, 0.0]  # this process's seconds in the cyclic collector; when the current collection began
 
 def say(*words):
     os.write(2, ("@@ " + " ".join(str(w) for w in words) + "\n").encode())
 
+def collector(phase, info):
+    if phase == "start":
+        collecting[1] = time.process_time()
+    else:
+        collecting[0] += time.process_time() - collecting[1]
+
+gc.callbacks.append(collector)
+
 def after_fork():
+    collecting[0] = 0.0
     say("fork", os.getpid(), os.getppid(), f"{time.time() - T0:.3f}", label[0])
 
 os.register_at_fork(after_in_child=after_fork)
 real_exit = os._exit
 
 def leave(status):
-    say("exit", os.getpid(), f"{time.time() - T0:.3f}", f"{time.process_time():.3f}")
+    say("exit", os.getpid(), f"{time.time() - T0:.3f}", f"{time.process_time():.3f}", f"{collecting[0]:.3f}")
     real_exit(status)
 
 os._exit = leave
@@ -103,7 +114,7 @@ def step(self, what, *args, **kwargs):
 progress.Progress.step = step
 from camcam.cli import main
 status = main(sys.argv[1:])
-say("exit", os.getpid(), f"{time.time() - T0:.3f}", f"{time.process_time():.3f}")
+say("exit", os.getpid(), f"{time.time() - T0:.3f}", f"{time.process_time():.3f}", f"{collecting[0]:.3f}")
 sys.exit(status)
 """
 
@@ -122,16 +133,16 @@ def timeline(spec: Path) -> str:
     for line in r.stderr.splitlines():
         if not line.startswith("@@ "):
             continue
-        kind, *rest = line[3:].split(" ", {"fork": 4, "job": 5}.get(line[3:].split(" ", 1)[0], 3))
+        kind, *rest = line[3:].split(" ", {"fork": 4, "job": 5, "exit": 4}.get(line[3:].split(" ", 1)[0], 3))
         if kind == "fork":
             pid, parent, at, what = int(rest[0]), int(rest[1]), float(rest[2]), rest[3]
             procs[pid] = {"what": what, "parent": parent, "start": at}
         elif kind == "exit":
-            pid, at, cpu = int(rest[0]), float(rest[1]), float(rest[2])
+            pid, at, cpu, gc_s = int(rest[0]), float(rest[1]), float(rest[2]), float(rest[3])
             if pid not in procs:  # the run's own process says only its exit
                 main_pid = pid
                 procs[pid] = {"what": "camcam run (the fitting process)", "parent": None, "start": 0.0}
-            procs[pid].update(end=at, cpu=cpu)
+            procs[pid].update(end=at, cpu=cpu, gc=gc_s)
         elif kind == "step":
             steps.append((float(rest[0]), float(rest[1]), rest[2]))
         elif kind == "job":
@@ -139,14 +150,16 @@ def timeline(spec: Path) -> str:
     names = {main_pid: "run"}
     for k, pid in enumerate(p for p in procs if p != main_pid):
         names[pid] = f"c{k + 1}"
-    rows = ["| process | forked by | what it runs | start s | end s | CPU s |", "|---|---|---|---|---|---|"]
+    rows = ["| process | forked by | what it runs | start s | end s | CPU s | of it GC s |", "|---|---|---|---|---|---|---|"]
     for pid, p in sorted(procs.items(), key=lambda kv: kv[1]["start"]):
         end = f"{p['end']:.2f}" if "end" in p else "killed"
         cpu = f"{p['cpu']:.2f}" if "cpu" in p else ""
+        gc_s = f"{p['gc']:.3f}" if "gc" in p else ""
         rows.append(f"| {names[pid]} | {names.get(p['parent'], '') if p['parent'] else ''} | {p['what']} | "
-                    f"{p['start']:.2f} | {end} | {cpu} |")
+                    f"{p['start']:.2f} | {end} | {cpu} | {gc_s} |")
     total = sum(p.get("cpu", 0.0) for p in procs.values())
-    rows.append(f"\nCPU of the processes that ended: {total:.2f} s\n")
+    collected = sum(p.get("gc", 0.0) for p in procs.values())
+    rows.append(f"\nCPU of the processes that ended: {total:.2f} s, of it in the cyclic garbage collector {collected:.3f} s\n")
     rows += ["| the run's step | start s | end s |", "|---|---|---|"]
     rows += [f"| {what} | {a:.2f} | {b:.2f} |" for a, b, what in steps]
     rows += ["", "| server job | process | start s | end s | CPU s |", "|---|---|---|---|---|"]

@@ -1,14 +1,16 @@
 """camcam.forked: jobs in forked children give the in-process results, in order, without deadlock."""
 
+import gc
 import os
 import select
+import sys
 import threading
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from camcam.forked import ChildError, call_target, later, resolve
+from camcam.forked import ChildError, call_target, freeze_start_up, later, preload, resolve
 from camcam.servers import Server
 
 needs_fork = pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork on this platform: jobs run in process")
@@ -410,3 +412,56 @@ def test_a_cancelled_job_leaves_no_child():
     finally:
         os.close(gate_r), os.close(gate_w)
     assert _children() <= before
+
+
+def _walked(obj) -> bool:
+    """Whether this process's cyclic collector walks ``obj`` (frozen objects are in none of its generations)."""
+    return any(o is obj for o in gc.get_objects())
+
+
+@needs_fork
+def test_a_child_leaves_its_parents_objects_out_of_its_collections():
+    """The parent's objects are frozen in the child (never walked, never written to), not in the parent."""
+    marker = [object()]  # a container: the collector tracks it
+    frozen_before = gc.get_freeze_count()
+    assert resolve(later(_walked, marker)) is False
+    assert _walked(marker) and gc.get_freeze_count() == frozen_before  # the parent collects as before
+    # what the child makes itself is collected as ever
+    assert resolve(later(lambda: _walked([object()]))) is True
+
+
+def _preload_in_child(enabled: bool):
+    if not enabled:
+        gc.disable()
+    preload("sched")  # a module the test process has not loaded (checked by the caller)
+    module_dict = sys.modules["sched"].__dict__
+    return gc.isenabled(), _walked(module_dict)
+
+
+@needs_fork
+@pytest.mark.parametrize("enabled", [True, False])
+def test_preload_freezes_what_it_loaded_and_leaves_the_collector_as_it_was(enabled):
+    if "sched" in sys.modules:
+        pytest.skip("sched is loaded already: preload would load nothing")
+    assert resolve(later(_preload_in_child, enabled)) == (enabled, False)
+
+
+def test_start_up_is_frozen_once():
+    """freeze_start_up freezes what exists at its first call, and nothing made after it (a batch's later specs);
+    in a fresh interpreter, as the run's own process is one."""
+    import subprocess
+
+    code = (
+        "import gc\n"
+        "from camcam.forked import freeze_start_up\n"
+        "def walked(obj): return any(o is obj for o in gc.get_objects())\n"
+        "first = [object()]\n"
+        "freeze_start_up()\n"
+        "second = [object()]\n"
+        "freeze_start_up()\n"
+        "print(walked(first), walked(second), gc.isenabled())\n"
+    )
+    root = Path(__file__).resolve().parents[1]
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
+                         env={**os.environ, "PYTHONPATH": str(root)})
+    assert out.stdout.split() == ["False", "True", "True"]

@@ -134,9 +134,10 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
     (:func:`plot_server`) already started, which this call closes; without one, the call starts its own.
     """
     from camcam.cli.motion import SVAJ_PLOT, motion_outputs, motion_summary, svaj_title
-    from camcam.forked import ChildGroup, resolve
+    from camcam.forked import ChildGroup, freeze_start_up, resolve
     from camcam.servers import Prepared
 
+    freeze_start_up()
     verdict = Verdict(())
     # one child process draws every plot, and only it imports matplotlib (camcam.servers.Server): the
     # plots' data goes to it pickled (a cam pickles in about a millisecond)
