@@ -50,6 +50,8 @@ __all__ = ["RemovalReport", "check_moves", "check_program", "SAMPLE_MM", "PROBE_
 
 #: Spacing of path samples for the material-left / overcut distances (mm): error (h/2)²/(2 r_t), < 1e-5 mm.
 DENSE_MM = 0.02
+#: Points a leaf of the material check's k-d trees holds (:func:`_tree`).
+TREE_LEAF = 64
 #: The material-left search looks first at path points this far beyond the tool radius from the part (mm):
 #: a finishing pass; the boundary points it leaves farther are searched among all (the same figure).
 LEFT_FIRST_MM = 0.1
@@ -235,13 +237,19 @@ def _tree(points: np.ndarray) -> cKDTree:
     about a tool radius away visits many of them: 0.25 s against 0.03 s for the
     material-left query of the default sample.  The distances found are the same.
 
+    Leaves hold up to :data:`TREE_LEAF` points, not scipy's 16: fewer, larger cells are fewer steps
+    down the tree for points ordered along curves, and a leaf's points are compared in one loop in C.
+    On disc-groove at 0.001 mm the 84 201 path points' query of the boundary tree took 0.24 → 0.15 CPU s
+    and the boundary's query of the path tree 0.12 → 0.08 s, the same distances (2026-12-06; 32 and
+    128 points a leaf were between the two, 256 slower again).
+
     scipy.spatial is imported here, not with the module: `camcam run` imports this module in its
     main process (with the NC result), but builds the trees only in the material check's child,
     and scipy.spatial's import (0.2 s wall, 0.3 CPU s) stays off the main process's path.
     """
     from scipy.spatial import cKDTree
 
-    return cKDTree(points, balanced_tree=False, compact_nodes=False)
+    return cKDTree(points, leafsize=TREE_LEAF, balanced_tree=False, compact_nodes=False)
 
 
 def _finish_figures(moves, levels, top_z, keep, boundary, r_t):
