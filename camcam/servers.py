@@ -33,7 +33,7 @@ from typing import Any
 from camcam.forked import (PAYLOAD_OK, ChildError, Pending, call_target, child_payload, decode_payload, fork_child, preload,
                            write_all)
 
-__all__ = ["Server", "Prepared"]
+__all__ = ["Server", "Prepared", "Gate"]
 
 _FRAME = struct.Struct("<Q")  # the length of one frame's body
 
@@ -145,6 +145,66 @@ def _widen(fd: int) -> None:
         pass  # only an optimisation: the pipe's own size works, in more steps
 
 
+class Gate:
+    """A signal to one waiting process from whichever of the others gives it first: a pipe.
+
+    A :class:`Server` given a gate waits at it before its first submitted job
+    (:meth:`wait`); :meth:`open` lets it go on, from any process that holds
+    the gate (one forked after it was made), once: the first byte written ends
+    the wait.  The wait also ends when every process that could open it has
+    let go of its end (ended, or opened it), so a process that fails cannot
+    leave the waiter waiting (:meth:`close` lets go without opening).  Each
+    method closes this process's ends it no longer needs, and may be called
+    again.  Without fork nothing waits.
+
+    Examples
+    --------
+    >>> g = Gate()
+    >>> s = Server([("operator:add", (1, 2), {})], gate=g)
+    >>> job = s.submit("operator:mul", 3, 4)  # taken off the pipe, run once the gate is open
+    >>> g.open()
+    >>> from camcam.forked import resolve
+    >>> resolve(s.first[0]), resolve(job)
+    (3, 12)
+    >>> s.close()
+    """
+
+    def __init__(self) -> None:
+        self._read, self._write = os.pipe() if hasattr(os, "fork") else (None, None)
+
+    def open(self) -> None:
+        """Let the waiter go on (it may have gone on already, or be gone) and let go of both ends here."""
+        if self._write is not None:
+            try:
+                os.write(self._write, b"o")
+            except BrokenPipeError:
+                pass  # nobody reads any more: the waiter went on (or ended) already
+            os.close(self._write)
+            self._write = None
+        self._close_read()
+
+    def close(self) -> None:
+        """Let go of this process's ends without opening the gate (the waiter goes on once all have)."""
+        if self._write is not None:
+            os.close(self._write)
+            self._write = None
+        self._close_read()
+
+    def wait(self) -> None:
+        """Block until some process opens the gate or every other end is let go; then let go of ours."""
+        if self._write is not None:
+            os.close(self._write)  # this process never opens it: its own end must not keep the pipe alive
+            self._write = None
+        if self._read is not None:
+            os.read(self._read, 1)  # a byte, or b"" once no process holds the write end
+            self._close_read()
+
+    def _close_read(self) -> None:
+        if self._read is not None:
+            os.close(self._read)
+            self._read = None
+
+
 class Server:
     """One forked child that runs jobs for the parent, in the order they are given.
 
@@ -155,7 +215,9 @@ class Server:
     :func:`preload` as a first job imports modules ahead of the jobs that need
     them.  :meth:`submit` returns at once (the child takes requests off the
     pipe while it works, see :class:`_ServerPipes`); :meth:`close` ends the
-    child once every reply was read.  Without fork every job runs at once, in
+    child once every reply was read.  With a ``gate`` (:class:`Gate`) the
+    child runs ``first`` at once and the submitted jobs only once the gate is
+    open.  Without fork every job runs at once, in
     process.  Jobs must not fork (the child runs two threads for its pipes).
 
     Examples
@@ -169,7 +231,7 @@ class Server:
     >>> s.close()
     """
 
-    def __init__(self, first=()) -> None:
+    def __init__(self, first=(), gate: Gate | None = None) -> None:
         first = [(t, tuple(a), dict(k)) for t, a, k in first]
         self._replies: dict[int, bytes] = {}
         self._names: list[str] = []
@@ -185,6 +247,8 @@ class Server:
             with _ServerPipes(req_r, rep_w) as pipes:
                 for t, a, k in first:
                     pipes.reply(child_payload(call_target, (t, *a), k))
+                if gate is not None:
+                    gate.wait()  # the submitted jobs' requests are taken off the pipe meanwhile
                 while (raw := pipes.jobs.get()) is not None:
                     t, a, k = pickle.loads(raw)
                     pipes.reply(child_payload(call_target, (t, *a), k))
@@ -273,7 +337,9 @@ class Prepared:
     :meth:`close` was called.  The child leads a process group of its own:
     :meth:`kill` (a run that failed) ends it and every child it started, at
     once.  Without fork, ``first`` runs at once and the job when it is
-    submitted, in process.  A failed import fails every job.
+    submitted, in process.  A failed import fails every job.  With ``opens``
+    (a :class:`Gate`) the child opens it once the modules are loaded and
+    ``first`` has run.
 
     Examples
     --------
@@ -284,7 +350,7 @@ class Prepared:
     (3, Fraction(1, 2))
     """
 
-    def __init__(self, modules=(), first=()) -> None:
+    def __init__(self, modules=(), first=(), opens: Gate | None = None) -> None:
         self._modules = tuple(modules)
         first = [(fn, tuple(a), dict(k)) for fn, a, k in first]
         self._pid: int | None = None
@@ -311,6 +377,8 @@ class Prepared:
             reader.start()
             loaded = child_payload(preload, self._modules, {})
             replies = [loaded if loaded[:1] != PAYLOAD_OK else child_payload(fn, a, k) for fn, a, k in first]
+            if opens is not None:
+                opens.open()  # the modules are loaded and ``first`` has run
             reader.join()  # one thread again: the job may fork
             os.close(req_r)
             if box and box[0]:

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from camcam.forked import ChildError, call_target, freeze_start_up, later, preload, resolve
-from camcam.servers import Server
+from camcam.servers import Gate, Server
 
 needs_fork = pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork on this platform: jobs run in process")
 
@@ -465,3 +465,56 @@ def test_start_up_is_frozen_once():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True,
                          env={**os.environ, "PYTHONPATH": str(root)})
     assert out.stdout.split() == ["False", "True", "True"]
+
+
+def _wait_at(gate) -> str:
+    gate.wait()
+    return "went on"
+
+
+@needs_fork
+def test_a_gate_lets_its_waiter_go_on_once_another_process_opens_it():
+    gate = Gate()
+    waiter = later(_wait_at, gate)
+    opener = later(gate.open)  # a child opens it: the first byte ends the wait
+    assert resolve(waiter) == "went on"
+    resolve(opener)
+    gate.open()  # and again from here: nobody reads any more, which is fine
+    gate.open()
+
+
+@needs_fork
+def test_a_gate_nobody_can_open_any_more_does_not_hold_its_waiter():
+    """A process that would have opened it and failed (or ended) cannot leave the waiter waiting."""
+    gate = Gate()
+    waiter = later(_wait_at, gate)
+    resolve(later(lambda: None))  # a child that ends holding the gate, never opening it
+    gate.close()  # and this process lets go of it without opening it
+    assert resolve(waiter) == "went on"
+
+
+@needs_fork
+def test_a_server_runs_its_first_jobs_at_once_and_the_submitted_ones_after_its_gate_opens():
+    import time
+
+    gate = Gate()
+    s = Server([("operator:add", (1, 2), {})], gate=gate)
+    job = s.submit("time:monotonic")
+    assert resolve(s.first[0]) == 3  # the first jobs' replies come before the gate opens
+    opened_at = time.monotonic()  # CLOCK_MONOTONIC: one clock for every process
+    gate.open()
+    assert resolve(job) >= opened_at  # the submitted job ran only after
+    s.close()
+
+
+def test_a_run_gates_its_plots_only_on_two_cores_or_fewer(monkeypatch):
+    from camcam.cli import run as run_module
+
+    seen = []
+    monkeypatch.setattr("camcam.servers.Server", lambda first, gate=None: seen.append(gate) or "server")
+    for cores, gated in ((2, True), (1, True), (3, False), (8, False)):
+        monkeypatch.setattr(run_module, "_cores", lambda n=cores: n)
+        seen.clear()
+        server, gate = run_module.plot_server()
+        assert server == "server" and (seen[0] is gate) is gated and isinstance(gate, Gate)
+        gate.close()

@@ -130,8 +130,19 @@ def _load(spec_arg):
 def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
     """The whole flow for a loaded ``spec``: add every file to ``out`` (not committed); (summary, verdict).
 
-    `camcam run` and each spec of `camcam batch` go through here.  ``plots`` is a plot server
+    `camcam run` and each spec of `camcam batch` go through here.  ``plots`` is a plot server and its gate
     (:func:`plot_server`) already started, which this call closes; without one, the call starts its own.
+
+    On fewer than three cores the plot server draws its first plots (the SVAJ and the cam) only once the
+    drawing's child has loaded its modules or the NC step has ended, whichever comes first
+    (:class:`camcam.servers.Gate`): the fitting process, whose NC step everything else waits for, then has
+    a core to itself while the two children load and draw one after the other on the other, instead of
+    three processes sharing two.  Medians of 6
+    alternated runs on the 2-core benchmark machine (2026-12-06, ``benchmarks/ab.py``): at 0.001 mm
+    disc-oscillating-roller 1.70 → 1.56 s, disc-groove 1.57 → 1.47 s, disc-oscillating-flat 1.73 → 1.65 s;
+    disc-oscillating-roller 1.29 → 1.29 s; but the default disc 1.14 → 1.24 s, whose short NC step ends
+    before the drawing's child has loaded, so that all four of the plot server's plots come after it
+    (still 1.3 × the import floor, within its 1.7 ×).
     """
     from camcam.cli.motion import SVAJ_PLOT, motion_outputs, motion_summary, svaj_title
     from camcam.forked import ChildGroup, freeze_start_up, resolve
@@ -141,7 +152,7 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
     verdict = Verdict(())
     # one child process draws every plot, and only it imports matplotlib (camcam.servers.Server): the
     # plots' data goes to it pickled (a cam pickles in about a millisecond)
-    plots = plot_server() if plots is None else plots
+    plots, gate = plot_server() if plots is None else plots
     # the run's other child processes: stopped if the run fails before it collects them
     children = ChildGroup()
     drawings = None
@@ -150,6 +161,8 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
         for j in program.joins:
             warn(j.describe())
         svaj = plots.submit(SVAJ_PLOT, program, title=svaj_title(spec.name, program))
+        if spec.cam is None or spec.machining is None:
+            gate.open()  # no NC step: the plots are drawn at once
         if spec.cam is None:
             with progress.step("motion table and plot"):
                 motion_outputs(out, spec.name, program, 0.5, svaj)
@@ -169,7 +182,7 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
             # the drawing's child starts now, imports ezdxf and scipy (about a second) and makes the mesh and
             # STL (trimesh, which imports scipy too: once for both) beside the NC step; the program goes to it
             # pickled once it is printed, and it writes the drawing while its own children run the material check
-            drawings = Prepared(DRAWING_MODULES, first=[(model, (built, spec.name), {})])
+            drawings = Prepared(DRAWING_MODULES, first=[(model, (built, spec.name), {})], opens=gate)
             model_files = drawings.first[0]
         else:
             model_files = children.later(model, built, spec.name)  # the mesh and STL need no NC: made beside it
@@ -178,6 +191,7 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
         if spec.machining is not None:
             with progress.step("NC second fitting and program"):
                 machining = nc_step(spec, built)
+            gate.open()  # if the drawing's child has not
             drawn = drawings.submit(DRAWING, built, machining, spec.machining)
         with progress.step("report analysis"):
             from camcam.report.job import job_report, report_analysis
@@ -211,6 +225,7 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
             out.add(f"{spec.name}-report.json", to_json(report) + "\n")
         summary["cam"] = report
     except BaseException:
+        gate.open()
         children.cancel()
         plots.kill()
         if drawings is not None:
@@ -221,11 +236,22 @@ def job(spec, out, progress: Progress, plots=None) -> tuple[dict, Verdict]:
 
 
 def plot_server():
-    """The child process that draws a run's plots (:class:`camcam.servers.Server`), started at once: it
+    """The child process that draws a run's plots (:class:`camcam.servers.Server`), started at once, and the
+    gate it waits at before its first plot (:class:`camcam.servers.Gate`, opened by :func:`job`): it
     imports matplotlib (about a second) while the run itself reads the spec and designs the cam."""
-    from camcam.servers import Server
+    from camcam.servers import Gate, Server
 
-    return Server([(PRELOAD, PLOT_MODULES, {})])
+    gate = Gate()
+    # on three cores or more the three processes each have one: nothing waits
+    return Server([(PRELOAD, PLOT_MODULES, {})], gate=gate if _cores() < 3 else None), gate
+
+
+def _cores() -> int:
+    """The CPUs this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not Linux
+        return os.cpu_count() or 1
 
 
 #: Loads modules in a server child before its first job (camcam.forked.preload).
@@ -274,14 +300,15 @@ def run(args) -> int:
     # of 8 alternated runs)
     import numpy  # noqa: F401
 
-    plots = plot_server()  # first of all: matplotlib's import runs on the other core while the flow's load
+    plots, gate = plot_server()  # first of all: matplotlib's import runs on the other core while the flow's load
     from camcam.cli.motion import print_summary
 
     try:
         spec = _load(args.spec)
         out = output_set(args, "run")
-        summary, verdict = job(spec, out, progress, plots)
+        summary, verdict = job(spec, out, progress, (plots, gate))
     finally:
+        gate.open()
         plots.kill()  # a spec or folder refused: the server is stopped (after job() it has ended already)
 
     def show(summary: dict) -> None:
