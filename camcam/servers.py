@@ -179,25 +179,24 @@ class Gate:
                 os.write(self._write, b"o")
             except BrokenPipeError:
                 pass  # nobody reads any more: the waiter went on (or ended) already
-            os.close(self._write)
-            self._write = None
-        self._close_read()
+        self.close()
 
     def close(self) -> None:
         """Let go of this process's ends without opening the gate (the waiter goes on once all have)."""
-        if self._write is not None:
-            os.close(self._write)
-            self._write = None
+        self._close_write()
         self._close_read()
 
     def wait(self) -> None:
         """Block until some process opens the gate or every other end is let go; then let go of ours."""
-        if self._write is not None:
-            os.close(self._write)  # this process never opens it: its own end must not keep the pipe alive
-            self._write = None
+        self._close_write()  # this process never opens it: its own end must not keep the pipe alive
         if self._read is not None:
             os.read(self._read, 1)  # a byte, or b"" once no process holds the write end
             self._close_read()
+
+    def _close_write(self) -> None:
+        if self._write is not None:
+            os.close(self._write)
+            self._write = None
 
     def _close_read(self) -> None:
         if self._read is not None:

@@ -34,7 +34,7 @@ def nc_step(spec, built):
 
     # work that splits into independent parts (a closed contour's further arc starts, a barrel cam's passes
     # and 3-D measurement) is shared with a second process: the same results
-    return machine_program(built, spec.machining, spec.name, spec.stock, workers=min(2, os.cpu_count() or 1))
+    return machine_program(built, spec.machining, spec.name, spec.stock, workers=min(2, _cores()))
 
 
 def model(built, name: str) -> tuple[dict, dict]:
@@ -69,7 +69,7 @@ def drawing_and_check(built, machining, machining_spec):
     with ChildGroup() as group:
         # the check's slabs are swept by two processes (camcam.nc.sweep): the top slab, which every deeper
         # move cuts too, beside the others
-        check = group.later(material_check, machining, built, machining_spec, min(2, os.cpu_count() or 1)) \
+        check = group.later(material_check, machining, built, machining_spec, min(2, _cores())) \
             if machining.blank is not None else None
         files, part_deviation = drawing(built, machining)
         return files, part_deviation, resolve(check)
@@ -247,7 +247,8 @@ def plot_server():
 
 
 def _cores() -> int:
-    """The CPUs this process may run on."""
+    """The CPUs this process may run on (its affinity where the platform says it): the run's worker counts and
+    whether the plot server waits at its gate."""
     try:
         return len(os.sched_getaffinity(0))
     except AttributeError:  # not Linux
