@@ -116,16 +116,35 @@ def _probe(slab, pts, t, n, r_p, v):
     return shapely.contains_xy(slab, x.ravel(), y.ravel()).reshape(x.shape)
 
 
-def front_extent(slab, pts: np.ndarray, tangents: np.ndarray, r_probe: float) -> np.ndarray:
+def front_extent(slab, pts: np.ndarray, tangents: np.ndarray, r_probe: float, over: float = -math.inf) -> np.ndarray:
     """Width across travel of the material the tool's leading semicircle meets, per sample (mm).
 
     Probes on the semicircle at :data:`PROBE_STEPS` perpendicular coordinates;
     each end of the engaged span is then bisected to 1/64 of a step.  An end
     at the tool's edge counts the probe's inset too.
+
+    A sample whose width cannot exceed ``over`` (a largest width met already) is not bisected and
+    comes back as 0: its bisected ends would lie within the probes next outside its span, so its width is
+    at most theirs apart.  The samples that can exceed it get the same widths as without ``over``, so the
+    largest width and the first sample with it are the same whenever it exceeds ``over``.  A move no
+    width of the semicircle can exceed is not probed at all.
+
+    Examples
+    --------
+    Material to the left of the path: the span runs from the path (bisected to 1/64 of the 0.104 mm step
+    next to it) to the edge and the inset, 5.01 mm; it cannot exceed 6 mm.
+
+    >>> half = shapely.box(-50.0, 0.0, 50.0, 50.0)
+    >>> pts, t = np.array([[0.0, 0.0]]), np.array([[1.0, 0.0]])
+    >>> float(front_extent(half, pts, t, 5.0)[0].round(3)), float(front_extent(half, pts, t, 5.0, over=6.0)[0])
+    (5.008, 0.0)
     """
     t = tangents
     n = np.column_stack([-t[:, 1], t[:, 0]])
     v = np.linspace(-r_probe, r_probe, PROBE_STEPS)
+    # the widest span any sample can have: both ends at the tool's edge (as the ends are worked out below)
+    if (v[-1] + PROBE_INSET_MM) - (v[0] - PROBE_INSET_MM) <= over:
+        return np.zeros(len(pts))
     inside = _probe(slab, pts, t, n, r_probe, np.broadcast_to(v, (len(pts), len(v))))
     hit = inside.any(axis=1)
     if not hit.any():
@@ -133,6 +152,14 @@ def front_extent(slab, pts: np.ndarray, tangents: np.ndarray, r_probe: float) ->
     idx = np.arange(len(v))
     k_lo = np.where(inside, idx, len(v)).min(axis=1)
     k_hi = np.where(inside, idx, -1).max(axis=1)
+    # a span's bisected ends lie between its outermost probes in material and the next probes out (or at the
+    # edge, the inset beyond): a sample whose bound is at most ``over`` cannot exceed it
+    last = len(v) - 1
+    lo_bound = np.where(k_lo == 0, v[0] - PROBE_INSET_MM, v[np.clip(k_lo - 1, 0, last)])
+    hi_bound = np.where(k_hi == last, v[last] + PROBE_INSET_MM, v[np.clip(k_hi + 1, 0, last)])
+    hit &= hi_bound - lo_bound > over
+    if not hit.any():
+        return np.zeros(len(pts))
     p, tt, nn = pts[hit], t[hit], n[hit]
     k_lo, k_hi = k_lo[hit], k_hi[hit]
     # both ends of the span bisected at once: rows [0, m) the low end, [m, 2m) the high end
@@ -229,9 +256,11 @@ def _sweep_slab(i: int, slab, moves: list, samples: list, bounds: list, r_t: flo
             probe_pts, tang, zs = probe
             sel = zs <= floor + 1e-6
             if sel.any() and not slab.is_empty:
-                w = front_extent(slab, probe_pts[sel, :2], tang[sel], r_t - PROBE_INSET_MM)
+                slot = m.pass_kind in slot_kinds
+                # only a width over the largest met so far changes the figures (the first of equals is kept)
+                w = front_extent(slab, probe_pts[sel, :2], tang[sel], r_t - PROBE_INSET_MM, slot_eng if slot else eng)
                 k = int(np.argmax(w))
-                if m.pass_kind in slot_kinds:
+                if slot:
                     slot_eng = max(slot_eng, float(w[k]))
                 elif w[k] > eng:
                     eng, eng_move, eng_at = float(w[k]), j, where(m.pass_label, probe_pts[sel][k])

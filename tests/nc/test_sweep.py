@@ -170,3 +170,36 @@ def test_a_path_cut_again_one_level_deeper_is_not_swept_again_in_the_slab_above(
         for a, b in zip(got.slabs, want[0]):
             # the same region: nothing of either outside the other (GEOS's own test), the same area to rounding
             assert a.equals(b) and abs(a.area - b.area) <= 1e-9 * b.area
+
+
+_pocket = st.tuples(st.floats(-20.0, 20.0), st.floats(-20.0, 20.0), st.floats(0.5, 15.0))
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(_pocket, min_size=0, max_size=4), st.floats(-1.0, 1.0), st.floats(-1.0, 12.0),
+       st.integers(1, 6), st.booleans())
+# one sample at (-8, -3) heading +X, a pocket to its left, then to its right: the span's high end, then its low
+# end, inside the semicircle; over 0.015 mm below the width (a bound one step too tight drops it)
+@example([(-7.0, 1.0, 3.0)], 0.0, 5.0, 1, True)
+@example([(-7.0, -7.0, 3.0)], 0.0, 5.0, 1, True)
+def test_a_width_that_cannot_exceed_over_is_not_bisected_and_the_largest_is_the_same(pockets, turn, over, n, near):
+    """``front_extent(..., over)`` against the full bisection: every sample it returns above 0 has its full
+    width, and whenever the largest full width exceeds ``over`` it is found at the same (first) sample.
+    ``near``: ``over`` within ±0.2 mm of the largest width (about two probe steps), where a bound one step
+    too tight would drop it."""
+    slab = shapely.box(-30.0, -30.0, 30.0, 30.0)
+    for x, y, r in pockets:  # material already cut: the spans break up and end inside the semicircle
+        slab = slab.difference(Point(x, y).buffer(r, quad_segs=16))
+    shapely.prepare(slab)
+    pts = np.column_stack([np.linspace(-8.0, 8.0, n), np.linspace(-3.0, 5.0, n)])
+    t = np.tile([np.cos(turn), np.sin(turn)], (n, 1))
+    full = front_extent(slab, pts, t, R_T - PROBE_INSET_MM)
+    if near:
+        over = float(full.max()) - 0.2 + 0.4 * (over + 1.0) / 13.0
+    some = front_extent(slab, pts, t, R_T - PROBE_INSET_MM, over)
+    kept = some > 0
+    # the same arithmetic on the same probes for the samples it bisects: equal to the bit
+    assert np.array_equal(some[kept], full[kept])
+    assert np.all(full[~kept] <= max(over, 0.0))  # the ones it left could not exceed over (or met nothing)
+    if full.max() > over:
+        assert int(np.argmax(some)) == int(np.argmax(full)) and some.max() == full.max()
