@@ -35,7 +35,8 @@ from camcam.nc.bore import bore_circle_radius, bore_curve, bore_passes
 from camcam.nc.passes import finish_moves, ramp_loop_passes, spiral_moves, with_markers
 from camcam.nc.removal import RemovalReport, check_program
 from camcam.nc.result import MachiningResult, deviation_checks
-from camcam.nc.roughing import RING_STEP_FRACTION, disc_spiral
+from camcam.forked import ChildGroup, resolve
+from camcam.nc.roughing import RING_STEP_FRACTION, Spiral, disc_spiral
 from camcam.nc.settings import MachiningSpec
 from camcam.nc.settings import DEFAULT_STOCK, StockSpec
 from camcam.nc.stock import blank_for
@@ -151,20 +152,28 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
     if m.bore:
         plan.append(("bore", bore_curve(bore_circle_radius(blank, r_t)), r_t, None, "bore"))
     contours, passes = [], []
-    for k, (label, curve, offset, free, kind) in enumerate(plan):
-        fit, printed, dev, segs = fit_printed(curve, m.tolerance_mm, m.mode, post.quantizer, post.max_arc_sweep_deg,
-                                              post.quantizer.printed_elements, f"{name} {label}", workers=workers)
-        side = _stock_side(curve, free) if free is not None else "both"
-        cs = replace(m.cut_settings(side if free is not None else "right"), clearance_z_mm=z_clear,
-                     safe_z_mm=max(m.safe_z_mm, z_clear))
-        if kind == "bore":
-            passes += bore_passes(k, fit.elements, blank, r_t, m, z_clear, levels[-1], built.spec.thickness)
-        elif free is not None:
-            passes += _profile_passes(k, fit.elements, blank, m, cs, side, levels)
-        else:
-            passes += ramp_loop_passes(k, kind, fit.elements, levels, blank.top_z_mm, m.ramp_angle_deg, cs,
-                                       m.spring_pass)
-        contours.append(CutContour(label, curve, fit, printed, dev, offset, free is not None, segs, side))
+    with ChildGroup() as group:
+        # a profile's roughing spiral needs only the blank and the side the material is on: with a second
+        # process it is made in a child beside its contour's fit (the same call, the same spiral)
+        spirals = {k: group.later(_roughing_spiral, blank, m, _stock_side(curve, free))
+                   for k, (_, curve, _, free, kind) in enumerate(plan)
+                   if workers > 1 and free is not None and kind != "bore"}
+        for k, (label, curve, offset, free, kind) in enumerate(plan):
+            fit, printed, dev, segs = fit_printed(curve, m.tolerance_mm, m.mode, post.quantizer,
+                                                  post.max_arc_sweep_deg, post.quantizer.printed_elements,
+                                                  f"{name} {label}", workers=workers)
+            side = _stock_side(curve, free) if free is not None else "both"
+            cs = replace(m.cut_settings(side if free is not None else "right"), clearance_z_mm=z_clear,
+                         safe_z_mm=max(m.safe_z_mm, z_clear))
+            if kind == "bore":
+                passes += bore_passes(k, fit.elements, blank, r_t, m, z_clear, levels[-1], built.spec.thickness)
+            elif free is not None:
+                spiral = resolve(spirals[k]) if k in spirals else _roughing_spiral(blank, m, side)
+                passes += _profile_passes(k, fit.elements, spiral, m, cs, levels)
+            else:
+                passes += ramp_loop_passes(k, kind, fit.elements, levels, blank.top_z_mm, m.ramp_angle_deg, cs,
+                                           m.spring_pass)
+            contours.append(CutContour(label, curve, fit, printed, dev, offset, free is not None, segs, side))
     safe = (Rapid(None, None, max(m.safe_z_mm, z_clear)),)
     counts: dict[str, int] = {}
     for p in passes:
@@ -183,10 +192,15 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
                            deviation_checks(contours, m.tolerance_mm), blank=blank)
 
 
-def _profile_passes(k: int, elements, blank, m: MachiningSpec, cs, side: str, levels) -> list[Pass]:
+def _roughing_spiral(blank, m: MachiningSpec, side: str) -> Spiral | None:
+    """A disc profile's roughing spiral from the blank to the finish allowance (:func:`disc_spiral`), in the
+    direction of the finish pass (clockwise about the cam axis when the material is on the right)."""
+    return disc_spiral(blank.part, blank.region, m.tool_diameter_mm / 2, m.finish_allowance_mm, m.stepover_mm,
+                       clockwise=(side == "right"), max_sweep_deg=m.post.max_arc_sweep_deg)
+
+
+def _profile_passes(k: int, elements, spiral: Spiral | None, m: MachiningSpec, cs, levels) -> list[Pass]:
     """A disc profile: a roughing spiral at each level, then finish (each level without an allowance) and spring."""
-    spiral = disc_spiral(blank.part, blank.region, m.tool_diameter_mm / 2, m.finish_allowance_mm, m.stepover_mm,
-                         clockwise=(side == "right"), max_sweep_deg=m.post.max_arc_sweep_deg)
     a, passes = m.finish_allowance_mm, []
     for z in levels:
         if spiral is not None:
