@@ -86,14 +86,23 @@ def closest_params(curve: PlanarCurve, q, lo: float, hi: float, seeds_t=None) ->
     step = (hi - lo) / max(len(seeds_t) - 1, 1)
     # a closed curve taken whole has no ends: Newton may step across its seam (t_end ≡ t_start)
     seam = bool(getattr(curve, "closed", False)) and lo <= curve.t_start and hi >= curve.t_end
+    # eight Newton steps, each point on its own: a point the step leaves where it was (to the bit) is a fixed
+    # point of its step and stays there, so it is not evaluated again (on disc-oscillating-roller's contour at
+    # 0.001 mm, 2 367 of 6 676 points still move at the third step and 812 at the eighth, an ulp to and fro)
+    active = np.arange(len(t))
     for _ in range(8):
-        p, d1, d2 = derivatives(curve, t, 2, first=0)  # one jet evaluation for all three
-        r = p - q
+        ta = t[active]
+        p, d1, d2 = derivatives(curve, ta, 2, first=0)  # one jet evaluation for all three
+        r = p - q[active]
         f = np.einsum("ij,ij->i", r, d1)
         fp = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", r, d2)
         dt = np.where(fp > 0, -f / np.where(fp > 0, fp, 1.0), 0.0)
-        t = t + np.clip(dt, -step, step)
-        t = lo + np.mod(t - lo, hi - lo) if seam else np.clip(t, lo, hi)
+        tn = ta + np.clip(dt, -step, step)
+        tn = lo + np.mod(tn - lo, hi - lo) if seam else np.clip(tn, lo, hi)
+        t[active] = tn
+        active = active[tn != ta]
+        if not len(active):
+            break
     d = np.hypot(*(curve.evaluate(t, 0) - q).T)
     return t, d
 
@@ -129,9 +138,13 @@ def measure_deviation(curve: PlanarCurve, elements, lo: float | None = None, hi:
         cand = eidx + off
         if not (off == 0):
             cand = np.mod(cand, n_el)
-        for j in np.unique(cand):
-            m = cand == j
-            d_cp[m] = np.minimum(d_cp[m], element_distance(elements[j], cp[m]))
+        # the points of each candidate element, in their own order (a stable sort: the same rows as a mask of
+        # cand == j gives, without a pass over all points per element)
+        order = np.argsort(cand, kind="stable")
+        sorted_cand = cand[order]
+        cuts = np.flatnonzero(np.diff(sorted_cand)) + 1
+        for rows in (np.split(order, cuts) if len(order) else ()):
+            d_cp[rows] = np.minimum(d_cp[rows], element_distance(elements[cand[rows[0]]], cp[rows]))
     i_pc, i_cp = int(np.argmax(d_pc)), int(np.argmax(d_cp))
     worst = pts[i_pc] if d_pc[i_pc] >= d_cp[i_cp] else cp[i_cp]
     a, b = float(d_pc[i_pc]), float(d_cp[i_cp])

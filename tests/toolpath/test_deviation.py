@@ -1,6 +1,8 @@
 import math
 
 import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from camcam.toolpath.deviation import closest_params, measure_deviation
 from camcam.toolpath.elements import Arc, Line
@@ -58,3 +60,56 @@ def test_line_through_points_measures_sagitta():
     sag = 10 * (1 - math.cos(0.1))
     # the chord's sagitta is the deviation both ways (closed form); margin 1e-7 plus sampling
     assert abs(d.path_to_curve_mm - sag) < 1e-6 and abs(d.curve_to_path_mm - sag) < 1e-6
+
+
+def _eight_steps(curve, q, lo, hi, seeds_t):
+    """closest_params as it was before a point at its fixed point stopped being evaluated (camcam at 1c7d3af):
+    eight Newton steps for every point.  The oracle."""
+    from camcam.geometry.curve import derivatives
+    from camcam.toolpath.deviation import _nearest
+
+    t = seeds_t[_nearest(curve.evaluate(seeds_t, 0), q)].astype(float)
+    step = (hi - lo) / max(len(seeds_t) - 1, 1)
+    seam = bool(getattr(curve, "closed", False)) and lo <= curve.t_start and hi >= curve.t_end
+    for _ in range(8):
+        p, d1, d2 = derivatives(curve, t, 2, first=0)
+        r = p - q
+        f = np.einsum("ij,ij->i", r, d1)
+        fp = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", r, d2)
+        dt = np.where(fp > 0, -f / np.where(fp > 0, fp, 1.0), 0.0)
+        t = t + np.clip(dt, -step, step)
+        t = lo + np.mod(t - lo, hi - lo) if seam else np.clip(t, lo, hi)
+    return t, np.hypot(*(curve.evaluate(t, 0) - q).T)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.sampled_from([(0.0, 2 * math.pi), (0.3, 2.9), (4.0, 2 * math.pi)]))
+def test_points_at_their_fixed_point_are_left_there_with_the_same_bits(seed, span):
+    """Newton's points that stop moving are not stepped again: the same parameters and distances, to the bit,
+    as eight steps for every point (seam included: the whole closed ellipse)."""
+    lo, hi = span
+    E = ellipse()
+    rng = np.random.default_rng(seed)
+    ang = rng.uniform(0.0, 2 * math.pi, 300)
+    rad = rng.uniform(0.2, 1.6, 300)
+    q = np.column_stack([30.0 * rad * np.cos(ang), 20.0 * rad * np.sin(ang)])
+    seeds = np.linspace(lo, hi, 257)
+    t, d = closest_params(E, q, lo, hi, seeds)
+    t0, d0 = _eight_steps(E, q, lo, hi, seeds)
+    assert np.array_equal(t, t0) and np.array_equal(d, d0)
+
+
+def test_measured_deviation_of_many_lines_is_the_recorded_one():
+    """The curve-to-path side measures each curve point against its nearest path sample's element and that
+    element's neighbours, grouped by element.  Regression against the figures of camcam at 1c7d3af (one
+    mask over all points per element): 600 chords of the ellipse, read to the bit."""
+    E = ellipse()
+    t = np.linspace(0.0, 2 * math.pi, 601)
+    p = E.evaluate(t, 0) + 1e-4 * np.column_stack([np.sin(7 * t), np.cos(5 * t)])
+    lines = [Line(tuple(a), tuple(b)) for a, b in zip(p[:-1], p[1:])]
+    d = measure_deviation(E, lines, margin_mm=1e-5)
+    assert (d.path_to_curve_mm, d.curve_to_path_mm, d.max_deviation_mm) == RECORDED_MANY_LINES
+
+
+#: measure_deviation of the 600 chords above at 1c7d3af: (path → curve, curve → path, with the margin), mm.
+RECORDED_MANY_LINES = (0.0005034897772427819, 0.0005113244257237478, 0.0005213244257237478)
