@@ -158,3 +158,27 @@ def test_tool_larger_than_concave_radius_fails():
     assert built.analysis.profile.min_concave_radius is not None
     with pytest.raises(GeometryError, match="smallest concave radius is 82.661 mm"):
         machine(built, spec.machining, "d")
+
+
+def test_roughing_spiral_made_beside_the_fit_is_the_same_program():
+    """With a second process the NC step makes a disc profile's roughing spiral in a child beside the contour's
+    fit (camcam.nc.job): the same program text as made in process, and the spiral's error raised as itself."""
+    from camcam.nc import machine_program
+
+    spec, built, _ = built_and_result("disc-translating-roller")
+    one = machine_program(built, spec.machining, spec.name, spec.stock, workers=1)
+    two = machine_program(built, spec.machining, spec.name, spec.stock, workers=2)
+    assert any(p.kind == "rough" for p in two.toolpath.passes)  # the sample has a spiral to make
+    assert two.program.text == one.program.text
+
+
+def test_roughing_spiral_error_from_its_child_is_the_users_error(monkeypatch):
+    import camcam.nc.job as job
+
+    def falls_apart(*args, **kwargs):
+        raise GeometryError("roughing: an offset of the part falls apart; cannot spiral to it")
+
+    monkeypatch.setattr(job, "disc_spiral", falls_apart)  # the child forked after this inherits it
+    spec, built, _ = built_and_result("disc-translating-roller")
+    with pytest.raises(GeometryError, match="falls apart"):
+        job.machine_program(built, spec.machining, spec.name, spec.stock, workers=2)
