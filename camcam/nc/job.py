@@ -29,16 +29,15 @@ from dataclasses import replace
 
 import numpy as np
 
+from camcam.forked import ChildGroup, resolve
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
 from camcam.nc.bore import bore_circle_radius, bore_curve, bore_passes
 from camcam.nc.passes import finish_moves, ramp_loop_passes, spiral_moves, with_markers
 from camcam.nc.removal import RemovalReport, check_program
 from camcam.nc.result import MachiningResult, deviation_checks
-from camcam.forked import ChildGroup, resolve
 from camcam.nc.roughing import RING_STEP_FRACTION, Spiral, disc_spiral
-from camcam.nc.settings import MachiningSpec
-from camcam.nc.settings import DEFAULT_STOCK, StockSpec
+from camcam.nc.settings import DEFAULT_STOCK, MachiningSpec, StockSpec
 from camcam.nc.stock import blank_for
 from camcam.nc.tools import check_profile_tool, groove_passes, job_title
 from camcam.toolpath.contours import CutContour, fit_printed
