@@ -151,17 +151,18 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
     if m.bore:
         plan.append(("bore", bore_curve(bore_circle_radius(blank, r_t)), r_t, None, "bore"))
     contours, passes = [], []
+    sides = [_stock_side(curve, free) if free is not None else "both" for _, curve, _, free, _ in plan]
     with ChildGroup() as group:
         # a profile's roughing spiral needs only the blank and the side the material is on: with a second
         # process it is made in a child beside its contour's fit (the same call, the same spiral)
-        spirals = {k: group.later(_roughing_spiral, blank, m, _stock_side(curve, free))
-                   for k, (_, curve, _, free, kind) in enumerate(plan)
+        spirals = {k: group.later(_roughing_spiral, blank, m, sides[k])
+                   for k, (_, _, _, free, kind) in enumerate(plan)
                    if workers > 1 and free is not None and kind != "bore"}
         for k, (label, curve, offset, free, kind) in enumerate(plan):
             fit, printed, dev, segs = fit_printed(curve, m.tolerance_mm, m.mode, post.quantizer,
                                                   post.max_arc_sweep_deg, post.quantizer.printed_elements,
                                                   f"{name} {label}", workers=workers)
-            side = _stock_side(curve, free) if free is not None else "both"
+            side = sides[k]
             cs = replace(m.cut_settings(side if free is not None else "right"), clearance_z_mm=z_clear,
                          safe_z_mm=max(m.safe_z_mm, z_clear))
             if kind == "bore":

@@ -150,11 +150,11 @@ def front_extent(slab, pts: np.ndarray, tangents: np.ndarray, r_probe: float, ov
     if not hit.any():
         return np.zeros(len(pts))
     idx = np.arange(len(v))
+    last = len(v) - 1
     k_lo = np.where(inside, idx, len(v)).min(axis=1)
     k_hi = np.where(inside, idx, -1).max(axis=1)
     # a span's bisected ends lie between its outermost probes in material and the next probes out (or at the
     # edge, the inset beyond): a sample whose bound is at most ``over`` cannot exceed it
-    last = len(v) - 1
     lo_bound = np.where(k_lo == 0, v[0] - PROBE_INSET_MM, v[np.clip(k_lo - 1, 0, last)])
     hi_bound = np.where(k_hi == last, v[last] + PROBE_INSET_MM, v[np.clip(k_hi + 1, 0, last)])
     hit &= hi_bound - lo_bound > over
@@ -165,9 +165,9 @@ def front_extent(slab, pts: np.ndarray, tangents: np.ndarray, r_probe: float, ov
     # both ends of the span bisected at once: rows [0, m) the low end, [m, 2m) the high end
     k = np.concatenate([k_lo, k_hi])
     outward = np.repeat([-1, 1], len(k_lo))
-    at_edge = np.where(outward < 0, k == 0, k == len(v) - 1)
+    at_edge = np.where(outward < 0, k == 0, k == last)
     good = v[k].copy()  # in material
-    bad = np.where(at_edge, good, v[np.clip(k + outward, 0, len(v) - 1)])  # out of material
+    bad = np.where(at_edge, good, v[np.clip(k + outward, 0, last)])  # out of material
     p2, t2, n2 = (np.concatenate([x, x]) for x in (p, tt, nn))
     for _ in range(6):
         mid = 0.5 * (good + bad)

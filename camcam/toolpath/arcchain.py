@@ -50,6 +50,7 @@ import math
 
 import numpy as np
 
+from camcam.geometry.curve import derivatives
 from camcam.toolpath.elements import element_tangent
 
 __all__ = ["Joints", "OnCurve", "CurveTable", "on_curve", "joints_of", "joint_rows", "sample_spacing",
@@ -231,7 +232,7 @@ class OnCurve:
         self.curve, self.a, self.b = curve, a, b
         self.t = a + np.mod(np.asarray(t, float) - a, b - a)
         self.v, self.psi, self.w = np.asarray(v, float), np.asarray(psi, float), int(w)
-        d0, d1, d2 = (curve.evaluate(self.t, d) for d in (0, 1, 2))
+        d0, d1, d2 = derivatives(curve, self.t, 2, first=0)
         sp = np.hypot(d1[:, 0], d1[:, 1])
         self.speed = sp
         self.T = d1 / sp[:, None]
@@ -249,7 +250,7 @@ def on_curve(curve, a, b, joints: Joints, t_guess) -> OnCurve:
     t = np.asarray(t_guess, float).copy()
     J = joints.J
     for _ in range(6):
-        d0, d1, d2 = (curve.evaluate(t, d) for d in (0, 1, 2))
+        d0, d1, d2 = derivatives(curve, t, 2, first=0)
         r = d0 - J
         g = np.einsum("ij,ij->i", r, d1)
         dg = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", r, d2)

@@ -55,9 +55,9 @@ def _removal_order(oc: OnCurve, tab: CurveTable, per_arc: int) -> list[int]:
     med = float(np.median(c))
     # a sliver (a closure's leftover) prints badly (its rounded ends turn its end tangent by up to 1.4 steps over
     # its chord, which the next arc carries over its length), so its joints go first
-    sliver = [j for j in np.argsort(np.minimum(c, prev), kind="stable").tolist() if min(c[j], prev[j]) < 0.25 * med]
-    split = [j for j in range(n) if c[j] > 2.5 * med and prev[j] > 2.5 * med]
     short = np.argsort(np.minimum(c, prev), kind="stable").tolist()
+    sliver = [j for j in short if min(c[j], prev[j]) < 0.25 * med]
+    split = [j for j in range(n) if c[j] > 2.5 * med and prev[j] > 2.5 * med]
     slack = np.argsort(ce + np.roll(ce, 1), kind="stable").tolist()
     order: list[int] = []
     for j in sliver + split + [x for pair in zip(short, slack) for x in pair]:

@@ -134,17 +134,17 @@ def printed_spline(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: floa
             keep = keep[np.isfinite(rank[keep]) & (new_worst[keep] <= tol)]
             if not len(keep):
                 return [], float(np.min(new_worst))
-            history.append((src[keep], tgt[keep], centre[keep], ccw[keep], is_line[keep]))
-            k = 0
-            closing = (tgt[keep[k]], firsts[keep[k]], c2[keep[k]], w2[keep[k]], l2[keep[k]])
-            worst_k = float(new_worst[keep[k]])
-            break
         history.append((src[keep], tgt[keep], centre[keep], ccw[keep], is_line[keep]))
+        if j == n - 1:  # the best closing state: the first kept
+            b = keep[0]
+            closing = (tgt[b], firsts[b], c2[b], w2[b], l2[b])
+            worst_k = float(new_worst[b])
+            break
         pts, tans, worst = tgt[keep], t_end[keep], new_worst[keep]
         first, t_first, r_first = firsts[keep], t_firsts[keep], r_firsts[keep]
     # back through the levels
     elements = [printed_element(*closing)]
-    kk = k
+    kk = 0
     for level in range(len(history) - 1, -1, -1):
         src, tgt, centre, ccw, is_line = history[level]
         start = history[level - 1][1][src[kk]] if level else P0[src[kk]]
