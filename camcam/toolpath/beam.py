@@ -48,7 +48,10 @@ class SplineBudget:
     shifts left of ``start_shifts``, then ``more_shifts``).  With ``fewer``,
     a closed section over the goal after its first start is first optimised
     with the goal's count of arcs (:func:`camcam.toolpath.arcpolish.fewer_arcs`);
-    the further starts are marched only if that finds nothing.
+    the further starts are marched only if that finds nothing.  With ``seeded``, a closed section of a
+    smooth curve is first fitted by a chain seeded from the optimal pattern's arc density, with up to
+    ``seed_tries`` counts (:func:`camcam.toolpath.arcseed.seeded_chain`), and marched only if that finds
+    nothing within the goal.
     """
 
     samples: int = 28
@@ -75,6 +78,8 @@ class SplineBudget:
     near_miss: float = 1.0
     more_tries: int = 50
     fewer: bool = True
+    seeded: bool = True
+    seed_tries: int = 3
 
 
 @dataclass(frozen=True)

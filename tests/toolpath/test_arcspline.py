@@ -102,8 +102,13 @@ def test_g1_up_to_the_printed_centre(name, tol):
 
 
 def test_whole_band_two_sided():
-    """The arcs swing across the band: the curve lies on both sides of the path, out to most of δ each way."""
-    curve, fit = fitted("ellipse", 0.01)
+    """The arcs swing across the band: the curve lies on both sides of the path, out to most of δ each way.
+
+    At 0.002 mm, where the count is tight (0.92 δ each way measured, 27 arcs).  At 0.01 mm the seeded chain's
+    17 arcs (camcam.toolpath.arcseed; the march's count too) keep within 0.67 δ: 16 do not fit, and the chain
+    optimiser stops once within 0.97 of its band."""
+    tol = 0.002
+    curve, fit = fitted("ellipse", tol)
     t = np.linspace(0, 2 * np.pi, 20001)
     cp = curve.evaluate(t, 0)
     signed = []
@@ -111,9 +116,9 @@ def test_whole_band_two_sided():
         if isinstance(e, Arc):
             d = np.hypot(*(cp - np.asarray(e.centre)).T) - e.radius
             inside = element_distance(e, cp) <= np.abs(d) + 1e-12
-            signed.append(d[inside & (np.abs(d) < 0.02)] * (1 if e.ccw else -1))
+            signed.append(d[inside & (np.abs(d) < 2 * tol)] * (1 if e.ccw else -1))
     s = np.concatenate(signed)
-    assert s.max() > 0.8 * 0.01 and s.min() < -0.8 * 0.01
+    assert s.max() > 0.8 * tol and s.min() < -0.8 * tol
 
 
 def test_candidate_deviation_matches_element_distance():
@@ -259,7 +264,7 @@ def test_the_goal_is_on_the_lower_bound_given():
     curve = polar_cam()
     kw = dict(quantizer=Quantizer(4), max_sweep=math.radians(120), sag=5e-6, closed=True)
     shifts = (0.12, 0.0, -0.12)  # the first start the worst (17 arcs against 16 when this was written)
-    budget = SplineBudget(start_shifts=shifts, stretches=1, goal=(1.0, 0.0), wide_tries=0, fewer=False)
+    budget = SplineBudget(start_shifts=shifts, stretches=1, goal=(1.0, 0.0), wide_tries=0, fewer=False, seeded=False)
 
     def fit(lower_bound, **b):
         return fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=replace(budget, **b), lower_bound=lower_bound,

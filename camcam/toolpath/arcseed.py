@@ -1,0 +1,154 @@
+"""A closed contour's arc spline without a march: a chain seeded from the optimal pattern's arc density.
+
+:mod:`camcam.toolpath.arcspline` explains the optimum of a G1 arc spline in
+a band of half width δ on a smooth curve: the error on each arc follows
+e = −κ′h³B₃(s/h)/6, so an arc of the optimum is h = (124.7·δ/|κ′|)^⅓ long and
+the optimum spends (|κ′|/124.7·δ)^⅓ arcs per unit length, 1.155 × the N_lb
+integrand.  That density is the seed: :func:`seed_density` integrates it over
+the turn (at least |κ|/(0.9·max sweep) per unit length, since a dwell's
+circle, where κ′ = 0, still needs arcs for its sweep), and :func:`seeded_chain`
+puts N joints at equal steps of the integral, on the curve and along its
+tangent, and lets the chain optimiser
+(:func:`~camcam.toolpath.arcchain.minimax_chain`, Maier's free breakpoints
+and the LP steps of :func:`~camcam.toolpath.arcpolish.fewer_arcs`) move them
+to the least largest error; the chain is printed on the grid and measured
+both ways (:mod:`camcam.toolpath.arcprint`), as the optimised chain of a
+march is.
+
+It tries N = ⌈∫⌉, ⌈∫⌉ + 1, ⌈∫⌉ + 2 (at most the goal's count) and keeps the
+first that stays within the band; a seed whose chain is still over 1.25 × its
+target at the 8th LP step is given up (:data:`GIVE_UP`; on the 20 seeds of
+disc-oscillating-roller and disc-translating-flat it was judged on, every one
+that fitted was within 1.18 × its target there, 7 of the 9 that did not were
+over 1.2 ×, and such a seed costs half the time).  Measured with
+``benchmarks/run_nc.py --arcs`` (2026-12-06, every closed contour of the six disc samples with analytic motion at 0.1, 0.01,
+0.002, 0.001 and 0.0005 mm, 30 cases): fewer arcs than the beam march (with
+its optimised chain) on 17 (one fewer on 16, two on optimize/run-table1 at
+0.01 mm), as many on the other 13, none more; a contour's fit took
+0.08–0.66 s where one of the three counts fits (the march 0.17–1.96 s).  On
+two (optimize/run-table1 and disc-oscillating-flat at 0.001 mm) none of the
+three fits and the march runs as before, 0.16–0.36 s later.  Fewer joints than ⌈∫⌉
+fitted only where the sweep limit rounds the count (0.1 mm); and a seed with
+a joint at the middle of a dwell, where the march starts, fitted far less
+often (none of the four counts from ⌈∫⌉ − 1 on 20 of the 30 cases): the seed
+starts at the section's start.  ``benchmarks/seeded_chain.py`` prints, case by
+case, which counts fit and what each try costs.
+
+Where the curve is not smooth on the scale of δ (a noisy lift table, a cam
+recovered from measured points) the density counts the wiggles of κ′ that
+the band can swallow, and the march does far better (the noisy lift at the
+five tolerances: 6, 14, 22, 33, 45 arcs marched, the first seeded count that
+fits 7, 15, 27, 34 and none; the recovered disc 8, 17, 28, 44, 67 against 10,
+23, 40, 52 and none): such a curve is told by its
+N_lb, which the Chebyshev copy the fitter works on has 4–6 % above the exact
+curve's there and within 0.1 % on the analytic cams, so
+:func:`~camcam.toolpath.arcspline.fit_arc_spline` seeds only a curve whose two
+figures agree within :data:`SMOOTH_RATIO`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from camcam.geometry.curve import curvature_rate, speed
+from camcam.toolpath.arcchain import CurveTable, OnCurve, minimax_chain
+from camcam.toolpath.arcpolish import PRINT_ALLOWANCE_STEPS
+from camcam.toolpath.arcprint import measured_deviation, printed_spline
+from camcam.toolpath.beam import ArcSpline
+from camcam.toolpath.quantizer import Quantizer
+
+__all__ = ["seed_density", "seeded_chain", "SMOOTH_RATIO", "PATTERN_CONSTANT"]
+
+#: The optimal G1 pattern's error bound |e| ≤ |κ′|h³/124.7: 6 over the largest |B₃| on [0, 1] (√3/36), 72√3 =
+#: 124.708 to four figures.  The seed is a heuristic start, and the chain it gives depends on the joints' exact
+#: places: the counts in the module notes were measured with 124.7 (with 72√3 the polar test cam at 0.00095 mm
+#: comes out at 32 arcs instead of 31), so 124.7 it stays.
+PATTERN_CONSTANT = 124.7
+#: A curve is seeded when its Chebyshev copy's N_lb is within this factor of the exact curve's (module notes).
+SMOOTH_RATIO = 1.01
+#: Judged at this LP step, a seed whose chain is still over this many times its target is given up (module notes).
+GIVE_UP = (8, 1.25)
+
+
+def seed_density(curve, a: float, b: float, tol: float, max_sweep: float, n: int = 4096):
+    """The optimal pattern's arcs along [a, b] within ``tol``: parameters (n,), the running count (n + 1,)
+    and the turns the tangent makes round the closed curve (+1 counter-clockwise, −1 clockwise).
+
+    The count per unit length is max((|κ′| / 124.7·tol)^⅓, |κ| / (0.9·max_sweep)), integrated by the
+    rectangle rule on ``n`` parameters from ``a`` (the last entry is the whole turn's).
+
+    Examples
+    --------
+    A circle of radius 10 mm has κ′ = 0: only its sweep counts, 2π / (0.9 · 2π/3) = 3.33 arcs.
+
+    >>> from camcam.geometry.curve import FunctionCurve
+    >>> def circle(t, k):
+    ...     c, s = np.cos(t), np.sin(t)
+    ...     return 10 * np.stack([[c, s], [-s, c], [-c, -s], [s, -c]][k], -1)
+    >>> C = FunctionCurve(circle, 0.0, 2 * np.pi, closed=True)
+    >>> t, count, turns = seed_density(C, 0.0, 2 * np.pi, 0.01, 2 * np.pi / 3)
+    >>> round(float(count[-1]), 3), turns
+    (3.333, 1)
+    """
+    t = np.linspace(a, b, n, endpoint=False)
+    sp = speed(curve, t)
+    d1, d2 = curve.evaluate(t, 1), curve.evaluate(t, 2)
+    kappa = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / sp ** 3
+    pattern = np.cbrt(np.abs(curvature_rate(curve, t)) / (PATTERN_CONSTANT * tol))
+    per_length = np.maximum(pattern, kappa / (0.9 * max_sweep))
+    heading = np.arctan2(d1[:, 1], d1[:, 0])
+    turning = np.mod(np.diff(np.append(heading, heading[0])) + np.pi, 2 * np.pi) - np.pi
+    return t, np.concatenate([[0.0], np.cumsum(per_length * sp) * ((b - a) / n)]), round(float(turning.sum()) / (2 * np.pi))
+
+
+def seeded_chain(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_sweep: float, sag: float,
+                 n_max: int, *, tries: int = 3, per_arc: int = 24) -> tuple[ArcSpline, ...]:
+    """A printed closed G1 spline of at most ``n_max`` arcs within ``tol``, seeded from the arc density.
+
+    N = ⌈∫⌉ … ⌈∫⌉ + ``tries`` − 1 joints (at most ``n_max``), in turn, are put at equal steps of
+    :func:`seed_density` from ``a``, on the curve along its tangent; the chain is optimised
+    (:func:`~camcam.toolpath.arcchain.minimax_chain`), printed and measured both ways on the curve's table,
+    as :func:`~camcam.toolpath.arcpolish.fewer_arcs` does.
+
+    Returns
+    -------
+    tuple of ArcSpline
+        The first spline that keeps within ``tol``, its elements starting at the curve parameters in
+        ``starts``; or nothing (none did, or the band is too narrow for the grid, or arcs may sweep
+        more than 0.9 π).
+
+    Examples
+    --------
+    An ellipse of semi-axes 40 and 25 mm within 0.01 mm, on a 4-decimal grid: N_lb = 14.65.
+
+    >>> from camcam.geometry.curve import FunctionCurve
+    >>> def ellipse(t, k):
+    ...     c, s = np.cos(t), np.sin(t)
+    ...     return np.stack([[40 * c, 25 * s], [-40 * s, 25 * c], [-40 * c, -25 * s], [40 * s, -25 * c]][k], -1)
+    >>> E = FunctionCurve(ellipse, 0.0, 2 * np.pi, closed=True)
+    >>> (sp,) = seeded_chain(E, 0.0, 2 * np.pi, 0.0095, Quantizer(4), np.radians(120), 5e-5, 21)
+    >>> len(sp.elements) <= 1.2 * 14.65 + 4, sp.elements[0].start == sp.elements[-1].end
+    (True, True)
+    """
+    allowed = tol - PRINT_ALLOWANCE_STEPS * quantizer.step_mm
+    if allowed <= 0.5 * tol or max_sweep > 0.9 * math.pi:
+        return ()
+    t, count, turns = seed_density(curve, a, b, allowed, max_sweep)
+    total = float(count[-1])
+    first = max(3, math.ceil(total))
+    tab = None
+    for n in range(first, min(first + tries - 1, n_max) + 1):
+        if tab is None:
+            tab = CurveTable(curve, a, b, 16384)
+        joints_t = np.interp(np.arange(n) / n * total, count, np.concatenate([t, [b]]))
+        seed = OnCurve(curve, a, b, joints_t, np.zeros(n), np.zeros(n), turns)
+        chain, err, gap = minimax_chain(seed, tab, max_sweep=max_sweep, per_arc=per_arc, enough=0.97 * allowed,
+                                        hopeless=GIVE_UP[1] * allowed, hopeless_step=GIVE_UP[0])
+        if err > allowed or gap > 1e-3 * tol:
+            continue
+        elements, _ = printed_spline(chain, tab, quantizer, sag, max_sweep, tol)
+        if elements and measured_deviation(elements, chain, tab) <= tol:
+            return (ArcSpline(tuple(elements), tuple(float(x) for x in chain.t)),)
+    return ()
