@@ -340,7 +340,7 @@ def _solve_step(cost, lo, hi, Je, e, err, Jgc, gc, Jb, half, beta):
 
 
 def minimax_chain(start: OnCurve, tab: CurveTable, *, max_sweep: float, per_arc: int = 24,
-                  iterations: int = 30, hopeless: float = math.inf, hopeless_step: int | None = None,
+                  iterations: int = 30, hopeless: float = math.inf, early: tuple[int, float] | None = None,
                   enough: float = 0.0) -> tuple[OnCurve, float, float]:
     """The G1 chain of ``len(start.t)`` arcs nearest the curve in the largest error, by SLP from ``start``.
 
@@ -364,9 +364,9 @@ def minimax_chain(start: OnCurve, tab: CurveTable, *, max_sweep: float, per_arc:
         given up (:func:`camcam.toolpath.arcpolish.fewer_arcs` passes 1.05 ×
         its target: on the 12 cases it was measured on, 45 optimisations, the
         error at half time was within 2 % of the final one).
-    hopeless_step : int, optional
-        The step at which ``hopeless`` is judged, half the ``iterations`` unless given
-        (:func:`camcam.toolpath.arcseed.seeded_chain` judges its seeds at step 8).
+    early : (int, float), optional
+        (step, error in mm): a chain still over that error at that step, before half the ``iterations``,
+        is given up too (:func:`camcam.toolpath.arcseed.seeded_chain` judges its seeds at step 8 as well).
 
     Returns
     -------
@@ -413,7 +413,7 @@ def minimax_chain(start: OnCurve, tab: CurveTable, *, max_sweep: float, per_arc:
     cost = np.zeros(nv)
     cost[-2], cost[-1] = 1.0, mu
     for step in range(iterations):
-        if step == (iterations // 2 if hopeless_step is None else hopeless_step) and err > hopeless:
+        if step == iterations // 2 and err > hopeless or early is not None and step == early[0] and err > early[1]:
             break
         e = res[0]
         Je, Jg, Jb = step_jacobians(oc, res)

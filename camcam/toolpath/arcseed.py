@@ -16,23 +16,28 @@ both ways (:mod:`camcam.toolpath.arcprint`), as the optimised chain of a
 march is.
 
 It tries N = ⌈∫⌉, ⌈∫⌉ + 1, ⌈∫⌉ + 2 (at most the goal's count) and keeps the
-first that stays within the band; a seed whose chain is still over 1.25 × its
+first that stays within the band.  A seed whose chain is still over 1.25 × its
 target at the 8th LP step is given up (:data:`GIVE_UP`; on the 20 seeds of
 disc-oscillating-roller and disc-translating-flat it was judged on, every one
 that fitted was within 1.18 × its target there, 7 of the 9 that did not were
-over 1.2 ×, and such a seed costs half the time).  Measured with
-``benchmarks/run_nc.py --arcs`` (2026-12-06, every closed contour of the six disc samples with analytic motion at 0.1, 0.01,
-0.002, 0.001 and 0.0005 mm, 30 cases): fewer arcs than the beam march (with
-its optimised chain) on 17 (one fewer on 16, two on optimize/run-table1 at
-0.01 mm), as many on the other 13, none more; a contour's fit took
-0.08–0.66 s where one of the three counts fits (the march 0.17–1.96 s).  On
-two (optimize/run-table1 and disc-oscillating-flat at 0.001 mm) none of the
-three fits and the march runs as before, 0.16–0.36 s later.  Fewer joints than ⌈∫⌉
-fitted only where the sweep limit rounds the count (0.1 mm); and a seed with
-a joint at the middle of a dwell, where the march starts, fitted far less
-often (none of the four counts from ⌈∫⌉ − 1 on 20 of the 30 cases): the seed
-starts at the section's start.  ``benchmarks/seeded_chain.py`` prints, case by
-case, which counts fit and what each try costs.
+over 1.2 ×, and such a seed costs half the time), and so is one still over
+1.03 × at half the steps (of the 11 seeds of those two samples that fitted,
+the slowest was at 1.00 × at half time; disc-translating-flat at 0.001 mm's
+first seed hovered at 1.04–1.06 × for all 30 steps, 0.23 CPU s;
+:func:`~camcam.toolpath.arcpolish.fewer_arcs` gives its chains 1.05 ×).
+Measured with ``benchmarks/run_nc.py --arcs`` (2026-12-06, every closed
+contour of the six disc samples with analytic motion at 0.1, 0.01, 0.002,
+0.001 and 0.0005 mm, 30 cases): fewer arcs than the beam march (with its
+optimised chain) on 17 (one fewer on 16, two on optimize/run-table1 at 0.01
+mm), as many on the other 13, none more; a contour's fit took 0.07–0.80 s
+where one of the three counts fits (the march 0.17–1.96 s).  On two
+(optimize/run-table1 and disc-oscillating-flat at 0.001 mm) none of the three
+fits and the march runs as before, 0.2–0.27 s later.  Fewer joints than ⌈∫⌉
+fitted only where the sweep limit rounds the count (0.1 mm); and a seed with a
+joint at the middle of a dwell, where the march starts, fitted far less often
+(none of the four counts from ⌈∫⌉ − 1 on 20 of the 30 cases): the seed starts
+at the section's start.  ``benchmarks/seeded_chain.py`` prints, case by case,
+which counts fit and what each try costs.
 
 Where the curve is not smooth on the scale of δ (a noisy lift table, a cam
 recovered from measured points) the density counts the wiggles of κ′ that
@@ -68,8 +73,9 @@ __all__ = ["seed_density", "seeded_chain", "SMOOTH_RATIO", "PATTERN_CONSTANT"]
 PATTERN_CONSTANT = 124.7
 #: A curve is seeded when its Chebyshev copy's N_lb is within this factor of the exact curve's (module notes).
 SMOOTH_RATIO = 1.01
-#: Judged at this LP step, a seed whose chain is still over this many times its target is given up (module notes).
-GIVE_UP = (8, 1.25)
+#: (step, factor, factor at half the steps): a seed whose chain is still over factor × its target at that LP
+#: step is given up, and one over the last factor × it at half the steps (module notes).
+GIVE_UP = (8, 1.25, 1.03)
 
 
 def seed_density(curve, a: float, b: float, tol: float, max_sweep: float, n: int = 4096):
@@ -145,7 +151,7 @@ def seeded_chain(curve, a: float, b: float, tol: float, quantizer: Quantizer, ma
         joints_t = np.interp(np.arange(n) / n * total, count, np.concatenate([t, [b]]))
         seed = OnCurve(curve, a, b, joints_t, np.zeros(n), np.zeros(n), turns)
         chain, err, gap = minimax_chain(seed, tab, max_sweep=max_sweep, per_arc=per_arc, enough=0.97 * allowed,
-                                        hopeless=GIVE_UP[1] * allowed, hopeless_step=GIVE_UP[0])
+                                        early=(GIVE_UP[0], GIVE_UP[1] * allowed), hopeless=GIVE_UP[2] * allowed)
         if err > allowed or gap > 1e-3 * tol:
             continue
         elements, _ = printed_spline(chain, tab, quantizer, sag, max_sweep, tol)

@@ -193,7 +193,7 @@ curve is noisy (its Chebyshev copy's N_lb over 1 % above the exact curve's).
 On the 30 contour × tolerance cases of ``benchmarks/run_nc.py --arcs`` with
 analytic motion: one arc fewer than the march on 16, two fewer on one, as
 many on 13 (the default sample's curve 8, 16, 25, 31, 38 blocks at 0.1 …
-0.0005 mm, the march's 9, 16, 25, 32, 39), and the fit in 0.08–0.66 s instead
+0.0005 mm, the march's 9, 16, 25, 32, 39), and the fit in 0.07–0.80 s instead
 of 0.17–1.96 s.  The noisy lift and the recovered disc are marched as before.
 
 Vectorised.  The curve (the Chebyshev copy) is tabulated once; a joint is a
