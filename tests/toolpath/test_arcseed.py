@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings, strategies as st
 
 from camcam.geometry.curve import FunctionCurve
 from camcam.toolpath.arcseed import PATTERN_CONSTANT, SMOOTH_RATIO, seed_density, seeded_chain
@@ -115,3 +116,34 @@ def test_a_clockwise_contour_is_seeded_turning_the_other_way():
     assert all(isinstance(e, Arc) and not e.ccw for e in b.elements)
     assert brute_two_sided(cw, list(b.elements)) <= tol + 1e-7
 
+
+
+@settings(max_examples=8, deadline=None)
+@given(st.floats(20.0, 60.0), st.floats(0.4, 0.95), st.floats(0.002, 0.05), st.sampled_from([1.0, -1.0]),
+       st.floats(0.0, 0.3))
+def test_whatever_the_seed_returns_is_within_the_band(a_mm, ratio, tol, sign, wobble):
+    """A smooth closed curve (an ellipse with a third-harmonic wobble, either way round) at any band: a spline
+    the seed returns has at most n_max arcs, is closed, printed and G1, and lies within the band on the exact
+    curve by the second method (brute_two_sided); no spline at all is an allowed answer (the fitter marches)."""
+    b_mm = ratio * a_mm
+
+    def f(t, k):
+        # r(t) = 1 + w cos 3t scales the ellipse: P = r(t)·(a cos t, ±b sin t), derivatives by Leibniz
+        r = [1 + wobble * np.cos(3 * t), -3 * wobble * np.sin(3 * t), -9 * wobble * np.cos(3 * t),
+             27 * wobble * np.sin(3 * t)]
+        e = [np.stack([a_mm * np.cos(t), sign * b_mm * np.sin(t)], -1),
+             np.stack([-a_mm * np.sin(t), sign * b_mm * np.cos(t)], -1),
+             np.stack([-a_mm * np.cos(t), -sign * b_mm * np.sin(t)], -1),
+             np.stack([a_mm * np.sin(t), -sign * b_mm * np.cos(t)], -1)]
+        binom = [[1], [1, 1], [1, 2, 1], [1, 3, 3, 1]][k]
+        return sum(c * r[j][:, None] * e[k - j] for j, c in enumerate(binom))
+
+    curve = FunctionCurve(f, 0.0, TWO_PI, closed=True)
+    n_max = math.floor(1.18 * lower_bound_blocks(curve, tol) + 4)
+    out = seeded_chain(curve, 0.0, TWO_PI, tol, Quantizer(4), n_max=n_max, **KW)
+    if not out:
+        return
+    els = out[0].elements
+    assert len(els) <= n_max
+    assert_closed_printed_g1(els)
+    assert brute_two_sided(curve, list(els)) <= tol + 1e-7  # brute_two_sided's own error is below 1e-7 mm
