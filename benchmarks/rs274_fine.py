@@ -1,11 +1,13 @@
-"""LinuxCNC's rs274 reads back the programs of the contours whose arcs came from the optimised chain.
+"""LinuxCNC's rs274 reads back the programs of the disc samples' contours fitted at fine tolerances.
 
 For each case (sample @ tolerance) the disc sample is machined in arcs mode at that tolerance, its program
 is written and interpreted by rs274 (Debian's linuxcnc-uspace; a program nobody here wrote), and every
 finishing pass rs274 reports is measured against the exact tool-centre curve both ways
 (:func:`camcam.toolpath.deviation.measure_deviation`), as ``tests/nc/test_job.py`` does for the samples at
-their own tolerance.  The default cases are those of ``run_nc.py --arcs`` whose first march misses
-1.2·N_lb + 4, so their contours are the optimised chain's (:mod:`camcam.toolpath.arcpolish`).  Run from the
+their own tolerance.  The default cases are every disc sample with analytic motion at 0.1, 0.01, 0.002, 0.001
+and 0.0005 mm (the 30 analytic cases of ``run_nc.py --arcs``): their closed contours are the seeded chain's
+(:mod:`camcam.toolpath.arcseed`) where one of its counts fits, else the march's and its optimised chain's
+(:mod:`camcam.toolpath.arcpolish`; until 2026-12-06 the defaults were the 12 cases of that chain).  Run from the
 repository:
 
     PYTHONPATH=. python benchmarks/rs274_fine.py [SAMPLE@TOL ...]
@@ -25,10 +27,10 @@ from camcam.toolpath.deviation import measure_deviation
 from camcam.verify.rs274 import feed_passes, print_margin_mm, rs274_available, run_rs274
 
 ROOT = Path(__file__).resolve().parents[1]
-CASES = ("disc-translating-roller@0.0005", "disc-translating-flat@0.002", "disc-translating-flat@0.0005",
-         "disc-oscillating-roller@0.002", "disc-oscillating-roller@0.001", "disc-oscillating-flat@0.001",
-         "disc-oscillating-flat@0.0005", "optimize/run-table1@0.01", "optimize/run-table1@0.002",
-         "optimize/run-table1@0.001", "disc-groove@0.001", "disc-groove@0.0005")
+CASES = tuple(f"{sample}@{tol}" for sample in ("disc-translating-roller", "disc-translating-flat",
+                                                "disc-oscillating-roller", "disc-oscillating-flat", "disc-groove",
+                                                "optimize/run-table1")
+              for tol in ("0.1", "0.01", "0.002", "0.001", "0.0005"))
 
 
 def check(case: str, folder: Path) -> bool:
