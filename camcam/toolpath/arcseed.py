@@ -39,6 +39,10 @@ joint at the middle of a dwell, where the march starts, fitted far less often
 at the section's start.  ``benchmarks/seeded_chain.py`` prints, case by case,
 which counts fit and what each try costs.
 
+The spline is returned from the section's start; :func:`~camcam.toolpath.arcspline.fit_arc_spline` begins
+it at the joint nearest the middle of the longest dwell, where the march starts and the program's leads go
+(on the disc samples the seeded chain spans each 60° dwell with one arc, so that joint is the dwell's end).
+
 Where the curve is not smooth on the scale of δ (a noisy lift table, a cam
 recovered from measured points) the density counts the wiggles of κ′ that
 the band can swallow, and the march does far better (the noisy lift at the

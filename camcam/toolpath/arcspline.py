@@ -228,7 +228,7 @@ from camcam.toolpath.arcseed import SMOOTH_RATIO, seeded_chain
 from camcam.toolpath.beam import ArcSpline, SplineBudget, march
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["SplineBudget", "ArcSpline", "fit_arc_spline", "g1_sections"]
+__all__ = ["SplineBudget", "ArcSpline", "fit_arc_spline", "g1_sections", "starting_near"]
 
 def g1_sections(curve, a: float, b: float, angle_tol: float = 1e-6) -> list[tuple[float, float]]:
     """Split [a, b] at the breaks where the tangent direction jumps (corners); G1 breaks are crossed."""
@@ -242,6 +242,25 @@ def g1_sections(curve, a: float, b: float, angle_tol: float = 1e-6) -> list[tupl
             cuts.append(x)
     cuts.append(b)
     return list(zip(cuts, cuts[1:]))
+
+
+def starting_near(spline: ArcSpline, t: float, a: float, b: float) -> ArcSpline:
+    """The closed ``spline`` (elements starting at the curve parameters ``starts`` on [a, b)) begun at the joint
+    cyclically nearest the parameter ``t``: the same elements, in the same turn.
+
+    Examples
+    --------
+    >>> from camcam.toolpath.elements import Line
+    >>> sq = ArcSpline((Line((0, 0), (1, 0)), Line((1, 0), (1, 1)), Line((1, 1), (0, 1)), Line((0, 1), (0, 0))),
+    ...                (0.0, 1.0, 2.0, 3.0))
+    >>> r = starting_near(sq, 2.2, 0.0, 4.0)
+    >>> r.starts, r.elements[0].start
+    ((2.0, 3.0, 0.0, 1.0), (1, 1))
+    """
+    period = b - a
+    gap = np.abs(np.mod(np.asarray(spline.starts, float) - t + 0.5 * period, period) - 0.5 * period)
+    k = int(np.argmin(gap))
+    return ArcSpline(spline.elements[k:] + spline.elements[:k], spline.starts[k:] + spline.starts[:k])
 
 
 def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer: Quantizer, max_sweep: float,
@@ -303,7 +322,9 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
     if budget.seeded and lower_bound is not None and own <= SMOOTH_RATIO * lower_bound:
         for spline in seeded_chain(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, math.floor(goal),
                                    tries=budget.seed_tries):
-            return spline
+            # the program starts (and its leads sit) at the joint nearest the longest dwell's middle, where the
+            # march starts too: on the base circle, not on a flank
+            return starting_near(spline, stretches[0][0], a, b)
     # the longest stretch first; then the others at least half as long, each start shift in turn
     stretches = [st for st in stretches if st[1] >= 0.5 * stretches[0][1]][:budget.stretches]
     def points(shifts):

@@ -8,6 +8,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from camcam.geometry.curve import FunctionCurve
+from camcam.toolpath.arcclose import quiet_stretches
 from camcam.toolpath.arcseed import PATTERN_CONSTANT, SMOOTH_RATIO, seed_density, seeded_chain
 from camcam.toolpath.arcspline import SplineBudget, fit_arc_spline
 from camcam.toolpath.elements import Arc
@@ -74,14 +75,21 @@ def test_the_seed_spends_no_more_arcs_than_the_march(tol, seeded_arcs, march_arc
 
 
 def test_the_fitter_seeds_a_smooth_curve_and_marches_a_noisy_one():
-    """fit_arc_spline returns the seeded spline where the copy's N_lb agrees with the exact curve's; told the
+    """fit_arc_spline returns the seeded spline where the copy's N_lb agrees with the exact curve's, begun at
+    the joint nearest the middle of the longest dwell (where the program's leads go; the march starts there); told the
     exact N_lb is 2 % lower (as on a noisy curve, whose copy's N_lb is 4-6 % above), it marches, as with the
     seed turned off."""
     tol = 0.00095
     curve, out = seeded(tol)
     n_lb = lower_bound_blocks(curve, tol)
     kw = dict(quantizer=Quantizer(4), closed=True, **KW)
-    assert fit_arc_spline(curve, 0.0, TWO_PI, tol, lower_bound=n_lb, **kw).elements == out[0].elements
+    got = fit_arc_spline(curve, 0.0, TWO_PI, tol, lower_bound=n_lb, **kw)
+    k = out[0].elements.index(got.elements[0])
+    assert got.elements == out[0].elements[k:] + out[0].elements[:k]  # the same spline, begun elsewhere
+    (mid, _), *_ = quiet_stretches(curve, 0.0, TWO_PI)[0]
+    # the joint nearest the dwell's middle (the polar cam's 60° dwell is one arc: its nearest joint is its end)
+    assert min(abs(s - mid) for s in got.starts) == abs(got.starts[0] - mid)
+    assert got.starts[0] != out[0].starts[0]  # begun elsewhere than the seed's first joint, at the parameter 0
     noisy = n_lb / (SMOOTH_RATIO + 0.01)
     marched = fit_arc_spline(curve, 0.0, TWO_PI, tol, lower_bound=noisy, budget=SplineBudget(seeded=False), **kw)
     assert fit_arc_spline(curve, 0.0, TWO_PI, tol, lower_bound=noisy, **kw).elements == marched.elements
