@@ -84,7 +84,8 @@ def main(samples) -> None:
 
     def recorded(curve, a, b, band, **kw):
         t0 = time.process_time()
-        spline = fit_arc_spline(curve, a, b, band, **{**kw, "budget": replace(kw.get("budget", SplineBudget()), seeded=False)})
+        unseeded = replace(kw.get("budget", SplineBudget()), seeded=False)
+        spline = fit_arc_spline(curve, a, b, band, **{**kw, "budget": unseeded})
         if kw.get("closed"):
             marches.append((curve, a, b, band, kw, len(spline.elements), time.process_time() - t0))
         return spline

@@ -70,8 +70,8 @@ from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["seed_density", "seeded_chain", "SMOOTH_RATIO", "PATTERN_CONSTANT"]
 
-#: The optimal G1 pattern's error bound |e| ≤ |κ′|h³/124.7: 6 over the largest |B₃| on [0, 1] (√3/36), 72√3 =
-#: 124.708 to four figures.  The seed is a heuristic start, and the chain it gives depends on the joints' exact
+#: The optimal G1 pattern's error bound |e| ≤ |κ′|h³/124.7: 6 over the largest |B₃| on [0, 1] (√3/36),
+#: 72√3 = 124.708 to four figures.  The seed is a heuristic start, and the chain it gives depends on the joints' exact
 #: places: the counts in the module notes were measured with 124.7 (with 72√3 the polar test cam at 0.00095 mm
 #: comes out at 32 arcs instead of 31), so 124.7 it stays.
 PATTERN_CONSTANT = 124.7
@@ -108,9 +108,10 @@ def seed_density(curve, a: float, b: float, tol: float, max_sweep: float, n: int
     kappa = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / sp ** 3
     pattern = np.cbrt(np.abs(curvature_rate(curve, t)) / (PATTERN_CONSTANT * tol))
     per_length = np.maximum(pattern, kappa / (0.9 * max_sweep))
+    count = np.concatenate([[0.0], np.cumsum(per_length * sp) * ((b - a) / n)])
     heading = np.arctan2(d1[:, 1], d1[:, 0])
     turning = np.mod(np.diff(np.append(heading, heading[0])) + np.pi, 2 * np.pi) - np.pi
-    return t, np.concatenate([[0.0], np.cumsum(per_length * sp) * ((b - a) / n)]), round(float(turning.sum()) / (2 * np.pi))
+    return t, count, round(float(turning.sum()) / (2 * np.pi))
 
 
 def seeded_chain(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_sweep: float, sag: float,

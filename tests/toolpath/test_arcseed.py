@@ -24,7 +24,8 @@ TWO_PI = 2 * np.pi
 
 def test_the_pattern_constant_is_six_over_the_bernoulli_peak():
     """|e| = |κ′|h³|B₃(s/h)|/6 on an arc of the optimal pattern; B₃(x) = x³ − 3x²/2 + x/2 peaks at
-    x = 1/2 − 1/(2√3), √3/36: a dense grid on [0, 1] finds the peak to 1e-12 (the grid's step² × B₃″ / 8)."""
+    x = 1/2 − 1/(2√3), √3/36: a dense grid on [0, 1] finds the peak to 1e-12 (the grid's step² × B₃″
+    / 8)."""
     x = np.linspace(0.0, 1.0, 2_000_001)
     peak = np.abs(x ** 3 - 1.5 * x ** 2 + 0.5 * x).max()
     assert 6.0 / peak == pytest.approx(72.0 * math.sqrt(3.0), rel=1e-9)  # the grid's 1e-12 on a peak of 0.048
