@@ -317,13 +317,14 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
     n_lb = own if lower_bound is None else lower_bound
     goal = budget.goal[0] * n_lb + budget.goal[1]
     # a smooth curve (its copy's N_lb that of the exact curve) is first fitted without a march, by a chain seeded
-    # from the optimal pattern's arc density (camcam.toolpath.arcseed: fewer arcs than the march on 19 of the 30
-    # cases it was measured on, as many on 9, in a fraction of its time); the march where that finds nothing
+    # from the optimal pattern's arc density (camcam.toolpath.arcseed: fewer arcs than the march on 17 of the 30
+    # analytic cases of run_nc.py --arcs, as many on 13, in a fraction of its time); the march where that finds
+    # nothing
     if budget.seeded and lower_bound is not None and own <= SMOOTH_RATIO * lower_bound:
         for spline in seeded_chain(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, math.floor(goal),
                                    tries=budget.seed_tries):
             # the program starts (and its leads sit) at the joint nearest the longest dwell's middle, where the
-            # march starts too: on the base circle, not on a flank
+            # march starts too (on the disc samples the dwell's end: the seeded chain spans each dwell with one arc)
             return starting_near(spline, stretches[0][0], a, b)
     # the longest stretch first; then the others at least half as long, each start shift in turn
     stretches = [st for st in stretches if st[1] >= 0.5 * stretches[0][1]][:budget.stretches]
