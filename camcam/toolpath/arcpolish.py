@@ -28,7 +28,7 @@ import numpy as np
 
 from camcam.toolpath.arcchain import (CurveTable, OnCurve, chain_errors, chain_samples, joints_of, minimax_chain,
                                       on_curve, sample_spacing)
-from camcam.toolpath.arcprint import measured_deviation, printed_spline
+from camcam.toolpath.arcprint import printed_chain
 from camcam.toolpath.beam import ArcSpline
 from camcam.toolpath.quantizer import Quantizer
 
@@ -104,9 +104,4 @@ def fewer_arcs(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_
                 break
         else:
             return ()
-    elements, _ = printed_spline(oc, tab, quantizer, sag, max_sweep, tol)
-    if not elements:
-        return ()
-    if measured_deviation(elements, oc, tab) > tol:
-        return ()
-    return (ArcSpline(tuple(elements), tuple(float(t) for t in oc.t)),)
+    return printed_chain(oc, tab, quantizer, sag, max_sweep, tol)

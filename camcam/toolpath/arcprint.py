@@ -21,10 +21,11 @@ import numpy as np
 
 from camcam.toolpath.arcbatch import arc_batch, candidate_deviation, element_tangents, printed_element
 from camcam.toolpath.arcchain import CurveTable, OnCurve, joint_rows
+from camcam.toolpath.beam import ArcSpline
 from camcam.toolpath.elements import element_distance
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["near_grid", "printed_spline", "measured_deviation"]
+__all__ = ["near_grid", "printed_spline", "measured_deviation", "printed_chain"]
 
 
 def near_grid(J, T, quantizer: Quantizer, along: int) -> np.ndarray:
@@ -179,3 +180,14 @@ def measured_deviation(elements, oc: OnCurve, tab: CurveTable) -> float:
         f = np.clip(np.einsum("ij,ij->i", x - seg[:-1], u) / np.einsum("ij,ij->i", u, u), 0.0, 1.0)
         worst = max(worst, float(np.hypot(*(seg[:-1] + f[:, None] * u - x).T).min()))
     return worst
+
+
+def printed_chain(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: float, max_sweep: float,
+                  tol: float) -> tuple[ArcSpline, ...]:
+    """An optimised chain as the program prints it (:func:`printed_spline`), kept only if it is within ``tol``
+    both ways on the table's curve (:func:`measured_deviation`): the one spline, its elements starting at the
+    curve parameters ``oc.t``; or nothing (no printed form closes within the band, or it measures over it)."""
+    elements, _ = printed_spline(oc, tab, quantizer, sag, max_sweep, tol)
+    if not elements or measured_deviation(elements, oc, tab) > tol:
+        return ()
+    return (ArcSpline(tuple(elements), tuple(float(t) for t in oc.t)),)

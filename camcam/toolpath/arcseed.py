@@ -61,14 +61,14 @@ import math
 
 import numpy as np
 
-from camcam.geometry.curve import curvature_rate, speed
+from camcam.geometry.curve import curvature, curvature_rate
 from camcam.toolpath.arcchain import CurveTable, OnCurve, minimax_chain
 from camcam.toolpath.arcpolish import PRINT_ALLOWANCE_STEPS
-from camcam.toolpath.arcprint import measured_deviation, printed_spline
+from camcam.toolpath.arcprint import printed_chain
 from camcam.toolpath.beam import ArcSpline
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["seed_density", "seeded_chain", "SMOOTH_RATIO", "PATTERN_CONSTANT"]
+__all__ = ["seed_density", "seeded_count", "seeded_chain", "SMOOTH_RATIO", "PATTERN_CONSTANT"]
 
 #: The optimal G1 pattern's error bound |e| ≤ |κ′|h³/124.7: 6 over the largest |B₃| on [0, 1] (√3/36),
 #: 72√3 = 124.708 to four figures.  The seed is a heuristic start, and the chain it gives depends on the joints' exact
@@ -103,11 +103,10 @@ def seed_density(curve, a: float, b: float, tol: float, max_sweep: float, n: int
     (3.333, 1)
     """
     t = np.linspace(a, b, n, endpoint=False)
-    sp = speed(curve, t)
-    d1, d2 = curve.evaluate(t, 1), curve.evaluate(t, 2)
-    kappa = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / sp ** 3
+    d1 = curve.evaluate(t, 1)
+    sp = np.hypot(d1[:, 0], d1[:, 1])
     pattern = np.cbrt(np.abs(curvature_rate(curve, t)) / (PATTERN_CONSTANT * tol))
-    per_length = np.maximum(pattern, kappa / (0.9 * max_sweep))
+    per_length = np.maximum(pattern, np.abs(curvature(curve, t)) / (0.9 * max_sweep))
     count = np.concatenate([[0.0], np.cumsum(per_length * sp) * ((b - a) / n)])
     heading = np.arctan2(d1[:, 1], d1[:, 0])
     turning = np.mod(np.diff(np.append(heading, heading[0])) + np.pi, 2 * np.pi) - np.pi
@@ -146,20 +145,29 @@ def seeded_chain(curve, a: float, b: float, tol: float, quantizer: Quantizer, ma
     allowed = tol - PRINT_ALLOWANCE_STEPS * quantizer.step_mm
     if allowed <= 0.5 * tol or max_sweep > 0.9 * math.pi:
         return ()
-    t, count, turns = seed_density(curve, a, b, allowed, max_sweep)
-    total = float(count[-1])
-    first = max(3, math.ceil(total))
+    density = seed_density(curve, a, b, allowed, max_sweep)
+    first = max(3, math.ceil(float(density[1][-1])))
     tab = None
     for n in range(first, min(first + tries - 1, n_max) + 1):
         if tab is None:
             tab = CurveTable(curve, a, b, 16384)
-        joints_t = np.interp(np.arange(n) / n * total, count, np.concatenate([t, [b]]))
-        seed = OnCurve(curve, a, b, joints_t, np.zeros(n), np.zeros(n), turns)
-        chain, err, gap = minimax_chain(seed, tab, max_sweep=max_sweep, per_arc=per_arc, enough=0.97 * allowed,
-                                        early=(GIVE_UP[0], GIVE_UP[1] * allowed), hopeless=GIVE_UP[2] * allowed)
-        if err > allowed or gap > 1e-3 * tol:
-            continue
-        elements, _ = printed_spline(chain, tab, quantizer, sag, max_sweep, tol)
-        if elements and measured_deviation(elements, chain, tab) <= tol:
-            return (ArcSpline(tuple(elements), tuple(float(x) for x in chain.t)),)
+        for spline in seeded_count(curve, a, b, tol, quantizer, max_sweep, sag, n, density, tab, per_arc=per_arc):
+            return (spline,)
     return ()
+
+
+def seeded_count(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_sweep: float, sag: float, n: int,
+                 density, tab: CurveTable, *, per_arc: int = 24) -> tuple[ArcSpline, ...]:
+    """One seed of :func:`seeded_chain`: ``n`` joints at equal steps of ``density`` (:func:`seed_density` at the
+    band less printing's allowance) from ``a``, optimised on ``tab``, printed and measured; the spline, or
+    nothing (the chain given up or over the band, or its printed form over ``tol``)."""
+    allowed = tol - PRINT_ALLOWANCE_STEPS * quantizer.step_mm
+    t, count, turns = density
+    total = float(count[-1])
+    joints_t = np.interp(np.arange(n) / n * total, count, np.concatenate([t, [b]]))
+    seed = OnCurve(curve, a, b, joints_t, np.zeros(n), np.zeros(n), turns)
+    chain, err, gap = minimax_chain(seed, tab, max_sweep=max_sweep, per_arc=per_arc, enough=0.97 * allowed,
+                                    early=(GIVE_UP[0], GIVE_UP[1] * allowed), hopeless=GIVE_UP[2] * allowed)
+    if err > allowed or gap > 1e-3 * tol:
+        return ()
+    return printed_chain(chain, tab, quantizer, sag, max_sweep, tol)
