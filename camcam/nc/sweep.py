@@ -3,7 +3,8 @@
 The material is one shapely region per slab between consecutive cutting
 levels; each feed move, in program order, is measured against the material
 its slabs still hold (the width its front semicircle meets, whether it plunges
-or a rapid touches) and then takes its swept disc out of them.  A slab's
+or a rapid touches) and then takes its swept disc out of them (a run of
+moves that cannot change the figures is taken out in one cut).  A slab's
 material depends only on the moves that cut it, so the slabs are swept
 independently (:func:`sweep_slabs`, shared between processes) and their
 figures combined as one pass over all of them would find them.
@@ -34,6 +35,8 @@ PROBE_INSET_MM = 0.01
 TOUCH_MM = 5e-3
 #: Probes across the tool's front semicircle (evenly spaced across the direction of travel).
 PROBE_STEPS = 97
+#: Samples a batch of feed moves holds at most (:func:`_sweep_slab`): probed and cut together.
+BATCH_SAMPLES = 256
 #: Segments per quarter circle of a swept region (:func:`cut_below`): its polygon falls short of the circle by
 #: r_t·(1 − cos(π/128)), 3.0e-4 · r_t.
 CUT_QUAD_SEGS = 32
@@ -222,52 +225,168 @@ def _move_samples(m: Move, slope: float, rounding: float):
 
 
 def _sweep_slab(i: int, slab, moves: list, samples: list, bounds: list, r_t: float, slot_kinds) -> _SlabSweep:
-    """Slab ``i`` (the material between ``bounds[i + 1]`` and ``bounds[i]``) swept by every move in program order."""
-    eng, eng_move, eng_at, slot_eng = 0.0, -1, "", 0.0
+    """Slab ``i`` (the material between ``bounds[i + 1]`` and ``bounds[i]``) swept by every move in program order.
+
+    Runs of feed moves wholly at or below the slab's floor that do not plunge (a rapid or a plunge ends a run)
+    are taken in batches of up to :data:`BATCH_SAMPLES` samples (:func:`_batch_step`): the figures of move by
+    move, with one probe and one cut a batch instead of one a move.  A move wholly above the floor neither
+    meets nor cuts this slab's material: it is passed over.
+    """
+    state = _Slab(slab, 0.0, -1, "", 0.0)
     plunges, rapids = [], []
     top, floor = bounds[i], bounds[i + 1]
 
     def hits(geom) -> bool:
-        return not slab.is_empty and float(shapely.distance(slab, geom)) < r_t - TOUCH_MM
+        return not state.slab.is_empty and float(shapely.distance(state.slab, geom)) < r_t - TOUCH_MM
 
     # moves whose whole swept region this slab has lost (every sample at or below its floor), by their path in
     # XY: a later move along the same path (the same contour one level deeper, which passes through this slab
     # too) sweeps only what they took.  Nothing lies in front of it (its probes lie inside that region by the
     # probe's inset less the swept polygons' shortfall from their circles) and its cut, the same polygon,
     # takes nothing away: it is skipped.  The slab stays the same region, only not re-noded by a difference
-    # that removes nothing (the 21 samples and the disc samples at 0.001 mm give the same bytes).  Only for
-    # tools whose polygons fall short by less than the inset: r_t < 33 mm
+    # that removes nothing.  Only for tools whose polygons fall short by less than the inset: r_t < 33 mm
     swept_paths = set() if r_t * (1.0 - math.cos(math.pi / (4 * CUT_QUAD_SEGS))) < PROBE_INSET_MM else None
+    batch: list[tuple[int, Move, tuple]] = []
+    batch_size = 0
+
+    def flush():
+        nonlocal batch_size
+        if batch:
+            _batch_step(state, batch, floor, r_t, slot_kinds, swept_paths)
+            batch.clear()
+            batch_size = 0
+
     for j, (m, sampled) in enumerate(zip(moves, samples)):
         z0, z1 = m.p0[2], m.p1[2]
         if m.kind == "rapid":
+            flush()
             geom = LineString([m.p0[:2], m.p1[:2]]) if m.p0[:2] != m.p1[:2] else Point(m.p1[:2])
             if top > min(z0, z1) + 1e-6 and hits(geom):
                 rapids.append(j)
             continue
-        pts, plunge_geom, probe = sampled
-        if plunge_geom is not None and top > z1 + 1e-6 and floor < z0 - 1e-6 and hits(plunge_geom):
-            plunges.append(j)
-        whole = bool(np.all(pts[:, 2] <= floor + 1e-6))
-        path = (m.kind, m.p0[:2], m.p1[:2], m.centre[:2] if m.centre is not None else None, m.ccw)
-        if whole and swept_paths is not None and path in swept_paths:
+        pts, plunge_geom, _ = sampled
+        if plunge_geom is not None:
+            flush()
+            if top > z1 + 1e-6 and floor < z0 - 1e-6 and hits(plunge_geom):
+                plunges.append(j)
+        below = pts[:, 2] <= floor + 1e-6
+        if not below.any():
+            continue  # nothing of it probed or cut in this slab (:func:`_move_step`): the batch goes on
+        whole = bool(below.all())
+        if whole and swept_paths is not None and _path(m) in swept_paths:
             continue
-        if probe is not None:
-            probe_pts, tang, zs = probe
-            sel = zs <= floor + 1e-6
-            if sel.any() and not slab.is_empty:
-                slot = m.pass_kind in slot_kinds
-                # only a width over the largest met so far changes the figures (the first of equals is kept)
-                w = front_extent(slab, probe_pts[sel, :2], tang[sel], r_t - PROBE_INSET_MM, slot_eng if slot else eng)
-                k = int(np.argmax(w))
-                if slot:
-                    slot_eng = max(slot_eng, float(w[k]))
-                elif w[k] > eng:
-                    eng, eng_move, eng_at = float(w[k]), j, where(m.pass_label, probe_pts[sel][k])
-        slab = cut_below(slab, pts, floor, r_t)
-        if whole and swept_paths is not None:
-            swept_paths.add(path)
-    return _SlabSweep(slab, (eng, eng_move, eng_at), slot_eng, tuple(plunges), tuple(rapids))
+        if whole and plunge_geom is None:
+            if batch and (batch_size + len(pts) > BATCH_SAMPLES
+                          or (m.pass_kind in slot_kinds) != (batch[0][1].pass_kind in slot_kinds)):
+                flush()
+            batch.append((j, m, sampled))
+            batch_size += len(pts)
+            continue
+        flush()
+        _move_step(state, j, m, sampled, floor, r_t, slot_kinds, swept_paths)
+    flush()
+    return _SlabSweep(state.slab, (state.eng, state.eng_move, state.eng_at), state.slot_eng, tuple(plunges),
+                      tuple(rapids))
+
+
+@dataclass
+class _Slab:
+    """A slab's material as the sweep goes, and the largest engagements met so far (width, move, where)."""
+
+    slab: object
+    eng: float
+    eng_move: int
+    eng_at: str
+    slot_eng: float
+
+
+def _path(m: Move) -> tuple:
+    """A feed move's path in XY (:func:`_sweep_slab`'s swept paths)."""
+    return (m.kind, m.p0[:2], m.p1[:2], m.centre[:2] if m.centre is not None else None, m.ccw)
+
+
+def _move_step(state: _Slab, j: int, m: Move, sampled: tuple, floor: float, r_t: float, slot_kinds,
+               swept_paths: set | None) -> None:
+    """Feed move ``j`` against the slab ``state`` holds: its engagement, then its cut."""
+    pts, _, probe = sampled
+    if probe is not None:
+        probe_pts, tang, zs = probe
+        sel = zs <= floor + 1e-6
+        if sel.any() and not state.slab.is_empty:
+            slot = m.pass_kind in slot_kinds
+            # only a width over the largest met so far changes the figures (the first of equals is kept)
+            w = front_extent(state.slab, probe_pts[sel, :2], tang[sel], r_t - PROBE_INSET_MM,
+                             state.slot_eng if slot else state.eng)
+            k = int(np.argmax(w))
+            if slot:
+                state.slot_eng = max(state.slot_eng, float(w[k]))
+            elif w[k] > state.eng:
+                state.eng, state.eng_move, state.eng_at = float(w[k]), j, where(m.pass_label, probe_pts[sel][k])
+    state.slab = cut_below(state.slab, pts, floor, r_t)
+    if swept_paths is not None and bool(np.all(pts[:, 2] <= floor + 1e-6)):
+        swept_paths.add(_path(m))
+
+
+def _batch_step(state: _Slab, batch: list, floor: float, r_t: float, slot_kinds, swept_paths: set | None) -> None:
+    """Feed moves ``batch`` ((j, move, samples), in program order, every sample at or below ``floor``, all in slot
+    passes or none) against the slab ``state`` holds, with the figures of :func:`_move_step` move by move.
+
+    Every move's probes are first measured against the slab as the batch finds it.  That slab holds all the
+    material each move meets move by move (the moves before it only take material away), so a front's width
+    there is at least its width move by move.  A move whose widths there do not exceed the largest met so far
+    cannot change the figures: it is only cut, together with the others like it before the next move that
+    could.  That one goes through :func:`_move_step`, against the slab as the moves before it left it.
+    """
+    if len(batch) == 1:
+        _move_step(state, *batch[0], floor, r_t, slot_kinds, swept_paths)
+        return
+    slot = batch[0][1].pass_kind in slot_kinds
+    bound = np.zeros(len(batch))  # per move, its largest width against the slab as the batch finds it
+    probed = [(n, s[2][0]) for n, (_, _, s) in enumerate(batch) if s[2] is not None]
+    if probed and not state.slab.is_empty:
+        w = front_extent(state.slab, np.concatenate([p[:, :2] for _, p in probed]),
+                         np.concatenate([batch[n][2][2][1] for n, _ in probed]), r_t - PROBE_INSET_MM,
+                         state.slot_eng if slot else state.eng)
+        starts = np.cumsum([0] + [len(p) for _, p in probed[:-1]])
+        bound[[n for n, _ in probed]] = np.maximum.reduceat(w, starts)
+    pending: list[int] = []  # moves to be cut before the next one measured
+
+    def cut_pending():
+        if pending:
+            moves = [batch[n][1] for n in pending]
+            state.slab = _cut_moves(state.slab, [batch[n][2][0] for n in pending], moves, r_t)
+            if swept_paths is not None:
+                swept_paths.update(_path(m) for m in moves)
+            pending.clear()
+
+    for n, (j, m, sampled) in enumerate(batch):
+        if bound[n] <= (state.slot_eng if slot else state.eng):
+            pending.append(n)
+            continue
+        cut_pending()
+        if swept_paths is not None and _path(m) in swept_paths:
+            continue  # as move by move: a path cut earlier in the batch
+        _move_step(state, j, m, sampled, floor, r_t, slot_kinds, swept_paths)
+    cut_pending()
+
+
+def _cut_moves(slab, samples: list, moves: list, r_t: float):
+    """``slab`` less the discs of radius ``r_t`` swept along ``moves`` (their ``samples``, every one to be cut),
+    each run of joined moves one line (:data:`CUT_QUAD_SEGS` segments per quarter circle), prepared."""
+    if slab.is_empty:
+        return slab
+    runs, run = [], []
+    for k, (pts, m) in enumerate(zip(samples, moves)):
+        if run and m.p0 != moves[k - 1].p1:
+            runs.append(np.concatenate(run))
+            run = []
+        run.append(pts[:, :2] if not run else pts[1:, :2])
+    runs.append(np.concatenate(run))
+    geoms = [LineString(seg) if len(seg) > 1 and np.ptp(seg, axis=0).max() > 0 else Point(seg[0]) for seg in runs]
+    slab = slab.difference(shapely.union_all(shapely.buffer(np.array(geoms, dtype=object), r_t,
+                                                            quad_segs=CUT_QUAD_SEGS)))
+    shapely.prepare(slab)
+    return slab
 
 
 def cut_below(slab, pts: np.ndarray, floor: float, r_t: float):

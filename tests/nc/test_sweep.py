@@ -203,3 +203,85 @@ def test_a_width_that_cannot_exceed_over_is_not_bisected_and_the_largest_is_the_
     assert np.all(full[~kept] <= max(over, 0.0))  # the ones it left could not exceed over (or met nothing)
     if full.max() > over:
         assert int(np.argmax(some)) == int(np.argmax(full)) and some.max() == full.max()
+
+
+def _spiral_program(turns: float, drop: float, seg_mm: float, start_deg: float, levels: int, arcs_every: int):
+    """A roughing spiral of tool centres from 40 mm to 40 − ``drop`` mm about (50, 50), around a Ø76 mm disc of
+    material, in lines about ``seg_mm`` long (every ``arcs_every``-th move an arc instead), at ``levels``
+    depths; then a finishing circle of 180 lines at 35.5 mm, at the last depth.  The spiral meets more
+    material move after move; after a drop of 4 mm the finishing circle takes a ring 0.5 mm thick."""
+    events = []
+    for lv in range(1, levels + 1):
+        z = -1.0 * lv
+        events += [f"pass {lv}/9: rough, spiral Z{z:g}", CanonMove("rapid", 95.0, 50.0, 5.0, 0.0),
+                   CanonMove("line", 95.0, 50.0, z, 0.0)]
+        a0 = np.radians(start_deg)
+        n = int(turns * 2 * np.pi * 40.0 / seg_mm)
+        for k in range(n + 1):
+            a = a0 + 2 * np.pi * turns * k / n
+            r = 40.0 - drop * k / n
+            x, y = 50.0 + r * np.cos(a), 50.0 + r * np.sin(a)
+            if arcs_every and k % arcs_every == 0 and k:
+                events.append(CanonMove("arc", x, y, z, 0.0, centre=(50.0, 50.0), ccw=True))
+            else:
+                events.append(CanonMove("line", x, y, z, 0.0))
+        events.append(CanonMove("rapid", x, y, 5.0, 0.0))
+    events.append("pass 9/9: finish, circle")
+    events += [CanonMove("rapid", 85.5, 50.0, 5.0, 0.0), CanonMove("line", 85.5, 50.0, -levels, 0.0)]
+    for k in range(1, 181):
+        a = np.radians(2.0 * k)
+        events.append(CanonMove("line", 50.0 + 35.5 * np.cos(a), 50.0 + 35.5 * np.sin(a), -levels, 0.0))
+    return events
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.floats(0.6, 2.2), st.floats(1.0, 9.0), st.floats(0.2, 2.5), st.floats(0.0, 360.0), st.integers(1, 2),
+       st.sampled_from([0, 7]))
+@example(1.5, 4.0, 0.3, 0.0, 2, 0)
+@example(2.0, 7.0, 1.0, 0.0, 1, 0)  # regions whose difference is slivers up to 0.013 mm from the other's outline
+def test_batched_moves_give_the_move_by_move_figures(turns, drop, seg_mm, start_deg, levels, arcs_every):
+    """Runs of feed moves probed and cut in batches (camcam.nc.sweep._batch_step): the figures of the one-pass
+    sweep to the bit, where its engagement grows move after move (a spiral inwards) and where it does not (the
+    finishing ring), and the regions the same up to the swept polygons' shortfall from their circles."""
+    import camcam.nc.sweep as sweep_module
+
+    moves = moves_of(_spiral_program(turns, drop, seg_mm, start_deg, levels, arcs_every))
+    bounds = [0.0] + [-1.0 * lv for lv in range(1, levels + 1)]
+    disc = shapely.Point(50.0, 50.0).buffer(38.0, quad_segs=64)
+    slope = np.tan(np.radians(3.0))
+    fresh = lambda: [shapely.Polygon(disc) for _ in bounds[1:]]  # noqa: E731
+    want = _one_pass(moves, fresh(), bounds, R_T, slope, 2e-4, SLOT_KINDS)
+    got = sweep_slabs(moves, fresh(), bounds, R_T, slope, 2e-4, SLOT_KINDS, 1)
+    # the batch's widths are the move-by-move widths wherever a move can set a figure: the same arithmetic
+    assert (got.engagement_mm, got.engagement_where, got.slot_engagement_mm, got.plunges, got.rapids) == \
+        (want[1], want[2], want[3], want[4], want[6])
+    assert got.engagement_mm > 0.0  # the spiral meets material
+    # a batch's swept region is one line's buffer, not the union of its moves' buffers: both fall short of the
+    # true region by at most r·(1 − cos(π/128)) (1.5e-3 mm for R_T), so what one holds and the other does not
+    # is slivers no thicker than that (taking it off every side leaves nothing)
+    shortfall = R_T * (1.0 - np.cos(np.pi / (4 * sweep_module.CUT_QUAD_SEGS)))
+    for a, b in zip(got.slabs, want[0]):
+        assert a.symmetric_difference(b).buffer(-shortfall).is_empty
+        assert abs(a.area - b.area) <= shortfall * (a.length + b.length)
+
+
+def test_a_contour_of_short_lines_is_probed_in_batches(monkeypatch):
+    """The finishing ring of 180 lines (one sample each side of every joint) takes far fewer probes than moves,
+    with the one-pass sweep's figures; without batches (BATCH_SAMPLES = 0) one probe a move."""
+    import camcam.nc.sweep as sweep_module
+
+    moves = moves_of(_spiral_program(1.0, 4.0, 2.0, 0.0, 1, 0))
+    bounds = [0.0, -1.0]
+    disc = shapely.Point(50.0, 50.0).buffer(38.0, quad_segs=64)
+    real = sweep_module.front_extent
+    counts, batched = {}, sweep_module.BATCH_SAMPLES
+    for size in (batched, 0):
+        probed = []
+        monkeypatch.setattr(sweep_module, "front_extent", lambda *a: probed.append(1) or real(*a))
+        monkeypatch.setattr(sweep_module, "BATCH_SAMPLES", size)
+        got = sweep_slabs(moves, [shapely.Polygon(disc)], bounds, R_T, np.tan(np.radians(3.0)), 2e-4, SLOT_KINDS, 1)
+        counts[size] = (len(probed), got.engagement_mm, got.engagement_where)
+    feed = sum(m.kind != "rapid" for m in moves)
+    assert counts[0][0] >= feed - 2  # one a feed move (the plunge and a zero-width move aside)
+    assert counts[batched][0] < feed / 4
+    assert counts[0][1:] == counts[batched][1:]
