@@ -23,7 +23,7 @@ from camcam.forked import parallel_map
 from camcam.nc.passes import SLOT_KINDS
 
 __all__ = ["Move", "moves_of", "parse_marker", "where", "front_extent", "cut_below", "sweep_slabs", "Sweep",
-           "SAMPLE_MM", "PROBE_INSET_MM", "TOUCH_MM", "PROBE_STEPS", "CUT_QUAD_SEGS"]
+           "SAMPLE_MM", "PROBE_INSET_MM", "TOUCH_MM", "PROBE_STEPS", "CUT_QUAD_SEGS", "BATCH_SAMPLES"]
 
 #: Spacing of the samples along a move for engagement and plunge tests (mm).
 SAMPLE_MM = 0.5
@@ -35,7 +35,9 @@ PROBE_INSET_MM = 0.01
 TOUCH_MM = 5e-3
 #: Probes across the tool's front semicircle (evenly spaced across the direction of travel).
 PROBE_STEPS = 97
-#: Samples a batch of feed moves holds at most (:func:`_sweep_slab`): probed and cut together.
+#: Samples a batch of feed moves holds at most (:func:`_sweep_slab`): probed and cut together.  The check of
+#: disc-oscillating-flat at 0.001 mm took 0.153, 0.135 and 0.149 CPU s with 64, 256 and 1024 (best of 3, one
+#: process): larger batches probe more moves a second time where a width could exceed the largest so far.
 BATCH_SAMPLES = 256
 #: Segments per quarter circle of a swept region (:func:`cut_below`): its polygon falls short of the circle by
 #: r_t·(1 − cos(π/128)), 3.0e-4 · r_t.
