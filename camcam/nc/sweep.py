@@ -285,7 +285,7 @@ def _sweep_slab(i: int, slab, moves: list, samples: list, bounds: list, r_t: flo
             batch_size += len(pts)
             continue
         flush()
-        _move_step(state, j, m, sampled, floor, r_t, slot_kinds, swept_paths)
+        _move_step(state, j, m, sampled, floor, r_t, slot_kinds, swept_paths, whole)
     flush()
     return _SlabSweep(state.slab, (state.eng, state.eng_move, state.eng_at), state.slot_eng, tuple(plunges),
                       tuple(rapids))
@@ -308,8 +308,9 @@ def _path(m: Move) -> tuple:
 
 
 def _move_step(state: _Slab, j: int, m: Move, sampled: tuple, floor: float, r_t: float, slot_kinds,
-               swept_paths: set | None) -> None:
-    """Feed move ``j`` against the slab ``state`` holds: its engagement, then its cut."""
+               swept_paths: set | None, whole: bool) -> None:
+    """Feed move ``j`` against the slab ``state`` holds: its engagement, then its cut (``whole``: every sample of
+    it at or below ``floor``, so its path is swept whole)."""
     pts, _, probe = sampled
     if probe is not None:
         probe_pts, tang, zs = probe
@@ -325,7 +326,7 @@ def _move_step(state: _Slab, j: int, m: Move, sampled: tuple, floor: float, r_t:
             elif w[k] > state.eng:
                 state.eng, state.eng_move, state.eng_at = float(w[k]), j, where(m.pass_label, probe_pts[sel][k])
     state.slab = cut_below(state.slab, pts, floor, r_t)
-    if swept_paths is not None and bool(np.all(pts[:, 2] <= floor + 1e-6)):
+    if swept_paths is not None and whole:
         swept_paths.add(_path(m))
 
 
@@ -340,17 +341,18 @@ def _batch_step(state: _Slab, batch: list, floor: float, r_t: float, slot_kinds,
     could.  That one goes through :func:`_move_step`, against the slab as the moves before it left it.
     """
     if len(batch) == 1:
-        _move_step(state, *batch[0], floor, r_t, slot_kinds, swept_paths)
+        _move_step(state, *batch[0], floor, r_t, slot_kinds, swept_paths, True)
         return
     slot = batch[0][1].pass_kind in slot_kinds
     bound = np.zeros(len(batch))  # per move, its largest width against the slab as the batch finds it
-    probed = [(n, s[2][0]) for n, (_, _, s) in enumerate(batch) if s[2] is not None]
+    probed = [n for n, (_, _, sampled) in enumerate(batch) if sampled[2] is not None]
     if probed and not state.slab.is_empty:
-        w = front_extent(state.slab, np.concatenate([p[:, :2] for _, p in probed]),
-                         np.concatenate([batch[n][2][2][1] for n, _ in probed]), r_t - PROBE_INSET_MM,
+        probes = [batch[n][2][2] for n in probed]  # (points, tangents, z) of each probed move
+        w = front_extent(state.slab, np.concatenate([p[0][:, :2] for p in probes]),
+                         np.concatenate([p[1] for p in probes]), r_t - PROBE_INSET_MM,
                          state.slot_eng if slot else state.eng)
-        starts = np.cumsum([0] + [len(p) for _, p in probed[:-1]])
-        bound[[n for n, _ in probed]] = np.maximum.reduceat(w, starts)
+        starts = np.cumsum([0] + [len(p[0]) for p in probes[:-1]])
+        bound[probed] = np.maximum.reduceat(w, starts)
     pending: list[int] = []  # moves to be cut before the next one measured
 
     def cut_pending():
@@ -368,15 +370,13 @@ def _batch_step(state: _Slab, batch: list, floor: float, r_t: float, slot_kinds,
         cut_pending()
         if swept_paths is not None and _path(m) in swept_paths:
             continue  # as move by move: a path cut earlier in the batch
-        _move_step(state, j, m, sampled, floor, r_t, slot_kinds, swept_paths)
+        _move_step(state, j, m, sampled, floor, r_t, slot_kinds, swept_paths, True)
     cut_pending()
 
 
 def _cut_moves(slab, samples: list, moves: list, r_t: float):
     """``slab`` less the discs of radius ``r_t`` swept along ``moves`` (their ``samples``, every one to be cut),
-    each run of joined moves one line (:data:`CUT_QUAD_SEGS` segments per quarter circle), prepared."""
-    if slab.is_empty:
-        return slab
+    each run of joined moves one line (:func:`_take_out`)."""
     runs, run = [], []
     for k, (pts, m) in enumerate(zip(samples, moves)):
         if run and m.p0 != moves[k - 1].p1:
@@ -384,30 +384,27 @@ def _cut_moves(slab, samples: list, moves: list, r_t: float):
             run = []
         run.append(pts[:, :2] if not run else pts[1:, :2])
     runs.append(np.concatenate(run))
-    geoms = [LineString(seg) if len(seg) > 1 and np.ptp(seg, axis=0).max() > 0 else Point(seg[0]) for seg in runs]
-    slab = slab.difference(shapely.union_all(shapely.buffer(np.array(geoms, dtype=object), r_t,
-                                                            quad_segs=CUT_QUAD_SEGS)))
-    shapely.prepare(slab)
-    return slab
+    return _take_out(slab, runs, r_t)
 
 
 def cut_below(slab, pts: np.ndarray, floor: float, r_t: float):
     """``slab`` less the discs of radius ``r_t`` swept along the samples ``pts`` (n, 3) at or below ``floor``
-    (each run of such samples one swept region, :data:`CUT_QUAD_SEGS` segments per quarter circle), prepared."""
+    (each run of such samples one line, :func:`_take_out`)."""
     below = pts[:, 2] <= floor + 1e-6
-    if not below.any() or slab.is_empty:
+    if not below.any():
         return slab
     runs = np.split(np.arange(len(pts)), np.where(np.diff(below.astype(int)) != 0)[0] + 1)
-    cuts = []
-    for run in runs:
-        if not below[run[0]]:
-            continue
-        seg = pts[run, :2]
-        geom = LineString(seg) if len(seg) > 1 and np.ptp(seg, axis=0).max() > 0 else Point(seg[0])
-        cuts.append(geom.buffer(r_t, quad_segs=CUT_QUAD_SEGS))
-    if not cuts:
+    return _take_out(slab, [pts[run, :2] for run in runs if below[run[0]]], r_t)
+
+
+def _take_out(slab, runs: list, r_t: float):
+    """``slab`` less the discs of radius ``r_t`` swept along each of ``runs`` (XY points (k, 2), a line each, or a
+    point where they do not move), :data:`CUT_QUAD_SEGS` segments per quarter circle; prepared."""
+    if slab.is_empty or not runs:
         return slab
-    slab = slab.difference(shapely.union_all(cuts))
+    geoms = [LineString(seg) if len(seg) > 1 and np.ptp(seg, axis=0).max() > 0 else Point(seg[0]) for seg in runs]
+    slab = slab.difference(shapely.union_all(shapely.buffer(np.array(geoms, dtype=object), r_t,
+                                                            quad_segs=CUT_QUAD_SEGS)))
     shapely.prepare(slab)
     return slab
 
