@@ -130,6 +130,7 @@ def _index(rows: list[dict], files: list[dict[str, bytes]]) -> str:
 def run(args) -> int:
     specs = list(args.specs)
     folders = _folders(specs)
+    top = output_set(args, "batch")  # checked before the work: a folder it cannot use fails at once
     with executor_from_args(args) as executor:
         results = executor.map(batch_task, list(zip(specs, folders)), what=f"{len(specs)} specs")
         note = executor.note
@@ -138,7 +139,6 @@ def run(args) -> int:
     rows = [r for r, _ in results]
     contents = [f for _, f in results]
     # one output set: every spec's folder and the summary appear together or not at all
-    top = output_set(args, "batch")
     for (row, files) in results:
         for name, data in files.items():
             top.add(f"{row['folder']}/{name}", data)

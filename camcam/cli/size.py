@@ -13,7 +13,7 @@ import sys
 import tomllib
 from pathlib import Path
 
-from camcam.cli.output import print_json
+from camcam.cli.output import add_output_arguments, output_set, print_json
 from camcam.cli.commands import help_of
 from camcam.cli.scaling import add_scale_arguments, executor_from_args, tell_scale_note
 
@@ -26,7 +26,7 @@ NO_DESIGN = 3
 def register(sub) -> None:
     p = sub.add_parser("size", help=help_of("size"))
     p.add_argument("spec", help="spec file (TOML) with a [size] table")
-    p.add_argument("-o", "--output", default="camcam-out", help="output directory (default ./camcam-out)")
+    add_output_arguments(p)
     p.add_argument("--table", choices=("auto", "parquet", "csv"), default="auto",
                    help="table format (auto: Parquet when pyarrow is installed, else CSV)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
@@ -38,7 +38,6 @@ def run(args) -> int:
     import json
 
     from camcam.errors import SpecError
-    from camcam.export.files import OutputSet
     from camcam.size.files import parquet_available, sizing_files
     from camcam.size.sweep import run_sweep
     from camcam.spec import load_spec
@@ -49,12 +48,12 @@ def run(args) -> int:
         raise SpecError("--table", "parquet needs pyarrow: pip install 'camcam[parquet]'")
     fmt = "parquet" if args.table == "parquet" or (args.table == "auto" and parquet_available()) else "csv"
     data = tomllib.loads(Path(args.spec).read_text(encoding="utf-8"))
+    out = output_set(args, "size")
     with executor_from_args(args) as executor:
         result = run_sweep(spec, executor)
         note = executor.note
         tell_scale_note(executor)
     files = sizing_files(result, data, spec.name, fmt)
-    out = OutputSet(Path(args.output))
     for name, content in files.items():
         out.add(name, content)
     written = out.commit()

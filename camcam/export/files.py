@@ -94,17 +94,82 @@ def _output_name(name: str) -> bool:
     return len(parts) <= 2 and all(_plain_name(p) for p in parts)
 
 
-def read_manifest(folder: str | Path) -> list[str] | None:
-    """The file names an earlier run's manifest in ``folder`` lists, or ``None`` when it has none
-    (or one camcam cannot read: then the folder counts as not camcam's)."""
+def read_manifest(folder: str | Path) -> dict[str, tuple[int, str]] | None:
+    """What an earlier run's manifest in ``folder`` lists: ``{name: (bytes, sha256 hex)}``, or
+    ``None`` when the folder has no manifest.
+
+    Raises
+    ------
+    OutputError
+        The manifest is there but camcam cannot read it (not JSON, not camcam's shape, a
+        name that leaves the folder): the folder is refused, and the message says why.
+    """
+    path = Path(folder) / MANIFEST
+    if not os.path.lexists(path):
+        return None
+    move = "camcam replaces a folder only when its manifest lists its files: move the folder away or choose another"
+    if path.is_symlink() or not path.is_file():
+        raise OutputError(f"{folder}: its {MANIFEST} is unreadable (it is not a regular file); {move}")
     try:
-        doc = json.loads((Path(folder) / MANIFEST).read_bytes().decode("utf-8"))
-        names = [f["name"] for f in doc["files"]]
-    except (OSError, ValueError, KeyError, TypeError):
-        return None
-    if not all(isinstance(n, str) and _plain_name(n) for n in names):
-        return None
-    return names
+        doc = json.loads(path.read_bytes().decode("utf-8"))
+        listed = {f["name"]: (int(f["bytes"]), str(f["sha256"])) for f in doc["files"]}
+    except OSError as err:
+        raise _fail(str(folder), f"cannot read its {MANIFEST}", err) from None
+    except (ValueError, KeyError, TypeError):
+        raise OutputError(f"{folder}: its {MANIFEST} is unreadable (it is not the JSON camcam writes); {move}") from None
+    bad = [n for n in listed if not (isinstance(n, str) and _output_name(n) and n.split("/")[0] != MANIFEST)]
+    if bad:
+        raise OutputError(f"{folder}: its {MANIFEST} is unreadable (it lists {bad[0]!r}, not a file name camcam "
+                          f"writes); {move}")
+    return listed
+
+
+def _sha256(path: Path) -> str:
+    import hashlib  # here: only checking an earlier set needs it, and every command imports this module
+
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _earlier_set_problem(target: Path, listed: dict[str, tuple[int, str]]) -> str | None:
+    """Why ``target`` is not exactly the set its manifest lists (``None``: it is).
+
+    Every entry is looked at without following links: a listed name must be a regular file
+    with the size and SHA-256 the manifest records (a file edited since camcam wrote it is
+    the user's now); a folder must be one that listed names sit in; nothing else may be
+    there.  ``--force`` removes only what passes this check.
+    """
+    folders = {n.split("/")[0] for n in listed if "/" in n}
+    foreign: list[str] = []
+    for root, dirs, files in os.walk(target):
+        rel = os.path.relpath(root, target)
+        for d in sorted(dirs):
+            name = d if rel == "." else f"{rel}/{d}"
+            if name in listed:
+                return f"{name} is now a folder, where camcam wrote a file; move it away or choose another folder"
+            if os.path.islink(os.path.join(root, d)) or name not in folders:
+                foreign.append(name)
+        dirs[:] = [d for d in dirs if (d if rel == "." else f"{rel}/{d}") in folders
+                   and not os.path.islink(os.path.join(root, d))]
+        for f in sorted(files):
+            name = f if rel == "." else f"{rel}/{f}"
+            path = Path(root) / f
+            if name == MANIFEST:
+                continue
+            if name not in listed or path.is_symlink() or not path.is_file():
+                foreign.append(name)
+                continue
+            size, sha = listed[name]
+            if path.stat().st_size != size or _sha256(path) != sha:
+                return (f"{name} was changed after camcam wrote it (its SHA-256 no longer matches {MANIFEST}); "
+                        "--force replaces only camcam's own files: move it away or choose another folder")
+    if foreign:
+        return (f"holds files its {MANIFEST} does not list ({_few(sorted(foreign))}); "
+                "camcam replaces a folder only when it holds nothing but an earlier run's files")
+    return None
 
 
 def _few(names: list[str], k: int = 3) -> str:
@@ -248,6 +313,7 @@ class OutputSet:
         self.log = log if log is not None else DiskLog()
         self.command = command
         self._files: dict[str, bytes] = {}
+        self._was_free = False  # the first check found no earlier set: one found later is another run's
         self.log.target = str(self.directory)
 
     def add(self, name: str, data: bytes | str | Pending) -> None:
@@ -289,6 +355,7 @@ class OutputSet:
                 anc = _nearest_existing(target.parent)
                 if not anc.is_dir():
                     raise OutputError(f"{shown}: cannot create the folder: {anc} is not a folder")
+                self._was_free = True
                 return None
             if not target.is_dir():
                 raise OutputError(f"{shown}: exists and is not a folder")
@@ -301,19 +368,27 @@ class OutputSet:
         except OSError as err:
             raise _fail(shown, "cannot use it as the output folder", err) from None
         if not entries:
+            self._was_free = True
             return []
-        earlier = read_manifest(target)
-        if earlier is None:
-            raise OutputError(f"{shown}: holds files camcam did not write ({_few(entries)}); "
-                              "choose a new or empty folder")
-        foreign = [e for e in entries if e not in {n.split("/")[0] for n in earlier} | {MANIFEST}]
-        if foreign:
-            raise OutputError(f"{shown}: holds files its {MANIFEST} does not list ({_few(foreign)}); "
-                              "camcam replaces a folder only when it holds nothing but an earlier run's files")
+        try:
+            earlier = read_manifest(self.directory)
+            if earlier is None:
+                raise OutputError(f"{shown}: holds files camcam did not write ({_few(entries)}); "
+                                  "choose a new or empty folder")
+            problem = _earlier_set_problem(target, earlier)
+        except OSError as err:
+            if isinstance(err, OutputError):
+                raise
+            raise _fail(shown, "cannot read the earlier run's files", err) from None
+        if problem is not None:
+            raise OutputError(f"{shown}: {problem}")
+        if self._was_free and not self.force:
+            raise OutputError(f"{shown}: another camcam run published its files there while this one ran; "
+                              "add --force to replace them, or choose another folder")
         if not self.force:
             raise OutputError(f"{shown}: holds the files of an earlier run (listed in its {MANIFEST}); "
                               "add --force to replace them, or choose another folder")
-        return earlier
+        return sorted(earlier)
 
     def commit(self) -> list[Path]:
         """Publish every file and the manifest as the target folder, all or nothing."""

@@ -191,3 +191,95 @@ def test_os_errors_on_input_are_one_line(tmp_path, arg, path):
     code, _, err = run_inproc(args)
     assert_clean_error(code, err)
     assert snapshot(tmp_path) == before
+
+
+# --- issue 50, data loss: --force removes exactly an earlier run's own files, nothing else ----------------------
+
+def _force_over(target, before_root):
+    """A forced run over ``target`` must be refused with one line naming the folder, and leave every byte."""
+    before = snapshot(before_root)
+    with pytest.raises(OutputError) as e:
+        _set(target, force=True).commit()
+    assert str(e.value).startswith(f"{target}: ") and "\n" not in str(e.value)
+    assert snapshot(before_root) == before
+    return str(e.value)
+
+
+def test_force_keeps_a_folder_put_where_a_listed_file_was(tmp_path):
+    """Issue 50 item 1: `a.ngc` replaced by a folder holding the user's `mine.txt` was removed by --force."""
+    target = tmp_path / "out"
+    _earlier(target)
+    (target / "a.ngc").unlink()
+    (target / "a.ngc").mkdir()
+    (target / "a.ngc" / "mine.txt").write_text("mine")
+    assert "a.ngc is now a folder" in _force_over(target, tmp_path)
+
+
+def test_force_keeps_a_listed_file_edited_since(tmp_path):
+    """Issue 50 item 2: a listed file whose SHA-256 no longer matches the manifest is the user's now."""
+    target = tmp_path / "out"
+    _earlier(target)
+    (target / "a.dxf").write_bytes(b"old a.dxf, edited in CAD")
+    msg = _force_over(target, tmp_path)
+    assert "a.dxf was changed after camcam wrote it" in msg
+    (target / "a.dxf").write_bytes(b"old a.dxX")  # same size, other bytes: the hash decides, not the size
+    assert "a.dxf was changed" in _force_over(target, tmp_path)
+
+
+@pytest.mark.parametrize("what", ["listed file is a link", "folder link", "manifest is a link", "extra folder"])
+def test_force_keeps_links_and_folders_it_did_not_write(tmp_path, what):
+    """A link in place of a listed file (to the user's own file, same bytes) or an extra folder is not camcam's."""
+    target = tmp_path / "out"
+    _earlier(target)
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    if what == "listed file is a link":
+        (mine / "a.ngc").write_bytes(b"old a.ngc")
+        (target / "a.ngc").unlink()
+        (target / "a.ngc").symlink_to(mine / "a.ngc")
+    elif what == "folder link":
+        (target / "linked").symlink_to(mine)
+    elif what == "manifest is a link":
+        os.replace(target / MANIFEST, mine / MANIFEST)
+        (target / MANIFEST).symlink_to(mine / MANIFEST)
+    else:
+        (target / "sub").mkdir()
+    _force_over(target, tmp_path)
+
+
+@pytest.mark.parametrize("manifest", [b"{", b'{"files": 3}', b'{"files": [{"name": "../x", "bytes": 1, "sha256": "0"}]}',
+                                      b"\xff\xfe"])
+def test_an_unreadable_manifest_is_named_as_such(tmp_path, manifest):
+    """Issue 50 item 14: a corrupt or tampered manifest is refused, and the line says the manifest is unreadable
+    (it used to say camcam 'did not write' its own files)."""
+    target = tmp_path / "out"
+    _earlier(target)
+    (target / MANIFEST).write_bytes(manifest)
+    msg = _force_over(target, tmp_path)
+    assert f"its {MANIFEST} is unreadable" in msg and "did not write" not in msg
+
+
+def test_force_replaces_an_earlier_set_with_sub_folders(tmp_path):
+    """Issue 50 item 11: a batch's set (`spec/file` names) is an earlier run's set that --force replaces."""
+    target = tmp_path / "out"
+    _earlier(target, ("s1/a.ngc", "s2/a.ngc", "summary.csv"))
+    with pytest.raises(OutputError, match="add --force"):
+        _set(target, ("s1/a.ngc",)).commit()
+    _set(target, ("s1/a.ngc",), force=True).commit()
+    assert snapshot(target)["s1/a.ngc"] == b"new s1/a.ngc" and "s2" not in os.listdir(target)
+    (target / "s1" / "mine.txt").write_text("mine")
+    assert "s1/mine.txt" in _force_over(target, tmp_path)
+
+
+def test_cli_force_keeps_a_folder_in_place_of_the_program(tmp_path):
+    """Issue 50 item 1 as reported, through the command line."""
+    out = tmp_path / "m5"
+    assert run_inproc(["motion", DEMO, "-o", out])[0] == 0
+    victim = sorted(p for p in os.listdir(out) if p != MANIFEST)[0]
+    os.remove(out / victim)
+    (out / victim).mkdir()
+    (out / victim / "mine.txt").write_text("mine")
+    before = snapshot(tmp_path)
+    code, _, err = run_inproc(["motion", DEMO, "-o", out, "--force"])
+    assert f"{victim} is now a folder" in assert_clean_error(code, err)
+    assert snapshot(tmp_path) == before

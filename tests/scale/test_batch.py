@@ -47,3 +47,26 @@ def test_an_internal_fault_is_a_row_not_the_end(tmp_path, monkeypatch):
     rows = list(csv.DictReader((tmp_path / "out" / "summary.csv").open()))
     assert rows[0]["verdict"] == "ERROR" and rows[0]["reason"] == "internal fault: ZeroDivisionError: simulated fault"
     assert rows[1]["verdict"] == "PASS" and (tmp_path / "out" / "demo" / "demo-motion.csv").exists()
+
+
+def test_batch_force_replaces_an_earlier_batch_and_the_loser_of_a_race_is_told(tmp_path, monkeypatch):
+    """Issue 50 item 11: `batch --force` said an earlier batch's folder 'holds files camcam did not write' (its
+    manifest's `spec/file` names were not read), and so did the loser of two concurrent batches."""
+    monkeypatch.setattr(engine, "dask_available", lambda: False)
+    demo, out = str(ROOT / "samples" / "demo.toml"), tmp_path / "out"
+    assert cli("batch", demo, "-o", str(out))[0] == 0
+    code, _, err = cli("batch", demo, "-o", str(out))
+    assert code == 2 and "add --force" in err and err.count("\n") == 1
+    assert cli("batch", demo, "-o", str(out), "--force")[0] == 0
+    # a race: another batch publishes into the folder while this one runs
+    real = run_cmd.job
+
+    def job(spec, o, progress):
+        if not out.with_name("other").exists():
+            out.with_name("other").mkdir()
+            assert cli("batch", demo, "-o", str(tmp_path / "race"))[0] == 0
+        return real(spec, o, progress)
+
+    monkeypatch.setattr(run_cmd, "job", job)
+    code, _, err = cli("batch", demo, "-o", str(tmp_path / "race"))
+    assert code == 2 and "another camcam run published its files there while this one ran" in err, err

@@ -105,3 +105,14 @@ def test_progress_bar_only_when_asked(tmp_path):
     assert code == 0
     assert "\rcamcam: 6 designs [###############...............] 1/2" in err and err.endswith("2/2\n")
     assert sorted(p.read_bytes() for p in (tmp_path / "a").iterdir()) == sorted(p.read_bytes() for p in (tmp_path / "b").iterdir())
+
+
+def test_size_takes_force_as_its_own_advice(tmp_path):
+    """Issue 50 item 11: `size` suggested --force for an earlier run's folder, then rejected the flag."""
+    spec = tmp_path / "s.toml"
+    spec.write_text(BASE + "[size]\nbase_radius = [10, 12, 1]\noffset = 0\nmax_pressure_angle_deg = 10\nsamples = 720\n")
+    args = ("size", str(spec), "-o", str(tmp_path / "o"), "--in-process", "--table", "csv")
+    assert cli(*args)[0] == 3
+    code, _, err = cli(*args)
+    assert code == 2 and "add --force" in err and err.count("\n") == 1
+    assert cli(*args, "--force")[0] == 3  # replaced; still no feasible design
