@@ -315,9 +315,11 @@ def run(args) -> int:
     def show(summary: dict) -> None:
         print_summary(summary["motion"])
         if "cam" in summary:
+            from camcam.geometry.analysis import radius_text  # imported already by the geometry stage
+
             c = summary["cam"]
             print(f"max pressure angle {c['max_pressure_angle_deg']:.4f}° at {c['max_pressure_angle_at_deg']:.2f}°; "
-                  f"min radius of curvature {c['min_curvature_radius_mm']:.4f} mm at {c['min_curvature_radius_at_deg']:.2f}°")
+                  f"min radius of curvature {radius_text(c['min_curvature_radius_mm'], c['min_curvature_radius_at_deg'], 4)}")
             if "machining" in c:
                 what = ("3-D groove deviation" if "flank_deviation" in c["machining"] else "max deviation")
                 where = (" (both walls, every radius)" if "flank_deviation" in c["machining"] else "")

@@ -13,8 +13,8 @@ def _curv(c):
     if c is None:
         return None
     return {
-        "min_radius_mm": c.min_radius_mm,
-        "min_radius_at_deg": c.angle_deg,
+        "min_radius_mm": c.min_radius_mm,  # inf ("inf" in JSON): a straight curve
+        "min_radius_at_deg": c.at_deg,
         "concave_ranges_deg": [list(r) for r in c.concave_deg],
         "min_concave_radius_mm": c.min_concave_radius.value if c.min_concave_radius else None,
     }
@@ -41,8 +41,8 @@ def cam_report(built: BuiltCam, mesh: bool = True) -> dict:
         "rotation": cam.rotation,
         "max_pressure_angle_deg": an.max_pressure_angle_deg.value,
         "max_pressure_angle_at_deg": an.max_pressure_angle_deg.angle_deg,
-        "min_curvature_radius_mm": an.profile.min_radius_mm,
-        "min_curvature_radius_at_deg": an.profile.angle_deg,
+        "min_curvature_radius_mm": an.profile.min_radius_mm,  # inf ("inf" in JSON): straight flanks, no curvature
+        "min_curvature_radius_at_deg": an.profile.at_deg,  # None there: no place to name
         "profile_curvature": _curv(an.profile),
         "pitch_curvature": _curv(an.pitch),
         "mesh": mesh_figures(built) if mesh else None,
@@ -53,4 +53,6 @@ def cam_report(built: BuiltCam, mesh: bool = True) -> dict:
     if spec.kind == "cylindrical":
         out["pressure_angle_radius_mm"] = cam.bottom_radius
         out["curvature_note"] = "developed flanks at the groove bottom"
-    return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in out.items()}
+    # a figure that cannot be computed is None; an infinite radius of curvature is a true figure and stays
+    return {k: (None if isinstance(v, float) and not math.isfinite(v) and k != "min_curvature_radius_mm" else v)
+            for k, v in out.items()}

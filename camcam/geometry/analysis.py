@@ -24,7 +24,7 @@ from camcam.geometry.extrema import extreme, negative_ranges
 from camcam.geometry.jet import hypot
 
 __all__ = ["AngleValue", "CurvatureSummary", "FaceWidth", "DiscAnalysis", "analyse", "max_pressure_angle", "undercut_margin", "convex_curvature", "flat_radius", "check_undercut",
-           "smallest_base_radius_without_undercut", "analyse_cylindrical"]
+           "smallest_base_radius_without_undercut", "analyse_cylindrical", "radius_text"]
 
 
 @dataclass(frozen=True)
@@ -33,14 +33,45 @@ class AngleValue:
     angle_deg: float
 
 
+def radius_text(radius_mm: float | None, at_deg: float | None, decimals: int = 3) -> str:
+    """A smallest radius of curvature as printed: with its cam angle, or "infinite" for a straight profile.
+
+    A profile with no curvature (a dwell-only barrel's developed flanks) has no smallest finite
+    radius and no place where it occurs; ``None`` stands for that in the report's dicts.
+
+    Examples
+    --------
+    >>> radius_text(12.3456, 37.5)
+    '12.346 mm at 37.50°'
+    >>> radius_text(math.inf, 0.0)
+    'infinite (straight: no curvature)'
+    """
+    if radius_mm is None or not math.isfinite(radius_mm):
+        return "infinite (straight: no curvature)"
+    return f"{radius_mm:.{decimals}f} mm" + (f" at {at_deg:.2f}°" if at_deg is not None else "")
+
+
 @dataclass(frozen=True)
 class CurvatureSummary:
-    """Smallest radius of curvature on the convex part, and the concave ranges (degrees)."""
+    """Smallest radius of curvature on the convex part, and the concave ranges (degrees).
+
+    ``min_radius_mm`` is ``math.inf`` where the curve is straight throughout; ``angle_deg`` then
+    names no particular place (:attr:`at_deg` is None).
+    """
 
     min_radius_mm: float
     angle_deg: float
     concave_deg: tuple[tuple[float, float], ...]
     min_concave_radius: AngleValue | None
+
+    @property
+    def at_deg(self) -> float | None:
+        """Where the smallest radius occurs, None on a straight curve (no smallest finite radius)."""
+        return self.angle_deg if math.isfinite(self.min_radius_mm) else None
+
+    def describe(self, decimals: int = 3) -> str:
+        """``"12.346 mm at 37.50°"``, or ``"infinite (straight: no curvature)"``."""
+        return radius_text(self.min_radius_mm, self.at_deg, decimals)
 
 
 @dataclass(frozen=True)

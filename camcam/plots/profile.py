@@ -85,7 +85,7 @@ def cam_png(built: BuiltCam, title: str = "") -> bytes:
     ax2.plot(deg, rho, color="C4")
     c = an.profile
     ax2.set_ylabel("radius of curvature [mm]")
-    ax2.set_title(f"min convex radius of curvature {c.min_radius_mm:.3f} mm at {c.angle_deg:.2f}°", fontsize=9)
+    ax2.set_title(f"min convex radius of curvature {c.describe()}", fontsize=9)
     for ax in (ax1, ax2):
         ax.grid(True, alpha=0.3)
         ax.set_xlim(0, 360)

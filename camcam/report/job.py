@@ -10,6 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from camcam.geometry.analysis import radius_text
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.disc import DiscCam
 from camcam.geometry.groove import GrooveCam
@@ -196,7 +197,7 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes | Pending, b
         if cam_png is not None:
             blocks.append(Figure(cam_png, "The cam at cam angle 0 with pitch curve, base circle and roller; pressure angle and radius of curvature."))
         rows = [("largest pressure angle", f"{cam_figures['max_pressure_angle_deg']:.3f}° at {cam_figures['max_pressure_angle_at_deg']:.2f}°"),
-                ("smallest convex radius of curvature", f"{cam_figures['min_curvature_radius_mm']:.3f} mm at {cam_figures['min_curvature_radius_at_deg']:.2f}°")]
+                ("smallest convex radius of curvature", radius_text(cam_figures["min_curvature_radius_mm"], cam_figures["min_curvature_radius_at_deg"]))]
         blocks.append(KeyValues(tuple(rows)))
         sections.append(Section("Cam", tuple(blocks)))
     if machining is not None:
