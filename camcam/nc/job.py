@@ -40,6 +40,7 @@ from camcam.nc.roughing import RING_STEP_FRACTION, Spiral, disc_spiral
 from camcam.nc.settings import DEFAULT_STOCK, MachiningSpec, StockSpec
 from camcam.nc.stock import blank_for
 from camcam.nc.tools import check_profile_tool, groove_passes, job_title
+from camcam.toolpath.arcsweep import passes_within_sweep
 from camcam.toolpath.contours import CutContour, fit_printed
 from camcam.toolpath.path import Pass, Rapid, Toolpath, depth_levels
 
@@ -174,6 +175,8 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
                 passes += ramp_loop_passes(k, kind, fit.elements, levels, blank.top_z_mm, m.ramp_angle_deg, cs,
                                            m.spring_pass)
             contours.append(CutContour(label, curve, fit, printed, dev, offset, free is not None, segs, side))
+    # lead arcs, spirals and ramps planned at the post's largest sweep print within it (contours already do)
+    passes = passes_within_sweep(passes, post.quantizer, post.max_arc_sweep_deg)
     safe = (Rapid(None, None, max(m.safe_z_mm, z_clear)),)
     counts: dict[str, int] = {}
     for p in passes:

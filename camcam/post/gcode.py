@@ -26,6 +26,8 @@ from camcam.nc.settings import ProgramSetup
 from camcam.nc.timing import MoveTimer
 from camcam.post.template import parse_template
 from camcam.post.text import encode_comment
+from camcam.toolpath.arcsweep import printed_sweep_rad
+from camcam.toolpath.elements import Arc
 from camcam.toolpath.path import ArcMove, Comment, Feed, Rapid, Toolpath
 
 if TYPE_CHECKING:  # annotations only: post.post imports this module to print its programs
@@ -185,10 +187,10 @@ class _Writer:
                                 f"after rounding (post {self.post.name} allows {self.post.max_radius_error_mm:g})")
         if (sx, sy) == (ex, ey):
             raise PostError(f"arc at X{sx * scale:g} Y{sy * scale:g} would be a full circle")
-        a0 = math.atan2(sy - cy, sx - cx)
-        a1 = math.atan2(ey - cy, ex - cx)
-        sweep = math.degrees(((a1 - a0) if ccw else (a0 - a1)) % (2 * math.pi))
-        if sweep > self.post.max_arc_sweep_deg + 1e-6:
+        # the sweep the controller cuts from these printed numbers, as the planners judged it (arcsweep)
+        sweep = math.degrees(printed_sweep_rad(Arc((sx * scale, sy * scale), (ex * scale, ey * scale),
+                                                   (cx * scale, cy * scale), ccw), self.post.quantizer))
+        if sweep > self.post.max_arc_sweep_deg:
             raise PostError(f"arc to X{ex * scale:g} Y{ey * scale:g} sweeps {sweep:.3f}° > post {self.post.name}'s "
                                 f"max_arc_sweep_deg {self.post.max_arc_sweep_deg:g}")
 

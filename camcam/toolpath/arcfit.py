@@ -36,6 +36,7 @@ from camcam.errors import FitError, InputError
 from camcam.forked import parallel_map
 from camcam.geometry.curve import PlanarCurve, curvature, speed
 from camcam.toolpath.arcspline import fit_arc_spline, g1_sections
+from camcam.toolpath.arcsweep import parts_within
 from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.toolpath.deviation import Deviation, measure_deviation
 from camcam.toolpath.elements import Arc, Line
@@ -119,14 +120,18 @@ def _fit_arcs(curve, tolerance_mm, band, quantizer, max_sweep, a, b, exact, prin
         for target in targets:
             spline = fit_arc_spline(curve, lo, hi, target, quantizer=quantizer, max_sweep=max_sweep, sag=sag,
                                     closed=whole, workers=workers, lower_bound=band_lb)
-            dev_s = measure_deviation(exact, printed(spline.elements), lo, hi, margin_mm=margin)
+            # arcs planned at the post's limit may print a hair over it: cut into parts before measuring
+            split = [parts_within(e, quantizer, math.degrees(max_sweep)) if isinstance(e, Arc) else (e,)
+                     for e in spline.elements]
+            elements = tuple(p for ps in split for p in ps)
+            dev_s = measure_deviation(exact, printed(elements), lo, hi, margin_mm=margin)
             if dev_s.max_deviation_mm <= tolerance_mm:
                 break
         else:
             raise FitError(f"cannot fit the curve on t ∈ [{lo:g}, {hi:g}] within {tolerance_mm:g} mm: the printed "
                            f"path stays {dev_s.max_deviation_mm:.4g} mm off after {budget.attempts} attempts")
-        elems.extend(spline.elements)
-        starts.extend(spline.starts)
+        elems.extend(elements)
+        starts.extend(t for ps, t in zip(split, spline.starts) for _ in ps)  # a cut arc's parts count where it began
         if worst is None or dev_s.max_deviation_mm > worst.max_deviation_mm:
             worst = dev_s
     starts = np.asarray(starts)
