@@ -19,7 +19,7 @@ from typing import Any, Callable, Iterator, Sequence, TextIO
 
 from camcam.errors import SpecError
 
-__all__ = ["Executor", "InProcess", "DaskExecutor", "open_executor", "dask_available", "SCALE_HINT"]
+__all__ = ["Executor", "InProcess", "DaskExecutor", "open_executor", "dask_available", "SCALE_HINT", "WORKER_TIMEOUT_S"]
 
 SCALE_HINT = "ran in-process; pip install 'camcam[scale]' runs it on a Dask cluster (local by default, or --scheduler ADDRESS)"
 
@@ -87,12 +87,23 @@ class InProcess(Executor):
         return out
 
 
-class DaskExecutor(Executor):
-    """The tasks on a ``dask.distributed`` client; the shared arguments are sent to the workers once."""
+#: How long a command waits for a first worker on an existing scheduler (``--timeout``), seconds.
+WORKER_TIMEOUT_S = 60.0
 
-    def __init__(self, client, label: str) -> None:
+
+class DaskExecutor(Executor):
+    """The tasks on a ``dask.distributed`` client; the shared arguments are sent to the workers once.
+
+    ``wait_s``: on a scheduler with no worker, how long to wait for one before giving up with a
+    :class:`~camcam.errors.SpecError` naming ``--timeout`` (``None``: a cluster of our own, whose
+    workers are started with it).  The waiting is said on a terminal (``tell``), never silent there.
+    """
+
+    def __init__(self, client, label: str, wait_s: float | None = None, tell: Callable[[str], None] | None = None) -> None:
         self.client = client
         self.label = label
+        self.wait_s = wait_s
+        self.tell = tell
 
     @property
     def workers(self) -> int:
@@ -103,6 +114,8 @@ class DaskExecutor(Executor):
 
         if not items:
             return []
+        if self.wait_s is not None and not self.workers:
+            self._wait_for_a_worker()
         # hash=False: a fresh key each call, so releasing an earlier call's copy cannot drop this one
         scattered = {k: self.client.scatter(v, broadcast=True, hash=False) for k, v in shared.items()}
         futures = self.client.map(fn, list(items), pure=False, **scattered)
@@ -112,17 +125,31 @@ class DaskExecutor(Executor):
         return self.client.gather(futures)
 
 
+    def _wait_for_a_worker(self) -> None:
+        if self.tell is not None:
+            self.tell(f"waiting for a worker to join the {self.label} (up to {self.wait_s:g} s, --timeout)")
+        try:
+            self.client.wait_for_workers(1, timeout=self.wait_s)
+        except (TimeoutError, OSError):
+            raise SpecError("--timeout", f"no worker joined the {self.label} within {self.wait_s:g} s; start one "
+                            f"(dask worker ADDRESS) or wait longer with --timeout SECONDS") from None
+
+
 @contextmanager
 def open_executor(scheduler: str | None = None, workers: int | None = None, in_process: bool = False,
-                  progress: bool = False) -> Iterator[Executor]:
-    """The executor a command runs on (see the module docstring); closes what it opened."""
-    with _opened(scheduler, workers, in_process) as executor:
+                  progress: bool = False, timeout_s: float = WORKER_TIMEOUT_S,
+                  tell: Callable[[str], None] | None = None) -> Iterator[Executor]:
+    """The executor a command runs on (see the module docstring); closes what it opened.
+
+    ``timeout_s`` bounds the wait for a first worker on an existing scheduler; ``tell`` is told that
+    the command is waiting (the commands pass a stderr note on a terminal)."""
+    with _opened(scheduler, workers, in_process, timeout_s, tell) as executor:
         executor.progress = progress
         yield executor
 
 
 @contextmanager
-def _opened(scheduler, workers, in_process) -> Iterator[Executor]:
+def _opened(scheduler, workers, in_process, timeout_s, tell) -> Iterator[Executor]:
     if in_process:
         yield InProcess()
         return
@@ -139,7 +166,7 @@ def _opened(scheduler, workers, in_process) -> Iterator[Executor]:
         except (OSError, TimeoutError, ValueError) as err:
             raise SpecError("--scheduler", f"cannot reach a Dask scheduler at {scheduler}: {' '.join(str(err).split())}") from None
         try:
-            yield DaskExecutor(client, f"Dask scheduler {scheduler}")
+            yield DaskExecutor(client, f"Dask scheduler {scheduler}", timeout_s, tell)
         finally:
             client.close()
         return

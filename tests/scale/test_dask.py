@@ -60,3 +60,17 @@ def test_batch_same_bytes_in_process_and_cluster(scheduler, tmp_path):
     assert [line.split(",")[3] for line in summary[1:]] == ["PASS", "PASS", "ERROR"]
     assert "disc-translating-roller/disc-translating-roller.ngc" in results["cluster"]
     assert not any(k.startswith("missing/") for k in results["cluster"])
+
+
+def test_a_scheduler_without_workers_is_given_up_after_the_timeout(tmp_path):
+    """Issue 50 item 12: `batch --scheduler ADDR` against a scheduler with no workers hung silently; now it waits
+    --timeout seconds and ends with one line naming --timeout, nothing written."""
+    import logging
+
+    with distributed.LocalCluster(n_workers=0, processes=False, dashboard_address=":0",
+                                  silence_logs=logging.ERROR) as empty:
+        code, _, err = cli("batch", str(ROOT / "samples" / "demo.toml"), "-o", str(tmp_path / "out"),
+                           "--scheduler", empty.scheduler_address, "--timeout", "1")
+    assert code == 2 and err.count("\n") == 1, err
+    assert err.startswith("camcam: error: --timeout: no worker joined the Dask scheduler") and "within 1 s" in err
+    assert not (tmp_path / "out").exists()
