@@ -55,7 +55,7 @@ def test_run_sample(spec, tmp_path):
         # verdict says FAIL and the sample accepts it (a sample that shows the FAIL verdict)
         verdict = report.get("verdict", {"status": "PASS", "accepted": False})
         within = report["max_deviation_mm"] <= report["tolerance_mm"]
-        assert within == (verdict["status"] == "PASS")
+        assert within == (verdict["status"] != "FAIL")  # WARN: an advisory design limit missed (issue 43)
         assert within or (verdict["accepted"] and "accept_out_of_tolerance = true" in spec.read_text())
         assert any(f.endswith(".dxf") for f in files)
 

@@ -130,6 +130,9 @@ def main(argv: list[str] | None = None) -> int:
     if not getattr(args, "func", None):
         parser.print_help()
         return USAGE_ERROR
+    from camcam.cli.output import begin_warnings
+
+    begin_warnings(bool(getattr(args, "verbose", False)))  # warnings on stdout and in the report; stderr with --verbose
     disk = DiskLog()
     with Watch() as watch:
         args.watch, args.disk_log = watch, disk

@@ -4,8 +4,9 @@ Each spec goes through the same library path as ``camcam run`` (:func:`camcam.cl
 as one task, in this process or on Dask workers.  A spec that fails (bad input or an
 internal fault) is a row of the summary with its one-line reason; the others still run.
 Writes ``DIR/<spec file stem>/…`` (what ``camcam run`` writes), ``DIR/summary.csv``,
-``DIR/summary.json`` and ``DIR/index.html``.  Exit 0 when every spec passes, 3 when any
-did not and was not accepted (its row says why; the other folders are written).
+``DIR/summary.json`` and ``DIR/index.html``.  Exit 0 when every spec passes (PASS, or WARN: an
+advisory design limit missed), 3 when any did not and was not accepted (its row says why; the
+other folders are written).
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ import io
 import sys
 from pathlib import Path
 
-from camcam.cli.output import add_output_arguments, output_set, print_json, to_json
+from camcam.cli.output import add_output_arguments, collect_warnings, output_set, print_json, to_json
 from camcam.cli.commands import help_of
 from camcam.cli.scaling import add_scale_arguments, executor_from_args, tell_scale_note
 
@@ -46,7 +47,7 @@ def summary_row(spec_arg: str, folder: str, summary: dict | None, verdict, warni
         row.update(verdict="ERROR", reason=error)
         return row
     cam = summary.get("cam") or {}
-    reason = "" if verdict.passed else verdict.line() + (" (accepted: accept_out_of_tolerance = true)" if verdict.accepted else "")
+    reason = "" if verdict.status == "PASS" else verdict.line() + (" (accepted: accept_out_of_tolerance = true)" if verdict.accepted and not verdict.passed else "")
     row.update(name=summary.get("name", ""), verdict=verdict.status, accepted=verdict.accepted, reason=reason)
     for key in ("max_deviation_mm", "tolerance_mm", "line_blocks", "arc_blocks", "cycle_time_s", "max_pressure_angle_deg",
                 "min_curvature_radius_mm"):
@@ -67,16 +68,17 @@ def batch_task(item: tuple[str, str]) -> tuple[dict, dict[str, bytes]]:
     err = io.StringIO()
     out = OutputSet(folder)
     summary, verdict, error = None, None, ""
-    with contextlib.redirect_stderr(err):
+    with contextlib.redirect_stderr(err), collect_warnings() as warnings:
         try:
             summary, verdict = job(load_spec(spec_arg), out, Progress(False))
         except CamcamError as e:
             error = " ".join(str(e).splitlines())
         except Exception as e:  # noqa: BLE001 - one spec's fault must not stop the batch; the row names it
             error = f"internal fault: {type(e).__name__}: {' '.join(str(e).splitlines())}"
-    warnings = [line.removeprefix("camcam: warning: ") for line in err.getvalue().splitlines() if line.startswith("camcam: warning: ")]
-    row = summary_row(spec_arg, folder, summary, verdict, warnings, error)
-    row["warning_text"] = warnings
+    # the warnings `camcam run` prints: the job's own, then the verdict's advisory misses (design limits)
+    warned = [m for k, m in warnings if k == "warning"] + ([c.describe() for c in verdict.warnings] if verdict else [])
+    row = summary_row(spec_arg, folder, summary, verdict, warned, error)
+    row["warning_text"] = warned
     return row, (out.contents() if summary is not None else {})
 
 
@@ -114,7 +116,9 @@ def _index(rows: list[dict], files: list[dict[str, bytes]]) -> str:
                f"{r['line_blocks']} + {r['arc_blocks']}" if r["line_blocks"] != "" else "", num(r["cycle_time_s"], 1),
                num(r["max_pressure_angle_deg"], 3), r["reason"]) for r in rows))
     passed = sum(r["verdict"] == "PASS" for r in rows)
-    page = render_html("camcam batch", f"{len(rows)} specs: {passed} PASS, {len(rows) - passed} not", [
+    warned = sum(r["verdict"] == "WARN" for r in rows)
+    page = render_html("camcam batch", f"{len(rows)} specs: {passed} PASS, " + (f"{warned} WARN, " if warned else "")
+                       + f"{len(rows) - passed - warned} not", [
         Section("Summary", (table, Paragraph("summary.csv holds the same table; each folder holds what `camcam run` writes."))),
     ])
     links = []
@@ -147,7 +151,7 @@ def run(args) -> int:
     top.add("summary.json", to_json({"specs": rows}) + "\n")
     top.add("index.html", _index(table_rows, contents))
     top.commit()
-    bad = [r for r in rows if r["verdict"] != "PASS" and r["accepted"] is not True]
+    bad = [r for r in rows if r["verdict"] not in ("PASS", "WARN") and r["accepted"] is not True]  # WARN exits 0
     if args.json:
         print_json({"specs": rows, "output": str(root), **({"note": note} if note else {})})
     else:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 
 from camcam.cli.commands import help_of
-from camcam.cli.output import add_output_arguments, output_set, publish, warn
+from camcam.cli.output import add_output_arguments, add_verbose_flag, output_set, publish, warn
 from camcam.export.files import OutputSet
 from camcam.export.motion_table import motion_csv
 from camcam.motion.program import MotionProgram
@@ -19,6 +19,7 @@ def register(sub) -> None:
     add_output_arguments(p)
     p.add_argument("--step", type=float, default=0.5, help="table step in degrees (default 0.5)")
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
+    add_verbose_flag(p)
     p.set_defaults(func=run)
 
 

@@ -16,7 +16,7 @@ import sys
 from importlib import resources
 
 from camcam.cli.commands import help_of
-from camcam.cli.output import add_output_arguments, output_set, publish, to_json, warn
+from camcam.cli.output import add_output_arguments, add_verbose_flag, output_set, publish, to_json, warn
 from camcam.cli.progress import Progress, add_progress_flag
 from camcam.verdict import Verdict
 
@@ -76,7 +76,8 @@ def drawing_and_check(built, machining, machining_spec):
 
 
 def nc_figures(report: dict, result, part_deviation_mm: float | None) -> None:
-    """Add the NC step's figures to ``report`` and print its notes as warnings."""
+    """Add the NC step's figures to ``report`` and pass its notes on as warnings (stdout; stderr with
+    ``--verbose``: :func:`camcam.cli.output.warn`)."""
     nc = result.figures()
     nc["dxf_part_deviation_mm"] = part_deviation_mm
     for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks", "cycle_time_s"):
@@ -85,7 +86,7 @@ def nc_figures(report: dict, result, part_deviation_mm: float | None) -> None:
     if "material" in nc:
         report["material"] = nc["material"]
     for note in result.notes:
-        warn(note)
+        warn(note, "note")
 
 
 def job_verdict(machining, machining_spec) -> Verdict:
@@ -97,7 +98,7 @@ def job_verdict(machining, machining_spec) -> Verdict:
 
 def design_and_drawing_checks(built, machining, machining_spec, strict: bool, part_deviation_mm: float | None):
     """The DXF part outline against the tolerance and the design checks (:mod:`camcam.nc.design_checks`:
-    warnings, or failures with ``[report] strict``)."""
+    WARN, or FAIL with ``[cam] design_limits = "fail"`` for the design limits, ``[report] strict`` for all)."""
     from camcam.nc.design_checks import design_checks
     from camcam.verdict import Check
 
@@ -115,6 +116,7 @@ def register(sub) -> None:
     add_output_arguments(p)
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     add_progress_flag(p)
+    add_verbose_flag(p)
     p.set_defaults(func=run)
 
 
@@ -337,10 +339,10 @@ def run(args) -> int:
                       f"{mt['plunges_into_material']} plunges into material, left {mt['material_left_mm']:.4f} mm, "
                       f"overcut {mt['overcut_mm']:.4f} mm")
 
+    for c in verdict.warnings[1 if verdict.status == "WARN" else 0:]:  # a WARN verdict's line names the first
+        warn(c.describe())
     with progress.step("writing files"):
         publish(out, summary, args.json, show, (verdict.line(),) if verdict.checks else ())
-    for c in verdict.warnings:
-        warn(c.describe())
     if not verdict.passed:
         accepted = " (accepted: accept_out_of_tolerance = true)" if verdict.accepted else ""
         print(f"camcam: {verdict.line()}{accepted}", file=sys.stderr)

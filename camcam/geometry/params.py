@@ -26,6 +26,8 @@ class CamSpec:
     outer_radius: float | None = None
     length: float | None = None
     max_pressure_angle_deg: float | None = None  # design check limit; None: 30° translating, 35° oscillating
+    min_curvature_radius_mm: float | None = None  # design check limit; None: half the roller radius (0 for a flat face)
+    design_limits: str = "warn"  # "warn": a design limit missed is a warning (WARN); "fail": it fails the run (exit 3)
 
 
 FOLLOWER_KINDS = ("translating-roller", "oscillating-roller", "translating-flat", "oscillating-flat")

@@ -2,13 +2,20 @@
 
 * pressure angle over ``[cam] max_pressure_angle_deg`` (default 30° for a
   translating follower, 35° for an oscillating one, the usual rules of thumb);
+* the profile's smallest convex radius of curvature below ``[cam]
+  min_curvature_radius_mm`` (default half the roller radius: the pitch curve
+  bends at least 1.5 roller radii, the usual rule for contact stress; 0 for a
+  flat face, whose cusp is refused as bad input anyway);
 * a cut depth beyond the part: below a disc's bottom face (into the fixture)
   or below a groove's floor;
 * a finishing allowance larger than the stepdown (the finish pass would take
   more side stock than a roughing pass takes depth).
 
-Each is a warning (``severity="warn"``); with ``[report] strict = true`` a
-miss fails the run (exit 3).
+Each is a warning (``severity="warn"``: the verdict says WARN, the run exits
+0); the two design limits (pressure angle and curvature) fail the run (exit 3)
+with ``[cam] design_limits = "fail"``, every check with ``[report] strict =
+true``.  A missed design limit's advice names the base radius that meets it
+(:func:`base_radius_meeting`), measured on the cam rebuilt at that radius.
 
 Examples
 --------
@@ -18,9 +25,18 @@ Examples
 
 from __future__ import annotations
 
+import math
+from dataclasses import replace
+from typing import Callable
+
+from camcam.errors import GeometryError
+from camcam.geometry.analysis import analyse, analyse_cylindrical, max_pressure_angle
 from camcam.verdict import Check
 
-__all__ = ["design_checks", "default_max_pressure_angle_deg"]
+__all__ = ["design_checks", "default_max_pressure_angle_deg", "default_min_curvature_radius_mm", "base_radius_meeting"]
+
+#: The default least radius of curvature of a roller follower's profile, in roller radii (pitch curve: 1.5).
+CURVATURE_ROLLERS = 0.5
 
 
 def default_max_pressure_angle_deg(follower_kind: str) -> float:
@@ -28,16 +44,120 @@ def default_max_pressure_angle_deg(follower_kind: str) -> float:
     return 35.0 if follower_kind.startswith("oscillating") else 30.0
 
 
+def default_min_curvature_radius_mm(roller_radius_mm: float) -> float:
+    """Half the roller radius (the pitch curve then bends at least 1.5 roller radii); 0 for a flat face."""
+    return CURVATURE_ROLLERS * roller_radius_mm
+
+
+def _moves_pivot(cam) -> bool:
+    """A barrel cam's oscillating roller: its pivot moves out with the cylinder radius (the arm stays in the groove)."""
+    return _is_barrel(cam) and getattr(cam.follower, "pivot_distance", None) is not None
+
+
+def _is_barrel(cam) -> bool:
+    return hasattr(cam, "groove_depth") and not hasattr(cam, "flanks")
+
+
+def _cam_at(cam, base_radius_mm: float):
+    """``cam`` with another base radius (a face groove's inner cam, a cylinder's radius; a barrel cam's oscillating
+    roller's pivot moved out by as much)."""
+    if hasattr(cam, "flanks"):
+        return replace(cam, cam=replace(cam.cam, base_radius=base_radius_mm))
+    if _moves_pivot(cam):
+        pivot = cam.follower.pivot_distance + base_radius_mm - cam.base_radius
+        return replace(cam, base_radius=base_radius_mm, follower=replace(cam.follower, pivot_distance=pivot))
+    return replace(cam, base_radius=base_radius_mm)
+
+
+def _analysis(cam):
+
+    return analyse_cylindrical(cam) if _is_barrel(cam) else analyse(cam)
+
+
+def base_radius_meeting(cam, margin: Callable[[object], float], cap_mm: float = 10_000.0) -> float | None:
+    """The smallest base radius (mm, rounded up to 0.1 mm) at which ``margin(cam)`` ≥ 0 for ``cam`` rebuilt
+    with it, searched upwards from its own; None when none up to ``cap_mm`` does.  The value returned is
+    measured, not extrapolated: the cam at exactly that radius meets the limit.  A barrel cam's
+    oscillating roller has its pivot moved out by as much as the radius grows (:func:`_cam_at`)."""
+
+    def m(r: float) -> float | None:
+        try:
+            return float(margin(_cam_at(cam, r)))
+        except (GeometryError, ValueError):
+            return None
+
+    lo, m_lo = cam.base_radius, m(cam.base_radius)
+    hi, m_hi = lo, m_lo
+    while m_hi is None or m_hi < 0:
+        lo, m_lo = hi, m_hi
+        hi = hi * 1.25
+        if hi > cap_mm:
+            return None
+        m_hi = m(hi)
+    side = 0
+    for _ in range(30):  # false position (Illinois) where both ends are measured, else halving
+        if hi - lo <= 0.05:
+            break
+        if m_lo is not None and m_lo < 0 < m_hi:
+            mid = hi - m_hi * (hi - lo) / (m_hi - m_lo)
+            mid = min(max(mid, lo + 0.01 * (hi - lo)), hi - 0.01 * (hi - lo))
+        else:
+            mid = 0.5 * (lo + hi)
+        m_mid = m(mid)
+        if m_mid is not None and m_mid >= 0:
+            hi, m_hi = mid, m_mid
+            if side == 1 and m_lo is not None:
+                m_lo /= 2  # Illinois: the end kept twice is halved
+            side = 1
+        else:
+            lo, m_lo = mid, m_mid
+            if side == -1:
+                m_hi /= 2
+            side = -1
+    r = math.ceil(hi * 10.0 - 1e-9) / 10.0
+    m_r = m(r)
+    return r if m_r is not None and m_r >= 0 else hi
+
+
+def _limit_advice(cam, margin, what: str, other: str, fails: bool, strict: bool) -> str:
+    r = base_radius_meeting(cam, margin)
+    pivot = ""
+    if r is not None and _moves_pivot(cam):
+        pivot = f" with follower.pivot_distance = {cam.follower.pivot_distance + r - cam.base_radius:g} mm"
+    fix = f"cam.base_radius >= {r:g} mm{pivot} {what}" if r is not None else f"a larger cam.base_radius {what}"
+    text = f"{fix}; or {other}"
+    if fails:
+        text += (", or accept it as a warning with [cam] design_limits = \"warn\"" if not strict else
+                 ", or accept it as a warning with [report] strict = false and [cam] design_limits = \"warn\"")
+    return text
+
+
 def design_checks(built, machining=None, strict: bool = False) -> tuple[Check, ...]:
-    """The checks of a built cam and its ``[machining]`` table (None: the pressure angle only)."""
+    """The checks of a built cam and its ``[machining]`` table (None: the design limits only)."""
     severity = "fail" if strict else "warn"
     spec, cam = built.spec, built.cam
+    limits = "fail" if strict or getattr(spec, "design_limits", "warn") == "fail" else "warn"
     pa = built.analysis.max_pressure_angle_deg
     limit = spec.max_pressure_angle_deg if spec.max_pressure_angle_deg is not None \
         else default_max_pressure_angle_deg(cam.kind)
-    checks = [Check("pressure angle", pa.value, limit, "deg", pa.value <= limit, severity,
-                    f"program angle {pa.angle_deg:.2f}°, {cam.kind} follower",
-                    "raise the base radius, lengthen the rise angle, or offset the follower")]
+    pa_ok = pa.value <= limit + 1e-9  # a limit met to the 9th digit (the fix is measured with the same figure)
+    advice = "" if pa_ok else _limit_advice(
+        built.cam, lambda c: limit + 1e-9 - max_pressure_angle(c).value, f"brings it within {limit:g}°",
+        "lengthen the rise angle, or offset the follower", limits == "fail", strict)
+    checks = [Check("pressure angle", pa.value, limit, "deg", pa_ok, limits,
+                    f"program angle {pa.angle_deg:.2f}°, {cam.kind} follower", advice)]
+    rho = built.analysis.profile
+    rho_min = getattr(spec, "min_curvature_radius_mm", None)
+    roller = getattr(cam, "roller_radius", 0.0) or 0.0
+    rho_limit = rho_min if rho_min is not None else default_min_curvature_radius_mm(roller)
+    rho_ok = rho.min_radius_mm >= rho_limit - 1e-9
+    advice = "" if rho_ok else _limit_advice(
+        built.cam, lambda c: _analysis(c).profile.min_radius_mm - rho_limit + 1e-9, f"brings it to {rho_limit:g} mm",
+        "a gentler motion law or a smaller roller" if roller else "a gentler motion law", limits == "fail", strict)
+    where = (f"cam angle {rho.at_deg:.2f}°, " if rho.at_deg is not None else "") + \
+        ("profile, convex side" if spec.kind != "cylindrical" else "developed flank at the groove bottom, convex side")
+    checks.append(Check("radius of curvature", rho.min_radius_mm, rho_limit, "mm", rho_ok, limits, where, advice,
+                        at_least=True))
     if machining is None:
         return tuple(checks)
     depth = machining.depth_mm

@@ -80,7 +80,7 @@ figure{margin:1em 0}figure img{max-width:100%;border:1px solid #ddd}figcaption{c
 pre{background:#f6f8fa;border:1px solid #ddd;padding:.6em;font-size:.85em;overflow-x:auto}
 .ok{color:#176b2c;font-weight:600}.bad{color:#a11;font-weight:600}
 .verdict{font-size:1.5em;font-weight:700;padding:.4em .8em;border-radius:4px;color:#fff;display:inline-block}
-.verdict.pass{background:#176b2c}.verdict.fail{background:#b3191f}
+.verdict.pass{background:#176b2c}.verdict.warn{background:#b36b00}.verdict.fail{background:#b3191f}
 @page{size:A4;margin:12mm}
 @media print{body{max-width:none;margin:0;padding:0;font-size:10pt}h2{page-break-after:avoid}
 figure,tr{page-break-inside:avoid}table{font-size:8pt}td,th{padding:.1em .3em}
@@ -97,7 +97,7 @@ def _block(b: Block) -> str:
             head += "<p>Out of tolerance, accepted by the spec (accept_out_of_tolerance = true).</p>"
         head += "".join(f'<p class="bad">warning: {e(c.describe())}</p>' for c in v.warnings)
         rows = "".join(f'<tr><td>{e(c.name)}</td><td>{c.value:.5g} {e(c.unit)}</td><td>{c.limit:g} {e(c.unit)}</td>'
-                       f'<td class="{"ok" if c.ok else "bad"}">{"within" if c.ok else ("FAIL" if c.fails else "warning")}'
+                       f'<td class="{"ok" if c.ok else "bad"}">{"within" if c.ok else ("FAIL" if c.fails else "WARN")}'
                        f'</td><td>{e(c.where)}</td><td>{e("" if c.ok else c.advice)}</td></tr>' for c in v.checks)
         return (head + "<table><thead><tr><th>check</th><th>measured</th><th>limit</th><th>result</th><th>where</th>"
                 f"<th>way out</th></tr></thead><tbody>{rows}</tbody></table>")

@@ -11,6 +11,9 @@ groove_depth = 8.0     # disc-groove and cylindrical, mm
 outer_radius = 90.0    # disc-groove: blank radius, mm (default: groove + one roller radius of wall)
 length = 120.0         # cylindrical, mm
 max_pressure_angle_deg = 30.0  # design check limit (default 30° translating, 35° oscillating followers)
+min_curvature_radius_mm = 5.0  # design check limit: the profile's smallest convex radius (default half the
+                               # roller radius, 0 for a flat face)
+design_limits = "warn"         # a design limit missed: "warn" (WARN verdict, exit 0) or "fail" (FAIL, exit 3)
 ```
 """
 
@@ -19,7 +22,10 @@ from __future__ import annotations
 from camcam.geometry.params import CAM_KINDS, CamSpec
 from camcam.spec.reader import Table
 
-__all__ = ["CamSpec", "read_cam", "CAM_KINDS", "MIN_PART_MM"]
+__all__ = ["CamSpec", "read_cam", "CAM_KINDS", "MIN_PART_MM", "DESIGN_LIMITS"]
+
+#: What a missed design limit (pressure angle, radius of curvature) does: warn (exit 0) or fail (exit 3).
+DESIGN_LIMITS = ("warn", "fail")
 
 #: Smallest cam or follower dimension (mm): below it the mesh and the fit work at rounding level.
 MIN_PART_MM = 0.1
@@ -44,5 +50,7 @@ def read_cam(t: Table) -> CamSpec:
     if bore:
         t.check("bore", bore / 2 < base - (groove or 0.0), f"{bore:g} mm leaves no material around the bore")
     max_pa = t.number("max_pressure_angle_deg", None, minimum=0.0, maximum=90.0, inclusive=False, unit="degrees")
+    min_rho = t.number("min_curvature_radius_mm", None, minimum=0.0, unit="mm")
+    limits = t.string("design_limits", "warn", choices=DESIGN_LIMITS)
     t.done()
-    return CamSpec(kind, base, bore, rotation, thickness, groove, outer, length, max_pa)
+    return CamSpec(kind, base, bore, rotation, thickness, groove, outer, length, max_pa, min_rho, limits)

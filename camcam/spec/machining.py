@@ -5,7 +5,7 @@
 post = "linuxcnc"          # a bundled post, or a path to your own post file
 tool_diameter = 16.0       # mm
 tolerance = 0.01           # mm, two-sided, on the printed program
-mode = "arcs"              # or "lines"
+mode = "arcs"              # or "lines" (default: arcs; lines for a cylindrical cam, cut in G1 only)
 feed = 400.0               # mm/min
 spindle = 3000             # rev/min
 depth = 12.0               # mm
@@ -86,7 +86,8 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
     need = DEFAULT_BUDGET.floor_mm(post.quantizer)
     t.check("tolerance", tol >= need, f"{tol:g} mm is too fine for post {post.name}'s {post.decimals} decimals; "
             f"expected >= {need:.2g} mm")
-    mode = t.string("mode", "arcs", choices=("arcs", "lines"))
+    # a barrel cam's program is G1 lines whatever the mode: its default says so (no note for a default never set)
+    mode = t.string("mode", "lines" if cam_kind == "cylindrical" else "arcs", choices=("arcs", "lines"))
     feed = t.number("feed", minimum=FEED_RANGE_MM_MIN[0], maximum=FEED_RANGE_MM_MIN[1], unit="mm/min")
     spindle = t.number("spindle", minimum=SPINDLE_RANGE_RPM[0], maximum=SPINDLE_RANGE_RPM[1], unit="rev/min")
     depth = t.number("depth", minimum=MIN_SIZE_MM, unit="mm")

@@ -23,7 +23,7 @@ def test_small_tool_fails_with_advice_and_exit_3(tmp_path):
     assert code == 3
     lines = stderr.strip().splitlines()
     fail = [line for line in lines if line.startswith("camcam: FAIL: ")]
-    assert len(fail) == 1  # one line: the cause and the way out
+    assert len(fail) == 1 and len(lines) == 1, stderr  # one line: the cause and the way out (notes are on stdout)
     assert "3-D groove deviation" in fail[0] and "roller's diameter, D16 mm" in fail[0]
     assert "accept a tolerance of at least" in fail[0]
     name = "cylindrical-translating-small-tool"

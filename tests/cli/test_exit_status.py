@@ -126,5 +126,6 @@ def test_pass_verdict_in_report(tmp_path):
     check = report["verdict"]["checks"][0]
     assert check["name"] == "NC deviation (profile)" and check["value"] == report["max_deviation_mm"]
     # the deviation, the six material-removal checks (engagement, plunges, rapids, left, overcut, rough stock),
-    # the DXF part outline and the three design checks (pressure angle, cut depth, finish allowance)
-    assert out.splitlines()[-1] == "PASS: 11 checks within their limits"
+    # the DXF part outline and the four design checks (pressure angle, radius of curvature, cut depth, finish
+    # allowance)
+    assert out.splitlines()[-1] == "PASS: 12 checks within their limits"

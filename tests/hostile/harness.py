@@ -47,12 +47,11 @@ _PROGRESS = re.compile(r"camcam: (?!error:).+ (…|done in \d+\.\d s)")
 
 
 def error_lines(stderr: str) -> list[str]:
-    """stderr without warnings and progress lines.
+    """stderr without progress lines (warnings and notes are on stdout unless --verbose: issue 43).
 
     Only whole progress lines go: an error may quote a value with "…" in it (hypothesis found the
     angle '…' in a lift table, whose error line an "…" anywhere filter dropped)."""
-    return [ln for ln in stderr.splitlines()
-            if ln and not ln.startswith("camcam: warning:") and not _PROGRESS.fullmatch(ln)]
+    return [ln for ln in stderr.splitlines() if ln and not _PROGRESS.fullmatch(ln)]
 
 
 def assert_clean_error(code: int, stderr: str, status: int = 2, prefix: str = "camcam: error: ") -> str:

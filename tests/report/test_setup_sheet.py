@@ -142,12 +142,14 @@ def test_pressure_angle_warns_then_fails_when_strict(tmp_path, capsys):
     # the sample's largest pressure angle is 22.26° (its report): a 20° limit is missed
     spec = _spec_without_machining(tmp_path, "max_pressure_angle_deg = 20.0\n")
     assert main(["run", str(spec), "-o", str(tmp_path / "a")]) == 0
-    err = capsys.readouterr().err
-    assert re.search(r"camcam: warning: pressure angle 22\.26 deg over the limit 20 deg", err)
+    # issue 43: an advisory limit missed is the verdict (WARN) on stdout and in the report, never on stderr
+    got = capsys.readouterr()
+    assert got.err == ""
+    assert re.search(r"^WARN: pressure angle 22\.26 deg over the advisory limit 20 deg", got.out, re.M)
     strict = _spec_without_machining(tmp_path, "max_pressure_angle_deg = 20.0\n", "\n[report]\nstrict = true\n")
     assert main(["run", str(strict), "-o", str(tmp_path / "b")]) == 3
     err = capsys.readouterr().err.strip().splitlines()
-    assert err[-1].startswith("camcam: FAIL: pressure angle 22.26 deg over the limit 20 deg")
+    assert len(err) == 1 and err[0].startswith("camcam: FAIL: pressure angle 22.26 deg over the limit 20 deg")
     html = (tmp_path / "b" / "disc-translating-roller-report.html").read_text()
     assert html.index('<p class="verdict fail">FAIL</p>') < html.index("pressure angle")  # written, opens with FAIL
     assert main(["run", str(_spec_without_machining(tmp_path)), "-o", str(tmp_path / "c")]) == 0
@@ -157,8 +159,9 @@ def test_pressure_angle_warns_then_fails_when_strict(tmp_path, capsys):
 def _fake(kind="disc", thickness=12.0, groove_depth=None, depth=12.0, stepdown=4.0, allowance=0.3):
     built = SimpleNamespace(spec=SimpleNamespace(kind=kind, thickness=thickness, groove_depth=groove_depth,
                                                  max_pressure_angle_deg=None),
-                            cam=SimpleNamespace(kind="oscillating-roller"),
-                            analysis=SimpleNamespace(max_pressure_angle_deg=SimpleNamespace(value=34.0, angle_deg=10.0)))
+                            cam=SimpleNamespace(kind="oscillating-roller", roller_radius=5.0),
+                            analysis=SimpleNamespace(max_pressure_angle_deg=SimpleNamespace(value=34.0, angle_deg=10.0),
+                                                     profile=SimpleNamespace(min_radius_mm=20.0, at_deg=30.0)))
     m = SimpleNamespace(depth_mm=depth, stepdown_mm=stepdown, finish_allowance_mm=allowance)
     return built, m
 
