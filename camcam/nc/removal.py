@@ -23,13 +23,15 @@ point of the design boundary (sampled from the exact curves) to the nearest
 feed path at the final depth, and ``overcut`` the deepest the tool's disc
 reaches into the part from any feed move below the top.  Any slab material
 left more than the tolerance off the part (a corner the roughing missed)
-counts as material left too.
+counts as material left too, measured against the part as measuring polygons
+whose chords keep within the budget's ``polygon_share`` of the tolerance
+whatever the cam's size (:func:`design_keep`).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -39,8 +41,9 @@ from camcam.forked import ChildGroup, resolve
 from camcam.nc.passes import SLOT_KINDS
 from camcam.nc.readback import read_program
 from camcam.nc.roughing import polygon_distance
-from camcam.nc.stock import bore_region
+from camcam.nc.stock import measuring_circle, measuring_polygon
 from camcam.nc.sweep import PROBE_INSET_MM, SAMPLE_MM, TOUCH_MM, moves_of, parse_marker, sweep_slabs, where
+from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.verdict import Check
 
 if TYPE_CHECKING:  # imported where a tree is built (_tree)
@@ -80,6 +83,8 @@ class RemovalReport:
     overcut_where: str
     rough_clearance_mm: float | None
     rough_clearance_where: str
+    #: the largest chord error of the polygons the material is measured against (:func:`design_keep`)
+    polygon_error_mm: float = 0.0
 
     def checks(self) -> tuple[Check, ...]:
         out = [
@@ -115,6 +120,7 @@ class RemovalReport:
             "material_left_mm": self.material_left_mm, "material_left_where": self.left_where,
             "overcut_mm": self.overcut_mm, "overcut_where": self.overcut_where,
             "rough_clearance_mm": self.rough_clearance_mm, "rough_clearance_where": self.rough_clearance_where,
+            "measuring_polygon_error_mm": self.polygon_error_mm,
         }
 
 
@@ -369,24 +375,40 @@ def check_program(text: str, post, blank, m, built, workers: int = 1) -> Removal
     """Read the printed ``text`` back and check it against ``blank`` (the NC stage's in-process check), its
     slabs swept by ``workers`` processes."""
     events = read_program(text, post)
-    keep, boundary = design_keep(blank, built)
-    return check_moves(events, blank.region, blank.top_z_mm, keep, boundary, m.tool_diameter_mm / 2, m.stepover_mm,
-                       m.ramp_angle_deg, m.tolerance_mm, m.finish_allowance_mm if not blank.groove else 0.0,
-                       post.decimals, workers=workers)
+    keep, boundary, polygon_error = design_keep(blank, built, m.tolerance_mm)
+    r = check_moves(events, blank.region, blank.top_z_mm, keep, boundary, m.tool_diameter_mm / 2, m.stepover_mm,
+                    m.ramp_angle_deg, m.tolerance_mm, m.finish_allowance_mm if not blank.groove else 0.0,
+                    post.decimals, workers=workers)
+    return replace(r, polygon_error_mm=polygon_error)
 
 
-def design_keep(blank, built, spacing_mm: float = DENSE_MM):
-    """(material that must remain at the final depth, dense points on the machined part of its outline)."""
+def design_keep(blank, built, tolerance_mm: float, spacing_mm: float = DENSE_MM, budget: FitBudget = DEFAULT_BUDGET):
+    """(material that must remain at the final depth, dense points on the machined part of its outline, the
+    largest chord error of the polygons that bound it, mm).
+
+    The material is bounded by measuring polygons (:func:`~camcam.nc.stock.measuring_polygon`,
+    :func:`~camcam.nc.stock.measuring_circle`) whose chords stay within the budget's
+    ``polygon_share`` of ``tolerance_mm`` (:meth:`FitBudget.polygon_mm`), whatever the cam's size: the
+    figures measured against them (material left in a slab, the band a slab's rest is judged by) are within
+    that of the exact curves'.  Not ``blank.part``, a planning polygon whose chords grow with the cam.
+    """
     cam = built.cam
+    chord = budget.polygon_mm(tolerance_mm)
     curves = [cam.flanks[0], cam.flanks[1]] if blank.groove else [cam.profile]
-    keep = blank.region.difference(blank.part) if blank.groove else blank.part
+    polys = [measuring_polygon(c, chord) for c in curves]
+    if blank.groove:
+        keep = blank.region.difference(polys[1].polygon.difference(polys[0].polygon))
+    else:
+        keep = polys[0].polygon
     pts = [_dense(c, spacing_mm) for c in curves]
     if blank.bore_machined:
-        keep = keep.difference(bore_region(blank))
         r = blank.bore_mm / 2
+        bore = measuring_circle(r, chord)
+        polys.append(bore)
+        keep = keep.difference(bore.polygon)
         a = np.linspace(0, 2 * math.pi, int(2 * math.pi * r / spacing_mm) + 1, endpoint=False)
         pts.append(np.column_stack([r * np.cos(a), r * np.sin(a)]))
-    return keep, np.concatenate(pts)
+    return keep, np.concatenate(pts), max(p.error_mm for p in polys)
 
 
 def _dense(curve, spacing_mm: float) -> np.ndarray:

@@ -21,14 +21,26 @@ from camcam.geometry.build import BuiltCam, groove_outer_radius
 from camcam.geometry.extrema import extreme
 from camcam.nc.settings import DEFAULT_OVERSIZE_MM, DEFAULT_STOCK, STOCK_KINDS, StockSpec
 
-__all__ = ["Blank", "blank_for", "largest_radius", "curve_polygon", "CIRCLE_SEGMENTS",
-           "DEFAULT_OVERSIZE_MM", "STOCK_KINDS", "bore_region"]
+__all__ = ["Blank", "blank_for", "largest_radius", "curve_polygon", "CIRCLE_SEGMENTS", "MeasuringPolygon",
+           "measuring_polygon", "measuring_circle", "MAX_POLYGON_POINTS", "DEFAULT_OVERSIZE_MM", "STOCK_KINDS",
+           "bore_region"]
 
-#: Segments of a polygonised circle (blank, bore): chord error R·(1 − cos(π/n)), 3.8e-5·R.
+#: Segments of a planning circle (the blank's outline, :func:`bore_region`): chord error R·(1 − cos(π/n)),
+#: 1.9e-5·R.  Not a measuring polygon: the material check measures against :func:`measuring_circle`.
 CIRCLE_SEGMENTS = 512
 
-#: Points per analytic piece when a cam curve becomes a polygon (chord error < 1e-4 mm on the samples).
+#: Points per analytic piece of a planning polygon (:func:`curve_polygon`: the part the roughing rings are offset
+#: from, whose margin ``ROUGH_MARGIN_MM`` covers its chords).  Its chord error grows with the cam's size (4.2e-4 mm
+#: on the default cam's 120° rise at R 3000), so figures are never measured against it: :func:`measuring_polygon`.
 POINTS_PER_PIECE = 2000
+
+#: Most vertices one measuring polygon gets (:func:`measuring_polygon`, :func:`measuring_circle`).  At the
+#: budget's 1 % of δ the default cam at R 5 m and δ = 0.001 mm needs 49 820; a polygon that would need more than
+#: this gets this many, and its larger measured chord error is what :attr:`MeasuringPolygon.error_mm` says.
+MAX_POLYGON_POINTS = 400_000
+
+#: Parameter samples per analytic piece where the curvature is read to place a measuring polygon's vertices.
+_SCAN = 256
 
 
 def largest_radius(curve) -> tuple[float, float]:
@@ -44,13 +56,92 @@ def largest_radius(curve) -> tuple[float, float]:
 
 
 def curve_polygon(curve, per_piece: int = POINTS_PER_PIECE) -> Polygon:
-    """A closed cam curve as a polygon (its samples as vertices; valid and oriented ccw)."""
+    """A closed cam curve as a planning polygon, ``per_piece`` samples per analytic piece as vertices (valid and
+    oriented ccw).  Figures are measured against :func:`measuring_polygon` instead."""
     br = curve.breaks
     t = np.concatenate([np.linspace(a, b, per_piece, endpoint=False) for a, b in zip(br, br[1:])])
     poly = Polygon(curve.evaluate(t))
     if not poly.is_valid:
         raise SpecError("cam", "the profile crosses itself; cannot build the material regions")
     return shapely.geometry.polygon.orient(poly, 1.0)
+
+
+@dataclass(frozen=True)
+class MeasuringPolygon:
+    """A polygon a figure is measured against, and its measured chord error (mm, one-sided off the curve)."""
+
+    polygon: Polygon
+    error_mm: float
+
+
+def _chord_sag(curve, t: np.ndarray, closed_end: float) -> np.ndarray:
+    """Each chord's distance from the curve at its parameter midpoint (the chords t[i] → t[i+1], the last one
+    to ``closed_end``), (n,): a smooth arc's sag peaks there, to leading order (κh²/8)."""
+    t1 = np.append(t[1:], closed_end)
+    p0, p1, pm = curve.evaluate(t), curve.evaluate(t1), curve.evaluate(0.5 * (t + t1))
+    d = p1 - p0
+    length = np.hypot(d[:, 0], d[:, 1])
+    cross = np.abs(d[:, 0] * (pm[:, 1] - p0[:, 1]) - d[:, 1] * (pm[:, 0] - p0[:, 0]))
+    return np.where(length > 0, cross / np.where(length > 0, length, 1.0), np.hypot(*(pm - p0).T))
+
+
+def measuring_polygon(curve, chord_mm: float, max_points: int = MAX_POLYGON_POINTS) -> MeasuringPolygon:
+    """A closed cam curve as a polygon whose chords stay within ``chord_mm`` of it (valid, oriented ccw).
+
+    A chord of length h where the radius of curvature is ρ lies h²/8ρ off the curve (seed 004's
+    δ ≈ ρΔφ²/8), so the vertices are spaced by h = √(8ρ·``chord_mm``): placed at equal steps of
+    ∫√κ ds (κ read on :data:`_SCAN` samples per analytic piece), then every chord's sag is measured at its
+    midpoint and a chord still over ``chord_mm`` is halved, until none is.  Past ``max_points`` vertices
+    the spacing is widened to fit the cap and the measured error says how far the polygon is off.
+
+    Examples
+    --------
+    >>> from camcam.geometry.curve import FunctionCurve
+    >>> circle = FunctionCurve(lambda t, k: 5000.0 * np.column_stack([np.cos(t + k * np.pi / 2),
+    ...                                                             np.sin(t + k * np.pi / 2)]), 0.0, 2 * np.pi)
+    >>> m = measuring_polygon(circle, 1e-5)
+    >>> m.error_mm <= 1e-5, len(m.polygon.exterior.coords) - 1   # 2000 points would err by 0.0062 mm
+    (True, 49673)
+    """
+    from camcam.geometry.curve import curvature, speed
+
+    br = np.asarray(curve.breaks, float)
+    pieces, totals = [], []
+    for a, b in zip(br, br[1:]):
+        tt = np.linspace(a, b, _SCAN + 1)
+        w = np.sqrt(np.abs(curvature(curve, tt))) * speed(curve, tt)
+        u = np.concatenate([[0.0], np.cumsum(0.5 * (w[1:] + w[:-1]) * np.diff(tt))])
+        u += np.linspace(0.0, 1e-9 * max(u[-1], 1.0), len(u))  # strictly increasing where the curve is straight
+        pieces.append((tt, u))
+        totals.append(u[-1])
+    step = math.sqrt(8.0 * chord_mm)  # ∫√κ ds per chord
+    need = sum(max(1, math.ceil(total / step)) for total in totals)
+    if need > max_points:
+        step *= need / max_points
+    t = np.concatenate([np.interp(np.linspace(0.0, u[-1], max(1, math.ceil(u[-1] / step)), endpoint=False), u, tt)
+                        for tt, u in pieces])
+    end = float(br[-1])
+    sag = _chord_sag(curve, t, end)
+    while (sag > chord_mm).any() and 2 * len(t) <= max_points:
+        over = np.flatnonzero(sag > chord_mm)
+        t1 = np.append(t[1:], end)
+        t = np.sort(np.concatenate([t, 0.5 * (t[over] + t1[over])]))
+        sag = _chord_sag(curve, t, end)
+    poly = Polygon(curve.evaluate(t))
+    if not poly.is_valid:
+        raise SpecError("cam", "the profile crosses itself; cannot build the material regions")
+    return MeasuringPolygon(shapely.geometry.polygon.orient(poly, 1.0), float(sag.max()))
+
+
+def measuring_circle(radius: float, chord_mm: float, max_points: int = MAX_POLYGON_POINTS) -> MeasuringPolygon:
+    """A circle about the cam axis as an inscribed polygon whose chords lie within ``chord_mm`` of it:
+    n = ⌈π / arccos(1 − ``chord_mm``/R)⌉ sides (at least :data:`CIRCLE_SEGMENTS`, at most ``max_points``)."""
+    n = CIRCLE_SEGMENTS
+    if radius > chord_mm:
+        n = min(max(n, math.ceil(math.pi / math.acos(1.0 - chord_mm / radius))), max_points)
+    a = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+    return MeasuringPolygon(Polygon(np.column_stack([radius * np.cos(a), radius * np.sin(a)])),
+                            radius * (1.0 - math.cos(math.pi / n)))
 
 
 def _circle(radius: float) -> Polygon:
@@ -120,8 +211,15 @@ def blank_for(built: BuiltCam, stock: StockSpec, tool_diameter_mm: float, bore: 
     groove = spec.kind == "disc-groove"
     roller = cam.roller_radius or 0.0
     if spec.bore > 0 and spec.bore / 2 > cam.base_radius - roller:
+        room = 2 * (cam.base_radius - roller)
+        # the base radius that takes this bore (the check is strict: bore / 2 = base − roller is taken)
+        fix = f"cam.base_radius >= {roller + spec.bore / 2:g} mm takes the Ø{spec.bore:g} mm bore"
+        if room <= 0:  # never "at most Ø-4 mm": no bore fits at all
+            raise SpecError("cam.bore", f"Ø{spec.bore:g} mm: no bore fits, the base circle minus the roller leaves "
+                                        f"nothing ({cam.base_radius:g} − {roller:g} mm); expected cam.bore = 0 "
+                                        f"(no bore), or {fix}")
         raise SpecError("cam.bore", f"Ø{spec.bore:g} mm is larger than the base circle minus the roller; expected at "
-                                    f"most Ø{2 * (cam.base_radius - roller):g} mm (2 × ({cam.base_radius:g} − {roller:g}))")
+                                    f"most Ø{room:g} mm (2 × ({cam.base_radius:g} − {roller:g})), or {fix}")
     if bore:
         if spec.bore <= 0:
             raise SpecError("machining.bore", "true, but the cam has no bore (cam.bore = 0)")

@@ -13,6 +13,14 @@ surrogate              the Chebyshev copy the fitter marches on differs from the
 fit                    what is left: the band the arc spline or chords may use
 =====================  ===========================================================
 
+One more share is not spent on the fit but on measuring it: ``polygon_share``.
+The material-removal check (:mod:`camcam.nc.removal`) holds the part, the
+flanks, the blank and the bore as polygons (:func:`camcam.nc.stock.curve_polygon`),
+whose chords lie off the exact curves; every such measuring polygon chooses its
+vertices so that its chord error stays within ``polygon_share``·δ, whatever the
+cam's size (δ ≈ ρΔφ²/8 gives the spacing), so the figures it yields are within
+that of the figures of the exact curves.
+
 The fit must keep at least ``min_fit_share``·δ, which sets the smallest
 tolerance a post's decimals can hold (:meth:`FitBudget.floor_mm`: 10^−d/0.56
 with the defaults).  The guarantee does not rest on the budget: every piece
@@ -72,6 +80,15 @@ class FitBudget:
         band (0.93: the arc count grows as band^−⅓, so small steps).
     attempts : int
         Fits of one piece at most before :class:`~camcam.errors.FitError` (6).
+    polygon_share : float
+        Largest chord error of a measuring polygon (the material check's part,
+        flanks, blank and bore), as a share of δ (0.01): a chord of a curve whose
+        radius of curvature is ρ errs by about h²/8ρ, so its vertices are placed at
+        h = √(8ρ·0.01δ) (0.49 mm at ρ = 3000 mm, δ = 0.001 mm).  The material-left
+        and overcut figures measured against such a polygon are within 1 % of δ of
+        those against the exact curve.  A polygon needing more vertices than
+        :data:`camcam.nc.stock.MAX_POLYGON_POINTS` is coarser and says so (its
+        measured chord error is reported with the check).
     """
 
     sampling_share: float = 0.02
@@ -82,6 +99,7 @@ class FitBudget:
     attempts: int = 6
     spline_sampling_share: float = 0.05
     spline_retry_factor: float = 0.93
+    polygon_share: float = 0.01
 
     def rounding_mm(self, quantizer: Quantizer) -> float:
         """Deviation reserved for printing: one grid step 10^−d.
@@ -95,6 +113,10 @@ class FitBudget:
     def margin_mm(self, tolerance_mm: float) -> float:
         """The sampling margin of a deviation measurement at this tolerance."""
         return self.sampling_share * tolerance_mm
+
+    def polygon_mm(self, tolerance_mm: float) -> float:
+        """The chord error a measuring polygon may have at this tolerance: ``polygon_share``·δ."""
+        return self.polygon_share * tolerance_mm
 
     def fit_target_mm(self, tolerance_mm: float, quantizer: Quantizer) -> float:
         """The band the first fit may use: δ − rounding − 2 · sampling margin."""

@@ -34,7 +34,7 @@ def test_sample_cuts_the_profile_from_the_stock(tmp_path, sample):
     m, blank = spec.machining, result.blank
     if spec.stock.stated:  # the blank is the one the spec states
         assert blank.diameter_mm == spec.stock.diameter_mm and blank.allowance_mm == spec.stock.allowance_mm
-    keep, boundary = design_keep(blank, built)
+    keep, boundary, _ = design_keep(blank, built, m.tolerance_mm)
     allowance = 0.0 if blank.groove else m.finish_allowance_mm
     r = check_moves(events, blank.region, blank.top_z_mm, keep, boundary, m.tool_diameter_mm / 2, m.stepover_mm,
                     m.ramp_angle_deg, m.tolerance_mm, allowance, m.post.decimals)
