@@ -9,6 +9,8 @@ import numpy as np
 
 from camcam.export.dxf import Circle, ExactCurve, Polyline, Text, contour_dxf
 from camcam.geometry.build import BuiltCam
+from camcam.geometry.curve import left_normal
+from camcam.nc.bore import bore_curve
 from camcam.nc.result import MachiningResult
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.outline import part_outline
@@ -31,34 +33,63 @@ class PartOutline:
     deviation_mm: float | None
 
 
-def _near(elements, curve) -> float:
-    """Distance from an outline's first element's middle to ``curve`` (a coarse side test)."""
-    e = elements[0]
-    p = np.asarray(e.points(3)[1])
-    q = curve.evaluate(np.linspace(curve.t_start, curve.t_end, 2001))
-    return float(np.hypot(*(q - p).T).min())
+#: Parameters at which a contour's exact curve is compared with a surface (:func:`_finished_side`).
+_PROBES = 64
+
+
+def _finished_side(contour_curve, surface, r_t: float) -> float | None:
+    """The side (+ left, − right of travel, times ``r_t``) on which the exact tool-centre curve finishes
+    ``surface``, or None if it finishes none of it.
+
+    The curves of one cam share their parameter (the cam angle; a bore circle its polar angle): a tool-centre
+    curve is an offset of the design it follows, point for point.  So a contour finishes ``surface`` on side d
+    iff S(t) = C(t) + d·n(t) at every t, n the contour's left normal: the offset of that side is the wall the
+    tool leaves.  Any other offset is not a surface of the part (a groove's flank pass has air on its other
+    side, 2(r_roller − r_tool) short of the far wall; a rough pass finishes neither), and a comparison with
+    it would set unlike against unlike.  The equality is exact up to rounding; 1e-9 of the largest radius is
+    the allowance for that.
+    """
+    t0, t1 = float(contour_curve.t_start), float(contour_curve.t_end)
+    if (t0, t1) != (float(surface.t_start), float(surface.t_end)):
+        return None
+    t = np.linspace(t0, t1, _PROBES, endpoint=False)
+    c, s = contour_curve.evaluate(t), surface.evaluate(t)
+    n = left_normal(contour_curve, t)
+    scale = 1e-9 * max(1.0, float(np.abs(c).max()), float(np.abs(s).max()))
+    for d in (r_t, -r_t):
+        if float(np.hypot(*(c + d * n - s).T).max()) <= scale:
+            return d
+    return None
+
+
+def _surfaces(built: BuiltCam, r: MachiningResult) -> list:
+    """The exact surfaces a disc or face-groove program finishes: the profile or both flanks, and a machined
+    bore's circle."""
+    cam = built.cam
+    out = list(cam.flanks) if built.spec.kind == "disc-groove" else [cam.profile]
+    if r.blank is not None and r.blank.bore_machined:
+        out.append(bore_curve(r.blank.bore_mm / 2))
+    return out
 
 
 def part_of(built: BuiltCam, r: MachiningResult) -> PartOutline:
-    """The part outline of a disc or face-groove cam's finishing contours (see :class:`PartOutline`)."""
+    """The part outline of a disc or face-groove cam's finishing contours (see :class:`PartOutline`).
+
+    Each contour is offset by the tool radius only to the side where it finishes a surface of the design
+    (:func:`_finished_side`), and that outline is measured against that surface: a face groove's walls are
+    its two flanks, each from the pass that cuts it (or both from a centre pass as wide as the groove).
+    """
     if r.rotary:
         return PartOutline((), None)
     r_t = r.tool_diameter_mm / 2
-    cam = built.cam
+    surfaces = _surfaces(built, r)
     outlines, worst = [], 0.0
     for c in r.contours:
-        if abs(c.offset_mm - r_t) > 1e-6:
-            continue  # a groove's rough centre pass finishes no surface
-        if c.stock_side in ("left", "right"):
-            pairs = [(part_outline(c.fit.elements, r_t if c.stock_side == "left" else -r_t), cam.profile)]
-        else:
-            pairs = []
-            for d in (r_t, -r_t):
-                out = part_outline(c.fit.elements, d)
-                flank = min(cam.flanks, key=lambda f: _near(out, f))
-                if _near(out, flank) < 0.5 * r_t:
-                    pairs.append((out, flank))
-        for out, surface in pairs:
+        for surface in surfaces:
+            d = _finished_side(c.curve, surface, r_t)
+            if d is None:
+                continue
+            out = part_outline(c.fit.elements, d)
             outlines.append(out)
             worst = max(worst, measure_deviation(surface, out, margin_mm=0.02 * r.tolerance_mm).max_deviation_mm)
     return PartOutline(tuple(outlines), worst)

@@ -15,6 +15,7 @@ from hypothesis import strategies as st
 from shapely.geometry import LineString, Point, Polygon
 
 from camcam.export.nc import nc_dxf, part_of
+from camcam.geometry.build import build_cam
 from camcam.export.stl import program_frame, stl_bytes
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Arc, Line
@@ -176,3 +177,56 @@ def test_stl_in_the_program_frame():
     r_t = result.tool_diameter_mm / 2
     # tolerance 0.01 of the fit + the mesh's chords (180 per piece: sag well under 1 µm at R ≈ 60 mm)
     assert max(abs(x - r_t) for x in d) <= result.tolerance_mm + 1e-3
+
+
+@pytest.mark.parametrize("tool_mm", [16.0, 8.0])
+def test_groove_cut_by_a_smaller_tool_draws_its_two_walls(tmp_path, tool_mm):
+    """Issue 50 item 7: disc-groove with a Ø16 tool (roller R10) exited 3, "DXF part outline deviation 4.008 mm":
+    each flank pass was offset to both sides, and its side away from its wall (air, 2·(r_roller − r_tool) = 4 mm
+    short of the far wall) was drawn on PART and measured against that wall.  With Ø8 a rough pass was taken
+    for a wall (2.0076 mm).  PART now holds each flank pass's offset towards the wall it cuts, measured
+    against that wall: the two walls, within the tolerance, as the program is (0.0076 mm)."""
+    from dataclasses import replace
+
+    from camcam.nc import machine_program
+
+    spec, built, _ = built_and_result("disc-groove")
+    m = replace(spec.machining, tool_diameter_mm=tool_mm)
+    result = machine_program(built, m, spec.name, spec.stock)
+    part = part_of(built, result)
+    assert len(part.outlines) == 2
+    assert part.deviation_mm <= result.tolerance_mm
+    f = tmp_path / "cam.dxf"
+    f.write_bytes(nc_dxf(built, result, part).data)
+    elements = _elements_from_dxf(ezdxf.readfile(f), "PART")
+    # every PART entity lies along one wall and each wall is drawn whole: both ways against its flank
+    for flank in built.cam.flanks:
+        q = flank.evaluate(np.linspace(flank.t_start, flank.t_end, 400))
+        mine = [e for e in elements if min(np.hypot(*(q - e.points(3)[1]).T)) < 1.0]
+        # 2e-4: the measurement's own between-sample margin, as in the test above
+        assert measure_deviation(flank, mine, margin_mm=2e-4).max_deviation_mm <= result.tolerance_mm + 2e-4
+    walls = [np.asarray(f_.evaluate(np.linspace(f_.t_start, f_.t_end, 2000))) for f_ in built.cam.flanks]
+    for e in elements:
+        mid = np.asarray(e.points(3)[1])
+        assert min(float(np.hypot(*(w - mid).T).min()) for w in walls) < 1.0, e  # no entity inside the groove
+
+
+def test_a_helical_bore_draws_its_wall():
+    """Beside item 7: a disc with a helical bore ([machining] bore = true) could not be drawn ("part outline:
+    every arc of the path is tighter than the offset 8 mm"): the bore's circle was offset to both sides and
+    paired with flanks a disc has none of.  Now the bore's pass is offset towards the bore's wall only."""
+    from dataclasses import replace
+
+    from camcam.nc import machine_program
+    from camcam.nc.bore import bore_curve
+
+    spec, built, _ = built_and_result("disc-translating-roller")
+    spec = replace(spec, cam=replace(spec.cam, bore=24.0))
+    built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
+    m = replace(spec.machining, bore=True)
+    result = machine_program(built, m, spec.name, spec.stock)
+    part = part_of(built, result)
+    assert len(part.outlines) == 2 and part.deviation_mm <= result.tolerance_mm
+    wall = bore_curve(12.0)
+    bore_out = min(part.outlines, key=lambda out: abs(math.hypot(*out[0].start) - 12.0))
+    assert measure_deviation(wall, bore_out, margin_mm=2e-4).max_deviation_mm <= result.tolerance_mm + 2e-4
