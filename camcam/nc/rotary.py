@@ -96,13 +96,26 @@ def _plan(cam, r_t: float, rho_d: float):
             ("flank 1 (+X wall)", OffsetCurve(cam.developed_flank(1, rho_d), -r_t), r_t, "finish")], 0.0
 
 
-def _corner_depth_mm(cam, r_t: float) -> float:
-    """How far below the groove bottom the tool tip goes so that its end clears the wall corner (mm)."""
+def _corner_depth_mm(cam, r_t: float, quantizer, depth_mm: float) -> float:
+    """How far below ``depth_mm`` the tool tip goes so that its end clears the wall corner (mm), as printed.
+
+    The wall contact at the groove bottom is y = r_t·sin α off the tool's axis plane (α the largest pressure
+    angle), where the bottom lies ρ_b − √(ρ_b² − y²) under the tangent plane the tip would touch.  The tip's
+    Z is printed on the post's grid: the last pass goes to the first grid value strictly below that, so the
+    printed program clears the corner, not merely touches it.  A rounding up would leave the tip above it (at
+    R 1000 mm the corner is 4e-5 mm deep and Z990 printed exactly at the bottom, where the tool's section on
+    the bottom radius is a single line: the 3-D check found the groove uncut there, 16 mm).
+    """
     th = np.linspace(0.0, 2 * math.pi, 2881)
     alpha = np.abs(cam.pressure_angle(th).value).max()  # at the groove bottom, where it is largest
     y = r_t * math.sin(alpha)
     rb = cam.bottom_radius
-    return rb - math.sqrt(rb * rb - y * y)
+    top = cam.base_radius - depth_mm  # the tip at the stated depth
+    target = top - (rb - math.sqrt(rb * rb - y * y))
+    k = quantizer.count(target)
+    while quantizer.value(k) >= target:
+        k -= 1
+    return top - quantizer.value(k)
 
 
 def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool_mm: float | None) -> Check:
@@ -115,10 +128,15 @@ def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool
                   f"[machining] axes = 5 and a tool of the roller's diameter (D{2 * r_r:g} mm), "
                   f"or accept a tolerance of at least {holds:g} mm")
     elif m.tool_diameter_mm < 2 * r_r - 2 * SAME_TOOL_MM:
-        tool = (f" (any tool from D{smallest_tool_mm:.2f} mm up holds {tol:g} mm)"
-                if smallest_tool_mm is not None else "")
-        advice = (f"use a tool of the roller's diameter, D{2 * r_r:g} mm{tool}, "
-                  f"or accept a tolerance of at least {holds:g} mm")
+        # one diameter, one meaning: the smallest tool is the one whose balanced flank error holds half the
+        # tolerance (the fit has the other half); where only the roller's own diameter does, it is named once
+        least = math.ceil(smallest_tool_mm * 100.0 - 1e-9) / 100.0 if smallest_tool_mm is not None else None
+        if least is not None and least < 2 * r_r - 0.01:
+            tool = (f"use a tool from D{least:g} mm (its flank error holds half of {tol:g} mm) up to the roller's "
+                    f"diameter, D{2 * r_r:g} mm")
+        else:
+            tool = f"use a tool of the roller's diameter, D{2 * r_r:g} mm (no thinner tool holds half of {tol:g} mm)"
+        advice = f"{tool}, or accept a tolerance of at least {holds:g} mm"
     else:
         advice = (f"check depth and flute_length (the tool must reach the groove bottom), "
                   f"or accept a tolerance of at least {holds:g} mm")
@@ -137,7 +155,7 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     title = (f"{name}: {built.spec.kind} cam, {cam.kind} follower, tool D{m.tool_diameter_mm:g} mm, lines, "
              f"tolerance {m.tolerance_mm:g} mm, post {post.name}")
     cs0 = m.cut_settings()
-    corner = _corner_depth_mm(cam, r_t) if m.depth_mm >= cam.groove_depth - 1e-9 else 0.0
+    corner = _corner_depth_mm(cam, r_t, post.quantizer, m.depth_mm) if m.depth_mm >= cam.groove_depth - 1e-9 else 0.0
     scale = (m.depth_mm + corner) / m.depth_mm
     cs = dataclasses.replace(cs0, depth_mm=m.depth_mm + corner, stepdown_mm=m.stepdown_mm * scale)
     plan, flank_err = _plan(cam, r_t, rho_d)
@@ -161,7 +179,8 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     # 0.32 and 0.18 CPU s, 0.64 s for each of two workers against 0.49 and 0.78 in plan order)
     thinner = cam.kind == "translating-roller" and r_t < cam.roller_radius - SAME_TOOL_MM
     results = parallel_map(job, ([None] if thinner else []) + list(plan)[::-1], workers)
-    smallest = results[0] if thinner else None
+    # rounded up to a size one can buy and hold to (0.01 mm): the note, the advice and the report name this one
+    smallest = math.ceil(results[0] * 100.0 - 1e-9) / 100.0 if thinner else None
     done = results[1 if thinner else 0:][::-1]
     contours, paths = [], []
     for k, ((label, curve, offset, kind), (fit, path, dev, segs)) in enumerate(zip(plan, done)):
@@ -175,7 +194,8 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
         contours.append(CutContour(label, curve, fit, path, dev, offset, False, segs, "both"))
     comments = tuple(f"{c}" for c in machine_frame_lines(m.a_axis, rho_d))
     if corner > 0:
-        comments += (f"last pass {corner:.3f} mm below the groove bottom: the tool end clears the wall corner",)
+        comments += (f"last pass {corner:.{post.decimals}f} mm below the groove bottom: the tool end clears the wall "
+                     f"corner",)
     toolpath = dataclasses.replace(join_toolpaths(title, paths), comments=comments)
     measured = post.write_program(toolpath, name, m.setup)
     poses = poses_from_program(measured.text, m.a_axis)
@@ -194,8 +214,8 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     if m.mode == "arcs":
         notes += ("mode arcs: a 4-axis G1 X A program has lines only",)
     if corner > 0:
-        notes += (f"4-axis: the last pass runs {corner:.3f} mm below the groove bottom so the tool's flat end "
-                  f"reaches the wall corner",)
+        notes += (f"4-axis: the last pass runs {corner:.{post.decimals}f} mm below the groove bottom so the tool's "
+                  f"flat end reaches the wall corner",)
     if flank_err > 0:
         notes += (f"4-axis: flank passes balanced over the depth; first-order flank error {flank_err:.4f} mm"
                   + (f", smallest tool holding half the tolerance D{smallest:.2f} mm" if smallest else ""),)

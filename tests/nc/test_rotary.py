@@ -142,3 +142,28 @@ def test_fine_tolerance_samples_the_motion_finer():
     assert g.sampling_bound_mm <= SAMPLING_SHARE * m.tolerance_mm * (1 + 1e-12)  # h²/(8 r) at that step
     assert g.max_deviation_mm == g.measured_mm + g.sampling_bound_mm
     assert g.max_deviation_mm <= m.tolerance_mm
+
+
+def test_a_barrel_at_r1000_is_cut_and_measured_to_its_groove_bottom():
+    """Issue 50 item 8: cylindrical-translating at R 1000 mm said "3-D groove deviation 16 mm" (material left,
+    r = 990.00 mm, the groove bottom).  The wall corner there is 4e-5 mm under the tip's tangent plane
+    (y = r_t·sin 1.77° = 0.25 mm off the axis plane); the last pass was printed at Z990, the bottom itself,
+    where the tool's section on r = 990 is one line, so the groove counted as uncut there (its width, 16 mm).
+    The last pass now goes to the first grid value below the corner depth (Z989.9999): cut to the bottom,
+    measured 0.0193 mm, as the R 50 sample."""
+    spec = load_spec(ROOT / "samples" / "cylindrical-translating.toml")
+    cam_spec = replace(spec.cam, base_radius=1000.0)
+    built = build_cam(cam_spec, spec.follower, spec.motion.program(spec.unit))
+    m = spec.machining
+    r = machine(built, m, spec.name)
+    g = r.groove
+    assert g.uncut_points == 0
+    assert g.max_deviation_mm <= m.tolerance_mm, g.where()
+    cam, r_t = built.cam, m.tool_diameter_mm / 2
+    alpha = float(np.abs(cam.pressure_angle(np.linspace(0, 2 * math.pi, 2881)).value).max())
+    y = r_t * math.sin(alpha)
+    needed = cam.bottom_radius - math.sqrt(cam.bottom_radius**2 - y * y)
+    z_last = float(poses_from_program(r.program.text, m.a_axis).tip_mm[:, 2].min())
+    assert z_last < cam.bottom_radius - needed  # strictly: the flat end passes the corner
+    # the first grid value below the corner (1e-4 mm under the bottom); 1e-9: a printed number read back as a float
+    assert z_last == pytest.approx(989.9999, abs=1e-9)
