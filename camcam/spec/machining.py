@@ -20,6 +20,8 @@ accept_out_of_tolerance = false  # true: a FAIL verdict only warns (exit 0)
 stepover = 0.4             # roughing: radial step, a fraction of the tool diameter
 ramp_angle = 3.0           # deg, steepest descent into material (grooves: ramped entries)
 bore = false               # true: cut the bore as a helical bore
+units_checked = false      # true: a tolerance over 1 % of the cam's size or a feed under 50 mm/min is meant
+                           # (both are refused otherwise: likely µm typed as mm, mm/s or in/min typed as mm/min)
 axes = 5                   # cylindrical cams: 4 (X A) or 5 (X Y Z A B, tool axis on the roller axis);
                            # default 5 for an oscillating roller, 4 otherwise
 ```
@@ -38,10 +40,19 @@ from camcam.toolpath.budget import DEFAULT_BUDGET
 
 __all__ = ["MachiningSpec", "read_machining", "FEED_RANGE_MM_MIN", "SPINDLE_RANGE_RPM", "MAX_PASSES",
            "MIN_SIZE_MM", "BREAK_THROUGH_MM", "check_passes",
-           "default_axes"]
+           "default_axes", "PLAUSIBLE_FEED_MM_MIN", "PLAUSIBLE_TOLERANCE_SHARE"]
 
 #: Feeds a milling machine runs (mm/min): below 1 nothing is cut, above 100 m/min no machine feeds.
 FEED_RANGE_MM_MIN = (1.0, 100_000.0)
+
+#: Slowest feed taken as millimetres per minute without ``units_checked = true``: a cam's end mill (3-20 mm)
+#: cuts at 100-2000 mm/min, which is 1.7-33 in mm/s and 3.9-79 in in/min, so a number under 50 is far more
+#: likely one of those than a real feed in mm/min (the 400 mm/min of the samples is 6.7 mm/s, 15.7 in/min).
+PLAUSIBLE_FEED_MM_MIN = 50.0
+
+#: Largest tolerance, as a share of the cam's size (the base circle's or cylinder's diameter), taken without
+#: ``units_checked = true``: over 1 % it is far more likely microns typed as millimetres (10 for 0.01 mm).
+PLAUSIBLE_TOLERANCE_SHARE = 0.01
 
 #: Spindle speeds (rev/min): at least 1 (``S0`` stops the spindle), at most 100 000.
 SPINDLE_RANGE_RPM = (1.0, 100_000.0)
@@ -71,11 +82,24 @@ def default_axes(cam_kind: str | None, follower_kind: str | None) -> int:
     return 5 if follower_kind == "oscillating-roller" else 4
 
 
+def _feed_units(t: Table, key: str, feed: float, checked: bool) -> None:
+    """A feed under :data:`PLAUSIBLE_FEED_MM_MIN` is refused unless ``units_checked``: most likely mm/s or in/min."""
+    if checked or feed >= PLAUSIBLE_FEED_MM_MIN:
+        return
+    meant = [f"if it is {feed:g} {unit} give {feed * factor:.6g}" for unit, factor in (("mm/s", 60.0), ("in/min", 25.4))
+             if PLAUSIBLE_FEED_MM_MIN <= feed * factor <= FEED_RANGE_MM_MIN[1]]
+    raise t.error(key, f"{feed:g} mm/min is slower than a cam is cut (at least {PLAUSIBLE_FEED_MM_MIN:g} mm/min "
+                       f"expected); {', '.join(meant + [''])}or set [machining] units_checked = true if you mean "
+                       f"{feed:g} mm/min")
+
+
 def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_kind: str | None = None,
-                   source: str = "") -> MachiningSpec:
+                   source: str = "", cam_size_mm: float | None = None) -> MachiningSpec:
     """Validate ``[machining]``; ``base`` anchors a relative post path; the cam and follower kinds
     decide which ``axes`` values apply (:func:`default_axes`); ``source`` is the spec's file name
-    (the program's generator line)."""
+    (the program's generator line); ``cam_size_mm`` (the base circle's or cylinder's diameter) bounds
+    the tolerance unless ``units_checked = true`` (:data:`PLAUSIBLE_TOLERANCE_SHARE`)."""
+    checked = t.boolean("units_checked", False)
     name = t.string("post", "linuxcnc")
     try:
         post = load_post(name, base)
@@ -86,14 +110,22 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
     need = DEFAULT_BUDGET.floor_mm(post.quantizer)
     t.check("tolerance", tol >= need, f"{tol:g} mm is too fine for post {post.name}'s {post.decimals} decimals; "
             f"expected >= {need:.2g} mm")
+    if cam_size_mm is not None and not checked and tol > PLAUSIBLE_TOLERANCE_SHARE * cam_size_mm:
+        most = PLAUSIBLE_TOLERANCE_SHARE * cam_size_mm
+        raise t.error("tolerance", f"{tol:g} mm is over 1 % of the cam's size (Ø{cam_size_mm:g} mm: at most "
+                                   f"{most:g} mm expected); if it is {tol:g} µm give {tol / 1000:g}; or set "
+                                   f"[machining] units_checked = true if you mean {tol:g} mm")
     # a barrel cam's program is G1 lines whatever the mode: its default says so (no note for a default never set)
     mode = t.string("mode", "lines" if cam_kind == "cylindrical" else "arcs", choices=("arcs", "lines"))
     feed = t.number("feed", minimum=FEED_RANGE_MM_MIN[0], maximum=FEED_RANGE_MM_MIN[1], unit="mm/min")
+    _feed_units(t, "feed", feed, checked)
     spindle = t.number("spindle", minimum=SPINDLE_RANGE_RPM[0], maximum=SPINDLE_RANGE_RPM[1], unit="rev/min")
     depth = t.number("depth", minimum=MIN_SIZE_MM, unit="mm")
     stepdown = t.number("stepdown", depth, minimum=MIN_SIZE_MM, unit="mm")
     plunge = t.number("plunge_feed", max(feed / 2, FEED_RANGE_MM_MIN[0]), minimum=FEED_RANGE_MM_MIN[0],
                       maximum=FEED_RANGE_MM_MIN[1], unit="mm/min")
+    if t.has("plunge_feed"):  # a default (half the feed) is not the user's number
+        _feed_units(t, "plunge_feed", plunge, checked)
     clearance = t.number("clearance_z", 2.0, minimum=MIN_SIZE_MM, unit="mm")
     safe = t.number("safe_z", 25.0, minimum=clearance, unit="mm")
     lead = t.number("lead_radius", max(tool / 2, 1.0), minimum=MIN_SIZE_MM, unit="mm")

@@ -121,6 +121,7 @@ def test_a_valid_spec_that_fails_a_check_is_written_and_exits_3(tmp_path):
     # the sweep's find (2026-12-04): a 12 mm tolerance is no bad input, its program fails the engagement check
     doc = tomllib.loads((ROOT / "samples" / "disc-oscillating-flat.toml").read_text())
     doc["machining"]["tolerance"] = 12
+    doc["machining"]["units_checked"] = True  # 12 mm meant as millimetres (issue 43: refused as a likely unit slip)
     spec = tmp_path / "spec.toml"
     spec.write_text(tomli_w.dumps(doc))
     code, err = run_cli(["run", str(spec), "-o", str(tmp_path / "out")])
