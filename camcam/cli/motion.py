@@ -24,12 +24,17 @@ def register(sub) -> None:
 
 
 def motion_summary(program: MotionProgram) -> dict:
-    """Extremes of s, v, a, j with the cam angles where they occur, and the joins."""
+    """Extremes of s, v, a, j with the cam angles where they occur (rounding noise printed as 0:
+    :func:`camcam.export.figures.clean`), and the joins."""
+    from camcam.export.figures import clean
+
     names = ["lift", "velocity", "acceleration", "jerk"]
     out = {"rpm": program.rpm, "units": dict(zip(names, program.units)), "extremes": {}}
     for k, n in enumerate(names):
         lo, hi = program.extremes(k)
-        out["extremes"][n] = {"min": lo.value, "min_at_deg": lo.angle_deg, "max": hi.value, "max_at_deg": hi.angle_deg}
+        scale = max(abs(lo.value), abs(hi.value))  # a lift of -3.55e-15 mm beside a 20 mm rise is 0 (issue 43)
+        out["extremes"][n] = {"min": clean(lo.value, scale), "min_at_deg": lo.angle_deg, "max": clean(hi.value, scale),
+                              "max_at_deg": hi.angle_deg}
     out["joins"] = [
         {"angle_deg": j.angle_deg, "quantity": {1: "velocity", 2: "acceleration"}[j.order], "jump": j.jump, "unit": j.unit}
         for j in program.joins

@@ -16,6 +16,7 @@ import numpy as np
 from camcam.cli.commands import help_of
 from camcam.cli.output import add_output_arguments, output_set, publish, to_json
 from camcam.errors import SpecError
+from camcam.export.figures import fixed
 from camcam.export.recovered_motion import motion_csv
 from camcam.reverse.design import ReverseOptions, design_motion, reverse_design
 from camcam.reverse.fit import DEFAULT_MAX_GAP_DEG, FITS
@@ -79,6 +80,7 @@ def run(args) -> int:
     unit = res.unit
     summary = {
         "points": len(points),
+        "points_fitted": int(res.point_lift.size),  # fewer where close points were averaged (MAX_FIT_POINTS)
         "cam": cam.kind,
         "follower": follower.kind,
         "fit": res.motion.fit,
@@ -102,8 +104,9 @@ def run(args) -> int:
     out.add("reverse.png", reverse_png(angles, cols, unit, res.point_angles_deg, res.point_lift, design, title))
     out.add("summary.json", to_json(summary) + "\n")
     def show(summary: dict) -> None:
-        print(f"{len(points)} points → {args.n_points} cam angles ({res.motion.fit} fit{', smoothed' if res.motion.smoothed else ''}); "
-              f"lift {summary['min_lift']:.4f} … {summary['max_lift']:.4f} {unit} (from the {summary['lift_reference']})")
+        fitted = "" if summary["points_fitted"] == len(points) else f" (averaged into {summary['points_fitted']} for the fits)"
+        print(f"{len(points)} points{fitted} → {args.n_points} cam angles ({res.motion.fit} fit{', smoothed' if res.motion.smoothed else ''}); "
+              f"lift {fixed(summary['min_lift'], 4)} … {fixed(summary['max_lift'], 4)} {unit} (from the {summary['lift_reference']})")
         if "max_lift_error" in summary:
             print(f"largest errors against the design: lift {summary['max_lift_error']:.3g} {unit}, velocity "
                   f"{summary['max_velocity_error']:.3g} {unit}/deg, acceleration {summary['max_acceleration_error']:.3g} {unit}/deg²")

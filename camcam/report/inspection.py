@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from camcam.export.figures import fixed
 from camcam.export.motion_table import sample_angles_deg
 from camcam.geometry.disc import DiscCam
 from camcam.geometry.groove import GrooveCam
@@ -37,15 +38,15 @@ class InspectionTable:
               "lift", "band [mm]")
 
     def rows(self) -> list[tuple[str, ...]]:
-        """Formatted rows (3 decimals for positions, 4 for lift)."""
+        """Formatted rows (3 decimals for positions, 4 for lift; no "-0.000": :func:`camcam.export.figures.fixed`)."""
         out = []
         for i, a in enumerate(self.angle_deg):
             rc = self.roller_centre_xy[i] if self.roller_centre_xy is not None else (np.nan, np.nan)
             out.append((
-                f"{a:g}", f"{self.profile_xy[i, 0]:.3f}", f"{self.profile_xy[i, 1]:.3f}", f"{self.radius_mm[i]:.3f}",
-                f"{self.normal_deg[i]:.2f}",
-                "—" if np.isnan(rc[0]) else f"{rc[0]:.3f}", "—" if np.isnan(rc[1]) else f"{rc[1]:.3f}",
-                f"{self.lift[i]:.4f} {self.lift_unit}", f"±{self.tolerance_mm:g}",
+                f"{a:g}", fixed(self.profile_xy[i, 0], 3), fixed(self.profile_xy[i, 1], 3), fixed(self.radius_mm[i], 3),
+                fixed(self.normal_deg[i], 2),
+                "—" if np.isnan(rc[0]) else fixed(rc[0], 3), "—" if np.isnan(rc[1]) else fixed(rc[1], 3),
+                f"{fixed(self.lift[i], 4)} {self.lift_unit}", f"±{self.tolerance_mm:g}",
             ))
         return out
 
@@ -55,7 +56,7 @@ class InspectionTable:
         for i, a in enumerate(self.angle_deg):
             rc = self.roller_centre_xy[i] if self.roller_centre_xy is not None else ("", "")
             vals = [a, *self.profile_xy[i], self.radius_mm[i], self.normal_deg[i], *rc, self.lift[i], self.tolerance_mm]
-            lines.append(",".join(v if isinstance(v, str) else f"{v:.6f}" for v in vals) + "\n")
+            lines.append(",".join(v if isinstance(v, str) else fixed(v, 6) for v in vals) + "\n")
         return "".join(lines)
 
 
