@@ -15,7 +15,12 @@ uneven φ_i is differentiated in one of two ways:
     A periodic spline of g(φ): a quintic periodic interpolating spline
     (``smoothing=False``; error O(h⁵) in g′) or a cubic smoothing spline whose
     penalty is chosen by generalised cross-validation on the data padded by one
-    period each side (``smoothing=True``; for noisy points).
+    period each side (``smoothing=True``; for noisy points).  Above
+    :data:`~camcam.lifttable.smoothing.GCV_MAX_POINTS` padded points, or where
+    SciPy's GCV gives up ("the problem is ill-posed"), the smoothing spline is the
+    lift-table stage's O(n) one: Reinsch's banded solve with λ by GCV on every
+    k-th point (:mod:`camcam.lifttable.smoothing`), so a points file at the
+    200 000-row cap is fitted in seconds.
 
 Examples
 --------
@@ -32,6 +37,8 @@ import math
 
 import numpy as np
 from scipy.interpolate import make_interp_spline, make_smoothing_spline
+
+from camcam.lifttable.smoothing import GCV_MAX_POINTS, GCV_SUBSAMPLE, gcv_lambda, reinsch
 
 __all__ = ["central_difference", "PeriodicFit", "periodic_fit"]
 
@@ -72,11 +79,28 @@ def periodic_fit(phi, g, smoothing: bool) -> PeriodicFit:
     if smoothing:
         xs = np.concatenate([phi - TWO_PI, phi, phi + TWO_PI])
         ys = np.concatenate([g, g, g])
-        return PeriodicFit(make_smoothing_spline(xs, ys), True)
+        if xs.size <= GCV_MAX_POINTS:
+            try:
+                return PeriodicFit(make_smoothing_spline(xs, ys), True)
+            except ValueError:  # SciPy's GCV search gave up; the banded route below always answers
+                pass
+        return PeriodicFit(_large_smoothing(phi, g, xs, ys), True)
     xs = np.concatenate([phi, [phi[0] + TWO_PI]])
     ys = np.concatenate([g, [g[0]]])
     spl = make_interp_spline(xs, ys, k=5, bc_type="periodic")
     return _Shifted(spl, phi[0])
+
+
+def _large_smoothing(phi: np.ndarray, g: np.ndarray, xs: np.ndarray, ys: np.ndarray):
+    """The cubic smoothing spline through the padded (xs, ys) in O(n): λ by exact GCV on every k-th
+    point of the revolution (padded the same way) scaled by k^{1/5}, values by Reinsch's banded solve
+    (:mod:`camcam.lifttable.smoothing`), and the natural cubic spline through those values — which *is*
+    the smoothing spline (it is the natural cubic spline with knots at the data)."""
+    k = math.ceil(phi.size / GCV_SUBSAMPLE)
+    sub = np.arange(0, phi.size, k)
+    ps, gs = phi[sub], g[sub]
+    lam = gcv_lambda(np.concatenate([ps - TWO_PI, ps, ps + TWO_PI]), np.concatenate([gs, gs, gs])) * k ** 0.2
+    return make_interp_spline(xs, reinsch(xs, ys, lam), k=3, bc_type="natural")
 
 
 class _Shifted(PeriodicFit):
