@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from camcam.errors import InputError
+from camcam.errors import FitError
 from camcam.toolpath.arcbatch import (MIN_CHORD_STEPS, arc_batch, candidate_deviation, grid_joint, peak_deviation,
                                       printed_element, unit_rows)
 from camcam.toolpath.arcclose import BIARC_RATIOS, closing_biarcs, landings
@@ -365,7 +365,10 @@ def march(curve, a, b, tol, quantizer, max_sweep, sag, closed, budget, start) ->
         level = level[:W]
         m.expand(level, budget.offsets[1:], append=True)
     if best is None:
-        raise InputError(f"cannot fit the curve on t ∈ [{a:g}, {b:g}] within {tol:g} mm")
+        # the march's own limit on a valid curve and tolerance (the spec checks the tolerance against the post's
+        # decimals), so a fault of camcam's: exit 1, as README's exit statuses put fit failures
+        raise FitError(f"cannot fit the curve on t ∈ [{a:g}, {b:g}] within {tol:g} mm: the march found no printed "
+                       f"arc spline")
     _, st, e1, e2, saved, _ = best
     elems, starts = [e2, e1], [st.i, st.i]  # the closing biarc's second arc counts with the first
     while st.parent is not None:
