@@ -176,7 +176,8 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
                                            m.spring_pass)
             contours.append(CutContour(label, curve, fit, printed, dev, offset, free is not None, segs, side))
     # lead arcs, spirals and ramps planned at the post's largest sweep print within it (contours already do)
-    passes = passes_within_sweep(passes, post.quantizer, post.max_arc_sweep_deg)
+    passes = [replace(q, note=p.note) for p, q in
+              zip(passes, passes_within_sweep(passes, post.quantizer, post.max_arc_sweep_deg), strict=True)]
     safe = (Rapid(None, None, max(m.safe_z_mm, z_clear)),)
     counts: dict[str, int] = {}
     for p in passes:
@@ -207,7 +208,7 @@ def _profile_passes(k: int, elements, spiral: Spiral | None, m: MachiningSpec, c
     a, passes = m.finish_allowance_mm, []
     for z in levels:
         if spiral is not None:
-            passes.append(Pass(k, "rough", z, spiral_moves(spiral, z, cs)))
+            passes.append(Pass(k, "rough", z, spiral_moves(spiral, z, cs), spiral.describe()))
         if a == 0:
             passes.append(Pass(k, "finish", z, finish_moves(elements, z, cs)))
     if a > 0:

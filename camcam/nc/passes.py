@@ -101,8 +101,9 @@ def ramp_loop_passes(contour: int, kind: str, elements, levels, z_top: float, ra
 
 
 def with_markers(passes, labels) -> tuple:
-    """``passes``, each opened by a comment naming it: ``pass i/n: kind, contour label, Z…``."""
+    """``passes``, each opened by a comment naming it: ``pass i/n: kind, contour label, Z…[, note]``."""
     n = len(passes)
     return tuple(Pass(p.contour, p.kind, p.z,
-                      (Comment(f"{MARKER_PREFIX}{i + 1}/{n}: {p.kind}, {labels[p.contour]}, Z{p.z:g}"),) + p.moves)
+                      (Comment(f"{MARKER_PREFIX}{i + 1}/{n}: {p.kind}, {labels[p.contour]}, Z{p.z:g}"
+                               + (f", {p.note}" if p.note else "")),) + p.moves, p.note)
                  for i, p in enumerate(passes))

@@ -94,7 +94,7 @@ class RemovalReport:
                   where=self.rapid_where, advice="raise clearance_z above the blank"),
             Check("radial engagement", self.max_engagement_mm, self.stepover_mm, "mm",
                   self.max_engagement_mm <= self.stepover_mm + TOUCH_MM, where=self.engagement_where,
-                  advice="lower [machining] stepover or use a larger tool"),
+                  advice=self._engagement_advice()),
             Check("material left over the profile", self.material_left_mm, self.tolerance_mm, "mm",
                   self.material_left_mm <= self.tolerance_mm, where=self.left_where,
                   advice="the finish pass does not reach the profile: check the stock and the depth"),
@@ -107,6 +107,20 @@ class RemovalReport:
                              self.allowance_mm, "mm", self.rough_clearance_mm >= self.allowance_mm - TOUCH_MM,
                              where=self.rough_clearance_where, advice="report a bug: the roughing came too close"))
         return tuple(out)
+
+    def _engagement_advice(self) -> str:
+        """The way out of an engagement over the stepover, by the pass that meets it.
+
+        A roughing spiral plans its turns within the stepover, concave stretches included
+        (:func:`camcam.nc.roughing.loops_needed`): an excess there is a fault of that plan, and a lower
+        stepover brings the turns closer together (the engagement falls with it).  A finishing pass takes the
+        allowance, which wraps round the tool where the profile bends inward to about its radius.
+        """
+        kind = self.engagement_where.split(":", 1)[1].split(",")[0].strip() if ":" in self.engagement_where else ""
+        if kind == "rough":
+            return "lower [machining] stepover (the roughing should have held it: please report this spec)"
+        return ("the finishing pass meets the allowance wrapped round the tool in a concave corner: "
+                "lower [machining] finish_allowance or use a smaller tool")
 
     def as_dict(self) -> dict:
         return {

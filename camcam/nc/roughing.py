@@ -1,16 +1,23 @@
 """Roughing geometry: spirals from the blank to the finish allowance, ramps along closed contours.
 
-A disc cam is roughed at each depth level by one spiral that starts on a
-ring clear of the blank and winds inward to the ring at the finish allowance,
-then closes on that ring.  The rings are the part (shapely polygon) offset by
-``allowance + r_t + k·step`` (tool-centre paths: the tool's edge at
-``allowance + k·step`` from the part); the spiral blends ring k+1 into ring k
-over one revolution, in polar form about the cam axis, so each revolution
-cuts a band at most ``step`` wide and the tool never slots.  The spiral is
-fitted with lines and arcs (:func:`polyline_elements`) within
-:data:`ROUGH_FIT_MM`; the last ring keeps :data:`ROUGH_MARGIN_MM` more than
-the finish allowance so the fitted path stays at least the allowance off the
-part.
+A disc cam is roughed at each depth level by one spiral that starts with the
+tool's edge on the blank's outline and winds inward to the last ring, the part
+(shapely polygon) offset by ``allowance + margin + r_t`` (the tool-centre path
+with its edge at the allowance and :data:`ROUGH_MARGIN_MM`), then closes on
+that ring.  In polar form about the cam axis every turn is a blend of the two,
+r = r_last + t·(r_first − r_last), t falling by 1/n a turn: each turn lies
+parallel to the one before it, and the first one to the blank's edge, so the
+tool meets the material side-on everywhere, never across its path.  (Rings
+offset from the part, as before, ran across the round blank's edge wherever
+the part's outline bends inward, and the tool met that edge at an angle: 25 %
+over the stepover, whatever the stepover.)  How many turns: enough that
+no turn advances more than the step normal to itself, and less where it is
+concave toward the material, where a band spans more of the tool than its depth
+(:func:`loops_needed`); so the engagement the material check measures stays
+within the stepover by construction.  The spiral is fitted with lines and arcs
+(:func:`polyline_elements`) within :data:`ROUGH_FIT_MM`; the last ring keeps
+:data:`ROUGH_MARGIN_MM` more than the finish allowance so the fitted path stays
+at least the allowance off the part.
 
 Closed contours that have no way in from outside the material (a face
 groove) are entered down a ramp along the contour itself
@@ -40,6 +47,8 @@ ROUGH_MARGIN_MM = 0.05
 RING_STEP_FRACTION = 0.9
 #: Samples per revolution of a spiral before fitting.
 SPIRAL_SAMPLES = 1440
+#: Arc length each side over which a loop's radii are averaged before its curvature is taken (mm).
+CURVATURE_SPAN_MM = 1.0
 #: Distance the entry point sits outside the first ring, radially (mm).
 ENTRY_CLEARANCE_MM = 1.0
 
@@ -71,9 +80,11 @@ def _ring(poly: Polygon) -> np.ndarray:
 class Spiral:
     """One level's roughing path: ``entry`` (clear of the blank) then ``elements`` (tool centre, direction of cut).
 
-    ``revolutions`` spiral turns plus one closing ring; ``step_mm`` the ring
-    spacing; ``clearance_mm`` the tool edge's intended distance from the part on
-    the last ring.
+    ``revolutions`` spiral turns plus one closing ring; ``step_mm`` the most a
+    turn advances normal to the path where it is straight or convex (less where
+    it is concave); ``clearance_mm`` the tool edge's intended distance from the
+    part on the last ring; ``plain_revolutions`` the turns the same step would
+    need without the concave parts (fewer than ``revolutions`` where they add turns).
     """
 
     entry: tuple[float, float]
@@ -81,6 +92,13 @@ class Spiral:
     revolutions: int
     step_mm: float
     clearance_mm: float
+    plain_revolutions: int = 0
+
+    def describe(self) -> str:
+        """The spiral in the pass table and the pass comment."""
+        more = self.revolutions - self.plain_revolutions
+        extra = f", {more} more where the path is concave" if more > 0 and self.plain_revolutions else ""
+        return f"spiral {self.revolutions} turns at most {self.step_mm:.2f} mm apart{extra}"
 
 
 def polygon_distance(poly, xy: np.ndarray) -> np.ndarray:
@@ -116,41 +134,79 @@ def disc_spiral(part: Polygon, blank: Polygon, tool_radius_mm: float, allowance_
                 clockwise: bool, max_sweep_deg: float) -> Spiral | None:
     """The roughing spiral from ``blank`` to ``allowance_mm`` (+ margin) around ``part``; ``None`` if nothing to rough.
 
-    ``clockwise``: the direction of travel about the cam axis (the finish pass's).
+    ``clockwise``: the direction of travel about the cam axis (the finish pass's).  The loops run from the
+    blank's own outline (the tool's edge on it) to the last ring, each a polar blend of the two
+    (:func:`loops_needed` says how many hold the engagement to ``stepover_mm``).
     """
     r_t = tool_radius_mm
-    step = RING_STEP_FRACTION * stepover_mm
     keep = allowance_mm + ROUGH_MARGIN_MM
-    edge = np.asarray(blank.exterior.coords)
-    far = float(polygon_distance(part, edge).max())  # blank reaches this far from the part
-    k_air = int(math.ceil((far - keep) / step - 1e-9))
-    if k_air <= 0:
-        return None
+    # what one loop may advance normal to the path: the stepover less the drift across a revolution and the
+    # fit of this loop and the one before it (each within ROUGH_FIT_MM of its samples)
+    step = max(RING_STEP_FRACTION * stepover_mm - 2 * ROUGH_FIT_MM, 0.5 * RING_STEP_FRACTION * stepover_mm)
     s = -1.0 if clockwise else 1.0
     th = np.linspace(0.0, 2 * math.pi, SPIRAL_SAMPLES, endpoint=False)
-    radii = [polar_radii(_ring(part.buffer(keep + r_t + k * step, quad_segs=64)), th, f"ring {k}")
-             for k in range(k_air + 1)]
-    # start where the air ring is farthest outside the blank
-    air = np.column_stack([radii[k_air] * np.cos(th), radii[k_air] * np.sin(th)])
-    j0 = int(np.argmax(polygon_distance(blank, air)))
+    r0 = polar_radii(_ring(part.buffer(keep + r_t, quad_segs=64)), th, "last ring")
+    # the first loop: the tool's edge on the blank's outline (nowhere inside the last ring)
+    rb = np.maximum(polar_radii(_ring(blank.buffer(r_t, quad_segs=64)), th, "blank's outline"), r0)
+    n, plain = loops_needed(th, r0, rb, r_t, step)
+    if n <= 0:
+        return None
+    j0 = int(np.argmax(rb - r0))  # start where most material lies: the first loop runs on the blank's outline
     order = (j0 + s * np.arange(SPIRAL_SAMPLES)).astype(int) % SPIRAL_SAMPLES
     th_o = th[order]
     f = np.arange(SPIRAL_SAMPLES) / SPIRAL_SAMPLES
     ang, rad = [], []
-    for rev in range(k_air):
-        outer, inner = radii[k_air - rev][order], radii[k_air - rev - 1][order]
+    for rev in range(n):
         ang.append(th_o)
-        rad.append((1 - f) * outer + f * inner)
+        rad.append(r0[order] + (1 - (rev + f) / n) * (rb - r0)[order])
     ang.append(th_o)
-    rad.append(radii[0][order])
+    rad.append(r0[order])
     ang.append(th_o[:1])
-    rad.append(radii[0][order][:1])
+    rad.append(r0[order][:1])
     ang, rad = np.concatenate(ang), np.concatenate(rad)
     pts = np.column_stack([rad * np.cos(ang), rad * np.sin(ang)])
     u = pts[0] / np.hypot(*pts[0])
     entry = pts[0] + ENTRY_CLEARANCE_MM * u
     return Spiral((float(entry[0]), float(entry[1])), polyline_elements(pts, ROUGH_FIT_MM, max_sweep_deg),
-                  k_air, step, keep)
+                  n, step, keep, plain)
+
+
+def loops_needed(th: np.ndarray, r0: np.ndarray, rb: np.ndarray, tool_radius_mm: float, step_mm: float,
+                 blends: int = 21) -> tuple[int, int]:
+    """Loops a spiral from the polar curve ``rb`` to ``r0`` (radii at angles ``th``) needs: (with the concave
+    parts, without them).
+
+    A loop at blend t, r = r0 + t·(rb − r0), lies (rb − r0)/n·cos β from the next one along its normal (β the
+    angle between the radius and the normal, tan β = r′/r).  The material still to cut lies inside the loop,
+    toward the part.  Where the loop is concave seen from the cam axis (the part's outline bends inward; the
+    centre of curvature, radius ρ, lies on the cut side, as in a pocket), a tool on it that meets a band
+    ``ae`` deep spans more than ``ae`` across its travel: the band's edge is a circle of radius ρ + r_t − ae
+    about the same centre, and the tool's leading half meets the material beyond it over the width
+    ae·(1 + (2 r_t − ae)/(2ρ)).
+    So a loop may advance at most the ae that makes that ``step_mm``, the root
+    ae = (ρ + r_t) − √((ρ + r_t)² − 2ρ·step) (``step_mm`` on a straight or convex stretch).  The curvature is
+    the polar curve's, its radii averaged over :data:`CURVATURE_SPAN_MM` each side (the polygons' vertices
+    would make it noise; averaged over a tool radius, it missed short concave stretches: 1.000 of the stepover
+    measured at stepover 0.1), on ``blends`` loops from the last to the first.
+    """
+    r_t = tool_radius_mm
+    dth = float(th[1] - th[0])
+    dr = rb - r0
+    need = plain = 0.0
+    for t in np.linspace(0.0, 1.0, blends):
+        r = r0 + t * dr
+        w = max(1, int(round(CURVATURE_SPAN_MM / (float(r.mean()) * dth))))
+        rs = np.convolve(np.concatenate([r[-w:], r, r[:w]]), np.ones(2 * w + 1) / (2 * w + 1), mode="valid")
+        r1 = (np.roll(rs, -1) - np.roll(rs, 1)) / (2 * dth)
+        r2 = (np.roll(rs, -1) - 2 * rs + np.roll(rs, 1)) / dth**2
+        kappa = (rs**2 + 2 * r1**2 - rs * r2) / (rs**2 + r1**2) ** 1.5  # > 0 convex (about the cam axis)
+        cos_b = rs / np.hypot(rs, r1)
+        rho = 1.0 / np.maximum(-kappa, 1e-12)
+        a = rho + r_t
+        ae = np.where(kappa < 0, a - np.sqrt(np.maximum(a * a - 2 * rho * step_mm, 0.0)), step_mm)
+        need = max(need, float((dr * cos_b / ae).max()))
+        plain = max(plain, float((dr * cos_b).max()) / step_mm)
+    return int(math.ceil(need - 1e-9)), int(math.ceil(plain - 1e-9))
 
 
 # -- fitting a dense polyline with lines and arcs ------------------------------------------------------------

@@ -93,7 +93,8 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
     ]
     n = len(passes)
     table = DataTable(("pass", "kind", "contour", "Z", "feed mm/min", "spindle rev/min"),
-                      tuple((f"{i + 1}/{n}", p.kind, r.contours[p.contour].label, f"{p.z:g}", f"{machining.feed_mm_min:g}",
+                      tuple((f"{i + 1}/{n}", p.kind + (f" ({p.note})" if p.note else ""), r.contours[p.contour].label,
+                             f"{p.z:g}", f"{machining.feed_mm_min:g}",
                              f"{spindle_rpm:g}") for i, p in enumerate(passes)),
                       "The passes in cutting order (each opens with a comment naming it in the program).")
     return (KeyValues(tuple(rows)), table)

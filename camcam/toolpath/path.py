@@ -81,12 +81,16 @@ class Pass:
         distance from the cam axis (4-axis cylindrical cams).
     moves : tuple
         The pass's moves, from the approach over its start to the retract.
+    note : str
+        How the pass is planned, where the kind does not say it all (a roughing
+        spiral's turns): its comment and the pass table add it.
     """
 
     contour: int
     kind: str
     z: float
     moves: tuple
+    note: str = ""
 
     def __post_init__(self) -> None:
         if self.kind not in PASS_KINDS:
