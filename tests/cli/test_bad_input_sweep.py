@@ -9,6 +9,7 @@ valid must simply succeed.
 from __future__ import annotations
 
 import contextlib
+import hashlib
 import io
 import tempfile
 import tomllib
@@ -207,8 +208,10 @@ def _target_state(root: Path, state: str) -> Path:
         if state == "foreign" or state == "earlier+foreign":
             (target / "notes.txt").write_text("mine")
         if state.startswith("earlier") or state == "orphans":
+            # an earlier run's set as camcam writes it: the manifest records each file's size and SHA-256
             (target / "demo-motion.csv").write_text("old")
-            (target / "camcam-manifest.json").write_text('{"files": [{"name": "demo-motion.csv"}]}')
+            (target / "camcam-manifest.json").write_text(
+                '{"files": [{"name": "demo-motion.csv", "bytes": 3, "sha256": "%s"}]}' % hashlib.sha256(b"old").hexdigest())
         if state == "orphans":
             (root / ".out.camcam-new-00aa11bb22cc").mkdir()
             (root / ".out.camcam-lock").write_text("")
