@@ -508,7 +508,7 @@ def test_a_server_runs_its_first_jobs_at_once_and_the_submitted_ones_after_its_g
 
 
 def test_a_run_gates_its_plots_only_on_two_cores_or_fewer(monkeypatch):
-    from camcam.cli import run as run_module
+    from camcam import flow as run_module
 
     seen = []
     monkeypatch.setattr("camcam.servers.Server", lambda first, gate=None: seen.append(gate) or "server")

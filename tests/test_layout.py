@@ -25,7 +25,7 @@ RANK = {
     "nc": 4,
     "post": 5, "export": 5, "plots": 5, "report": 5, "verify": 5,
     "spec": 6, "size": 6, "scale": 6,
-    "cli": 7, "__main__": 7,
+    "flow": 7, "cli": 7, "__main__": 7,
 }
 
 
@@ -154,6 +154,15 @@ def test_no_private_names_across_modules():
            for target, names, line in imports
            if target.startswith("camcam") and target != name
            for n in names if n.startswith("_") and not n.endswith("__")]
+    assert not bad, "\n".join(bad)
+
+
+def test_the_flow_does_not_reach_into_the_command_line():
+    """`camcam.flow` (the Python face, :func:`camcam.flow.run_job`) runs without the CLI: the commands call it,
+    never the other way round (issue 44: the CLI only parses, calls and prints)."""
+    bad = [f"{path.relative_to(PACKAGE.parent)}:{line} imports {target}"
+           for name, (path, imports) in MODULES.items() if _top(name) == "flow"
+           for target, _, line in imports if target.startswith("camcam.cli")]
     assert not bad, "\n".join(bad)
 
 

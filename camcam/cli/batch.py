@@ -1,6 +1,6 @@
 """``camcam batch SPEC… -o DIR``: many cam specs, each into its own folder, one summary.
 
-Each spec goes through the same library path as ``camcam run`` (:func:`camcam.cli.run.job`)
+Each spec goes through the same library path as ``camcam run`` (:func:`camcam.flow.run_job`)
 as one task, in this process or on Dask workers.  A spec that fails (bad input or an
 internal fault) is a row of the summary with its one-line reason; the others still run.
 Writes ``DIR/<spec file stem>/…`` (what ``camcam run`` writes), ``DIR/summary.csv``,
@@ -11,12 +11,10 @@ other folders are written).
 
 from __future__ import annotations
 
-import contextlib
-import io
 import sys
 from pathlib import Path
 
-from camcam.cli.output import add_output_arguments, collect_warnings, output_set, print_json, to_json
+from camcam.cli.output import add_output_arguments, output_set, print_json, to_json
 from camcam.cli.commands import help_of
 from camcam.cli.scaling import add_scale_arguments, executor_from_args, tell_scale_note
 
@@ -57,29 +55,24 @@ def summary_row(spec_arg: str, folder: str, summary: dict | None, verdict, warni
 
 
 def batch_task(item: tuple[str, str]) -> tuple[dict, dict[str, bytes]]:
-    """Run one spec like `camcam run` and return (summary row, files by name); never raises for a bad spec."""
-    from camcam.cli.progress import Progress
-    from camcam.cli.run import job
+    """Run one spec like `camcam run` (:func:`camcam.flow.run_job`) and return (summary row, files by name);
+    never raises for a bad spec."""
     from camcam.errors import CamcamError
-    from camcam.export.files import OutputSet
-    from camcam.spec import load_spec
+    from camcam.flow import run_job
 
     spec_arg, folder = item
-    err = io.StringIO()
-    out = OutputSet(folder)
-    summary, verdict, error = None, None, ""
-    with contextlib.redirect_stderr(err), collect_warnings() as warnings:
-        try:
-            summary, verdict = job(load_spec(spec_arg), out, Progress(False))
-        except CamcamError as e:
-            error = " ".join(str(e).splitlines())
-        except Exception as e:  # noqa: BLE001 - one spec's fault must not stop the batch; the row names it
-            error = f"internal fault: {type(e).__name__}: {' '.join(str(e).splitlines())}"
+    job, error = None, ""
+    try:
+        job = run_job(spec_arg)
+    except CamcamError as e:
+        error = " ".join(str(e).splitlines())
+    except Exception as e:  # noqa: BLE001 - one spec's fault must not stop the batch; the row names it
+        error = f"internal fault: {type(e).__name__}: {' '.join(str(e).splitlines())}"
     # the warnings `camcam run` prints: the job's own, then the verdict's advisory misses (design limits)
-    warned = [m for k, m in warnings if k == "warning"] + ([c.describe() for c in verdict.warnings] if verdict else [])
-    row = summary_row(spec_arg, folder, summary, verdict, warned, error)
+    warned = list(job.warnings) + [c.describe() for c in job.verdict.warnings] if job is not None else []
+    row = summary_row(spec_arg, folder, dict(job.summary) if job else None, job.verdict if job else None, warned, error)
     row["warning_text"] = warned
-    return row, (out.contents() if summary is not None else {})
+    return row, (dict(job.files) if job is not None else {})
 
 
 def _folders(specs: list[str]) -> list[str]:

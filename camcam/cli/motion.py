@@ -5,12 +5,10 @@ from __future__ import annotations
 
 from camcam.cli.commands import help_of
 from camcam.cli.output import add_output_arguments, add_verbose_flag, output_set, publish, warn
-from camcam.export.files import OutputSet
-from camcam.export.motion_table import motion_csv
-from camcam.motion.program import MotionProgram
+from camcam.export.motion_table import motion_outputs, motion_summary
 from camcam.spec import load_spec
 
-__all__ = ["register", "motion_summary", "motion_outputs", "SVAJ_PLOT", "svaj_title"]
+__all__ = ["register", "print_summary", "check_step"]
 
 
 def register(sub) -> None:
@@ -21,49 +19,6 @@ def register(sub) -> None:
     p.add_argument("--json", action="store_true", help="print the summary as one JSON object")
     add_verbose_flag(p)
     p.set_defaults(func=run)
-
-
-def motion_summary(program: MotionProgram) -> dict:
-    """Extremes of s, v, a, j with the cam angles where they occur (rounding noise printed as 0:
-    :func:`camcam.export.figures.clean`), and the joins."""
-    from camcam.export.figures import clean
-
-    names = ["lift", "velocity", "acceleration", "jerk"]
-    out = {"rpm": program.rpm, "units": dict(zip(names, program.units)), "extremes": {}}
-    for k, n in enumerate(names):
-        lo, hi = program.extremes(k)
-        scale = max(abs(lo.value), abs(hi.value))  # a lift of -3.55e-15 mm beside a 20 mm rise is 0 (issue 43)
-        out["extremes"][n] = {"min": clean(lo.value, scale), "min_at_deg": lo.angle_deg, "max": clean(hi.value, scale),
-                              "max_at_deg": hi.angle_deg}
-    out["joins"] = [
-        {"angle_deg": j.angle_deg, "quantity": {1: "velocity", 2: "acceleration"}[j.order], "jump": j.jump, "unit": j.unit}
-        for j in program.joins
-    ]
-    return out
-
-
-def motion_outputs(out: OutputSet, name: str, program: MotionProgram, step_deg: float, svaj=None):
-    """Add the motion table and the SVAJ plot to ``out``; returns the plot (the report shows it too),
-    a :class:`~camcam.forked.Pending` while it is drawn in a child process.
-
-    ``svaj`` is the plot when a caller already has it being drawn (`camcam run`'s plot server);
-    otherwise it is drawn in a forked child that imports matplotlib itself.
-    """
-    from camcam.forked import call_target, later
-
-    out.add(f"{name}-motion.csv", motion_csv(program, step_deg))
-    if svaj is None:
-        svaj = later(call_target, SVAJ_PLOT, program, title=svaj_title(name, program))
-    out.add(f"{name}-svaj.png", svaj)
-    return svaj
-
-
-#: The SVAJ plot's function (imported where it is drawn: matplotlib is loaded only there).
-SVAJ_PLOT = "camcam.plots.svaj:svaj_png"
-
-
-def svaj_title(name: str, program: MotionProgram) -> str:
-    return f"{name}: motion at {program.rpm:g} rpm"
 
 
 def print_summary(summary: dict) -> None:

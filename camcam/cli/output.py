@@ -3,21 +3,20 @@
 Warnings and notes (:func:`warn`) never go to stderr unless the command was given ``--verbose``: a run
 that ends with status 2 or 3 prints exactly one stderr line, its cause and the way out.  They are
 collected while the command works and printed on stdout with its summary (:func:`publish`: one
-``warning: …`` line each, or a ``"warnings"`` list in the ``--json`` object); `camcam batch` collects
-each spec's own (:func:`collect_warnings`).
+``warning: …`` line each, or a ``"warnings"`` list in the ``--json`` object); `camcam batch` takes each
+spec's own from its :class:`~camcam.flow.Job`.
 """
 
 from __future__ import annotations
 
 import sys
-from contextlib import contextmanager
 from pathlib import Path
-from typing import Any, Callable, Iterator, Sequence
+from typing import Any, Callable, Sequence
 
 from camcam.export.jsontext import to_json
 
 __all__ = ["to_json", "print_json", "warn", "publish", "output_set", "add_output_arguments", "add_verbose_flag",
-           "begin_warnings", "collect_warnings", "pending_warnings"]
+           "begin_warnings", "pending_warnings"]
 
 #: Warnings and notes of the command running now, in order (:func:`warn`): (kind, message); and whether they
 #: also go to stderr at once.
@@ -63,27 +62,6 @@ def warn(message: str, kind: str = "warning") -> None:
 def pending_warnings(kind: str = "warning") -> list[str]:
     """The warnings (or notes) collected so far."""
     return [m for k, m in _warnings if k == kind]
-
-
-@contextmanager
-def collect_warnings() -> Iterator[list[tuple[str, str]]]:
-    """Collect the warnings and notes of the block, (kind, message), in the list it yields (one spec of
-    `camcam batch`), not the command's.
-
-    Examples
-    --------
-    >>> with collect_warnings() as seen:
-    ...     warn("x")
-    >>> seen, pending_warnings()
-    ([('warning', 'x')], [])
-    """
-    global _warnings, _verbose
-    saved, saved_verbose = _warnings, _verbose
-    _warnings, _verbose = [], False
-    try:
-        yield _warnings
-    finally:
-        _warnings, _verbose = saved, saved_verbose
 
 
 def add_output_arguments(p) -> None:

@@ -1,4 +1,5 @@
-"""The motion program as a CSV table (one row per cam-angle step)."""
+"""The motion program as a CSV table (one row per cam-angle step), its summary of extremes, and the
+SVAJ plot beside it."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import numpy as np
 
 from camcam.motion.program import MotionProgram
 
-__all__ = ["sample_angles_deg", "motion_csv"]
+__all__ = ["sample_angles_deg", "motion_csv", "motion_summary", "motion_outputs", "SVAJ_PLOT", "svaj_title"]
 
 
 def sample_angles_deg(step_deg: float) -> np.ndarray:
@@ -38,3 +39,46 @@ def motion_csv(program: MotionProgram, step_deg: float = 0.5) -> str:
     for row in zip(angles, *cols):
         buf.write(",".join(f"{v:.10g}" for v in row) + "\n")
     return buf.getvalue()
+
+
+def motion_summary(program: MotionProgram) -> dict:
+    """Extremes of s, v, a, j with the cam angles where they occur (rounding noise printed as 0:
+    :func:`camcam.export.figures.clean`), and the joins."""
+    from camcam.export.figures import clean
+
+    names = ["lift", "velocity", "acceleration", "jerk"]
+    out = {"rpm": program.rpm, "units": dict(zip(names, program.units)), "extremes": {}}
+    for k, n in enumerate(names):
+        lo, hi = program.extremes(k)
+        scale = max(abs(lo.value), abs(hi.value))  # a lift of -3.55e-15 mm beside a 20 mm rise is 0 (issue 43)
+        out["extremes"][n] = {"min": clean(lo.value, scale), "min_at_deg": lo.angle_deg, "max": clean(hi.value, scale),
+                              "max_at_deg": hi.angle_deg}
+    out["joins"] = [
+        {"angle_deg": j.angle_deg, "quantity": {1: "velocity", 2: "acceleration"}[j.order], "jump": j.jump, "unit": j.unit}
+        for j in program.joins
+    ]
+    return out
+
+
+def motion_outputs(out, name: str, program: MotionProgram, step_deg: float, svaj=None):
+    """Add the motion table and the SVAJ plot to ``out``; returns the plot (the report shows it too),
+    a :class:`~camcam.forked.Pending` while it is drawn in a child process.
+
+    ``svaj`` is the plot when a caller already has it being drawn (`camcam run`'s plot server);
+    otherwise it is drawn in a forked child that imports matplotlib itself.
+    """
+    from camcam.forked import call_target, later
+
+    out.add(f"{name}-motion.csv", motion_csv(program, step_deg))
+    if svaj is None:
+        svaj = later(call_target, SVAJ_PLOT, program, title=svaj_title(name, program))
+    out.add(f"{name}-svaj.png", svaj)
+    return svaj
+
+
+#: The SVAJ plot's function (imported where it is drawn: matplotlib is loaded only there).
+SVAJ_PLOT = "camcam.plots.svaj:svaj_png"
+
+
+def svaj_title(name: str, program: MotionProgram) -> str:
+    return f"{name}: motion at {program.rpm:g} rpm"

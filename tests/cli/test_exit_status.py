@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-import camcam.cli.run as run_module
+import camcam.flow as run_module
 from camcam.cli import main
 from camcam.errors import FitError
 from camcam.verdict import Check, Verdict
