@@ -1,4 +1,4 @@
-"""Figures of the 5-axis barrel-cam job (README "5 axes for an oscillating roller").
+"""Figures of the 5-axis barrel-cam job (docs/barrel-cams.md, "5 axes for an oscillating roller"; the table in docs/benchmarks.md).
 
 For seed 002's cam (samples/cylindrical-oscillating.toml) and each post: blocks, the fit's own error
 model, the 3-D groove measurement (camcam.nc.groove3d) on the printed program and on the program as

@@ -32,7 +32,7 @@ from camcam.lifttable.table import LiftTable
 __all__ = ["FairingResult", "METHODS", "DEFAULT_METHOD", "DEFAULT_XI", "midpoint_fairing", "smoothing_fairing", "fair"]
 
 METHODS = ("mid-point", "smoothing")
-#: The default for noisy tables: see the README section "Lift tables" for the comparison.
+#: The default for noisy tables: see docs/lift-tables-and-reverse.md ("Which fairing") for the comparison.
 DEFAULT_METHOD = "smoothing"
 #: Default ξ (mm or deg): a tenth of a micrometre.
 DEFAULT_XI = 1e-4
