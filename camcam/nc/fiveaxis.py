@@ -51,6 +51,8 @@ from camcam.errors import FitError, GeometryError, InputError, PostError
 from camcam.geometry.build import BuiltCam
 from camcam.nc.toolposes import CylinderTool, poses_from_program
 from camcam.nc.groove3d import measure_groove, pose_step_for
+from camcam.nc.passes import with_markers
+from camcam.nc.reach import tool_reach
 from camcam.nc.result import MachiningResult
 from camcam.nc.settings import MachiningSpec
 from camcam.nc.tools import SAME_TOOL_MM, job_title
@@ -70,6 +72,8 @@ TARGET = 0.8
 FIT_SAMPLES, REPORT_SAMPLES = 24, 96
 #: Smoothing of |sin θf| in the tip depth (rad).
 EPS = 0.01
+#: The groove contour's label (the pass comments and the pass table name it).
+LABEL = "groove (5-axis, tool on the roller axis)"
 
 
 def tool_axis(b_deg) -> np.ndarray:
@@ -303,6 +307,11 @@ def five_axis_path(pose: ToolPose, tolerance_mm: float, quantizer: Quantizer) ->
                     float(0.5 * (nodes[worst, 2] + nodes[worst + 1, 2])))
 
 
+def _lowest_tip_z(nodes: np.ndarray, raise_mm: float, quantizer: Quantizer) -> float:
+    """The lowest tip Z a pass raised ``raise_mm`` along the tool axis prints (its cutting blocks, on the grid)."""
+    return float(quantizer.snap(nodes[:, 1] + raise_mm * np.cos(np.radians(nodes[:, 3]))).min())
+
+
 def _pass_moves(nodes: np.ndarray, raise_mm: float, m: MachiningSpec, outer: float, r_t: float) -> list:
     """One depth pass, the tip raised ``raise_mm`` along the tool axis: down along the axis, round, back out."""
     b = np.radians(nodes[:, 3])
@@ -352,8 +361,12 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int
     n = len(levels)
     outer = cam.base_radius
     step = (outer - pose.tip_radius) / n
-    passes = tuple(Pass(0, "slot", float(pose.tip_radius - (n - 1 - k) * step),
-                        tuple(_pass_moves(nodes, (n - 1 - k) * step, m, outer, r_t))) for k in range(n))
+    # pass k (in cutting order) is the final pass raised (n − 1 − k)·step along the tool axis: the first the
+    # highest.  Its Z is the lowest tip Z it prints (issue 43: the table said the final pass's tip radius less
+    # the raise, so the first pass read 5.57 mm below the last where the program cuts it 5.57 mm above)
+    raises = [(n - 1 - k) * step for k in range(n)]
+    passes = with_markers(tuple(Pass(0, "slot", _lowest_tip_z(nodes, h, post.quantizer),
+                                     tuple(_pass_moves(nodes, h, m, outer, r_t))) for h in raises), [LABEL])
     tcp = "; ".join(post.tcp_on) or "in the machine's kinematics"
     tcp = tcp.replace("{tool}", str(m.tool_number)).replace("{tool:02d}", f"{m.tool_number:02d}")
     feed_note = ("F = tool-tip feed in mm/min (M128)" if post.dialect == "heidenhain"
@@ -376,6 +389,9 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int
                            pose_step_mm=pose_step_for(m.tolerance_mm, r_t))
     value, tol = groove.max_deviation_mm, m.tolerance_mm
     holds = math.ceil(value * 1e4) / 1e4
+    reach = tool_reach(poses, r_t, cam.base_radius, cam.bottom_radius, path.floor_radius_mm, m.flute_length_mm,
+                       post.decimals, "the tilted flat end, so that both walls reach the bottom; no roller touches "
+                       "the floor")
     check = Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(),
                   f"check flute_length (the cut needs {path.cut_length_mm:.2f} mm from the tip) and depth, "
                   f"or accept a tolerance of at least {holds:g} mm")
@@ -405,7 +421,7 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int
         bounds.append(bound)
     fit = FitResult(printed, "lines", m.tolerance_mm, post.decimals, dev, float(sum(bounds)), tuple(pieces_blocks),
                     tuple(bounds))
-    contour = CutContour("groove (5-axis, tool on the roller axis)", curve, fit, printed, dev, cam.roller_radius,
+    contour = CutContour(LABEL, curve, fit, printed, dev, cam.roller_radius,
                          False, tuple(segs), "both")
     notes = (f"5-axis fit model (the tool side's normal displacement at the walls, printed numbers): "
              f"{path.error_tip_mm:.5f} mm at the tip, {path.error_top_mm:.5f} mm at the top of the cut; "
@@ -415,4 +431,5 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int
     if m.flute_length_mm < path.cut_length_mm:
         notes += (f"flute_length {m.flute_length_mm:g} mm is shorter than the {path.cut_length_mm:.2f} mm the walls need",)
     return MachiningResult(name, built.spec.kind, cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, "lines",
-                           (contour,), toolpath, program, rho, notes, (check,), groove=groove)
+                           (contour,), toolpath, program, rho, notes, (check, reach.check()), groove=groove,
+                           reach=reach)

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from camcam.nc.reach import ToolReach
 from camcam.nc.removal import RemovalReport
 from camcam.nc.settings import PostDialect
 from camcam.nc.timing import CycleTime
@@ -68,6 +69,7 @@ class MachiningResult:
     smallest_tool_mm: float | None = None
     blank: Blank | None = None
     removal: RemovalReport | None = None
+    reach: ToolReach | None = None  # barrel programs: how deep the printed tool goes, the flute it needs
 
     @property
     def rotary(self) -> bool:
@@ -134,6 +136,8 @@ class MachiningResult:
             out["groove_3d"] = g
             if self.smallest_tool_mm is not None:
                 out["smallest_tool_diameter_mm"] = self.smallest_tool_mm
+        if self.reach is not None:
+            out["tool_reach"] = self.reach.as_dict()
         return out
 
     def material_figures(self) -> dict:

@@ -45,6 +45,8 @@ from camcam.geometry.build import BuiltCam
 from camcam.nc.flank import DisplacedCurve, plan_flank, smallest_tool_radius
 from camcam.nc.toolposes import A_AXIS_SENSE, CylinderTool, poses_from_program
 from camcam.nc.groove3d import GrooveMeasurement, measure_groove, pose_step_for
+from camcam.nc.passes import with_markers
+from camcam.nc.reach import tool_reach
 from camcam.nc.result import MachiningResult, deviation_checks
 from camcam.nc.settings import MachiningSpec
 from camcam.nc.tools import SAME_TOOL_MM, groove_passes
@@ -96,6 +98,15 @@ def _plan(cam, r_t: float, rho_d: float):
             ("flank 1 (+X wall)", OffsetCurve(cam.developed_flank(1, rho_d), -r_t), r_t, "finish")], 0.0
 
 
+def _corner_dip_mm(cam, r_t: float) -> float:
+    """How far below the groove bottom the tip must go for the flat end to reach the wall corner (mm, exact)."""
+    th = np.linspace(0.0, 2 * math.pi, 2881)
+    alpha = np.abs(cam.pressure_angle(th).value).max()  # at the groove bottom, where it is largest
+    y = r_t * math.sin(alpha)
+    rb = cam.bottom_radius
+    return rb - math.sqrt(rb * rb - y * y)
+
+
 def _corner_depth_mm(cam, r_t: float, quantizer, depth_mm: float) -> float:
     """How far below ``depth_mm`` the tool tip goes so that its end clears the wall corner (mm), as printed.
 
@@ -106,12 +117,8 @@ def _corner_depth_mm(cam, r_t: float, quantizer, depth_mm: float) -> float:
     R 1000 mm the corner is 4e-5 mm deep and Z990 printed exactly at the bottom, where the tool's section on
     the bottom radius is a single line: the 3-D check found the groove uncut there, 16 mm).
     """
-    th = np.linspace(0.0, 2 * math.pi, 2881)
-    alpha = np.abs(cam.pressure_angle(th).value).max()  # at the groove bottom, where it is largest
-    y = r_t * math.sin(alpha)
-    rb = cam.bottom_radius
     top = cam.base_radius - depth_mm  # the tip at the stated depth
-    target = top - (rb - math.sqrt(rb * rb - y * y))
+    target = top - _corner_dip_mm(cam, r_t)
     k = quantizer.count(target)
     while quantizer.value(k) >= target:
         k -= 1
@@ -196,12 +203,20 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     if corner > 0:
         comments += (f"last pass {corner:.{post.decimals}f} mm below the groove bottom: the tool end clears the wall "
                      f"corner",)
-    toolpath = dataclasses.replace(join_toolpaths(title, paths), comments=comments)
+    joined = join_toolpaths(title, paths)
+    # every pass opens with a comment naming it (pass 1/4: slot, groove centre, Z45.0), as a disc's do
+    toolpath = dataclasses.replace(joined, comments=comments,
+                                   passes=with_markers(joined.passes, [c.label for c in contours]))
     measured = post.write_program(toolpath, name, m.setup)
     poses = poses_from_program(measured.text, m.a_axis)
     groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers,
                            pose_step_mm=pose_step_for(m.tolerance_mm, r_t))
     check = groove_check(cam, m, groove, smallest)
+    # how deep the printed program goes, against what the walls need: the groove depth and the corner dip
+    full = m.depth_mm >= cam.groove_depth - 1e-9
+    needed = cam.bottom_radius - _corner_dip_mm(cam, r_t) if full else cam.base_radius - m.depth_mm
+    reach = tool_reach(poses, r_t, cam.base_radius, cam.bottom_radius, needed, m.flute_length_mm, post.decimals,
+                       "so that the flat end reaches the wall corner" if full else "")
     # the same moves, with the check's result in the header
     verdict = "within" if check.ok else "OUT OF TOLERANCE"
     toolpath = dataclasses.replace(toolpath, comments=toolpath.comments + (
@@ -219,7 +234,7 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     if flank_err > 0:
         notes += (f"4-axis: flank passes balanced over the depth; first-order flank error {flank_err:.4f} mm"
                   + (f", smallest tool holding half the tolerance D{smallest:.2f} mm" if smallest else ""),)
-    checks = deviation_checks(contours, m.tolerance_mm) + (check,)
+    checks = deviation_checks(contours, m.tolerance_mm) + (check, reach.check())
     return MachiningResult(name, built.spec.kind, cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, "lines",
                            tuple(contours), toolpath, program, rho_d, notes, checks, groove=groove,
-                           smallest_tool_mm=smallest)
+                           smallest_tool_mm=smallest, reach=reach)

@@ -4,8 +4,12 @@ Every move is timed from the numbers as printed (the controller's view):
 
 * a feed move (``G1``/``G2``/``G3``, Heidenhain ``L``/``C`` with F) takes its
   path length over the modal feed; an arc's length is r · sweep (helical: the
-  hypotenuse with the Z travel);
-* an inverse-time move (``G93``) takes 1/F minutes, F as printed;
+  hypotenuse with the Z travel); a move that turns A (Heidenhain's 5-axis ``L``
+  under M128, whose F is the tool tip's feed) is as long as the tip's path in
+  the part, which turns with A (:func:`part_path_mm`);
+* an inverse-time move (``G93``, every 4- and 5-axis move of the G-code posts)
+  takes 1/F minutes, F as printed (rs274's canonical feed rates say the same:
+  the move's XYZ length × F), and its length counts the tip's path in the part;
 * a rapid (``G0``, ``FMAX``) runs its straight-line length at the post's
   ``rapid_mm_min`` (a controller that moves each axis at its own rate is
   faster on a diagonal: the estimate errs long there);
@@ -30,7 +34,39 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["CycleTime", "MoveTimer"]
+__all__ = ["CycleTime", "MoveTimer", "part_path_mm"]
+
+#: Simpson intervals of a move's tip path in the part (even).
+PATH_INTERVALS = 16
+
+
+def part_path_mm(start, end, a0_deg: float = 0.0, a1_deg: float = 0.0) -> float:
+    """Length of the tool tip's path in the part (mm) along a move from ``start`` to ``end`` (machine X Y Z)
+    while A turns linearly from ``a0_deg`` to ``a1_deg`` about X: the part point under the tip is Rx(−A)·p.
+
+    Its speed² is X′² + Y′² + Z′² + A′²(Y² + Z²) − 2A′(Y·Z′ − Z·Y′) (A′ in radians); Simpson's rule on
+    :data:`PATH_INTERVALS` intervals.  Without a turn it is the straight length.
+
+    Examples
+    --------
+    >>> round(part_path_mm((0.0, 0.0, 50.0), (0.0, 0.0, 50.0), 0.0, 90.0), 9)  # a quarter turn at R50
+    78.53981634
+    >>> part_path_mm((0.0, 0.0, 0.0), (3.0, 4.0, 0.0))
+    5.0
+    """
+    da = math.radians(a1_deg - a0_deg)
+    if da == 0.0:
+        return math.dist(start, end)
+    dx, dy, dz = (e - s for s, e in zip(start, end))
+    n = PATH_INTERVALS
+    total = 0.0
+    for k in range(n + 1):
+        u = k / n
+        y, z = start[1] + u * dy, start[2] + u * dz
+        speed = math.sqrt(max(dx * dx + dy * dy + dz * dz + da * da * (y * y + z * z) - 2 * da * (y * dz - z * dy),
+                              0.0))
+        total += speed * (1 if k in (0, n) else 4 if k % 2 else 2)
+    return total / (3 * n)
 
 
 @dataclass(frozen=True)
@@ -79,15 +115,16 @@ class MoveTimer:
         self.rapid_min += d / self.rapid_mm_min
         self.moves += 1
 
-    def line(self, start, end, feed_mm_min: float) -> None:
-        d = math.dist(start, end)
+    def line(self, start, end, feed_mm_min: float, a0_deg: float = 0.0, a1_deg: float = 0.0) -> None:
+        """A feed move at ``feed_mm_min`` along the tip's path in the part (A turning from ``a0_deg`` to ``a1_deg``)."""
+        d = part_path_mm(start, end, a0_deg, a1_deg)
         self.feed_mm += d
         self.feed_min += d / feed_mm_min
         self.moves += 1
 
-    def inverse_time(self, start, end, f_per_min: float) -> None:
-        """A G93 move: 1/F minutes whatever its length."""
-        self.feed_mm += math.dist(start, end)
+    def inverse_time(self, start, end, f_per_min: float, a0_deg: float = 0.0, a1_deg: float = 0.0) -> None:
+        """A G93 move: 1/F minutes whatever its length; its length is the tip's path in the part."""
+        self.feed_mm += part_path_mm(start, end, a0_deg, a1_deg)
         self.feed_min += 1.0 / f_per_min
         self.moves += 1
 

@@ -81,6 +81,10 @@ class _Writer:
         scale = 10.0 ** -self.post.decimals
         return tuple(0.0 if v is None else v * scale for v in self.pos)
 
+    def a_now(self) -> float:
+        """The printed A in degrees (0 until stated, as rs274 starts)."""
+        return 0.0 if self.rot["A"] is None else self.rot["A"] * 10.0 ** -self.post.decimals
+
     def per_mm(self, count: int) -> float:
         return count * 10.0 ** -self.post.decimals
 
@@ -131,7 +135,7 @@ class _Writer:
         if isinstance(m, Comment):
             self.emit(self.comment(m.text))
             return
-        before = self.where()
+        before, a_before = self.where(), self.a_now()
         if isinstance(m, Rapid):
             w = self.axes(m.x, m.y, m.z) + self.rotary_words(m)
             if w:
@@ -146,7 +150,7 @@ class _Writer:
             if rotary:
                 inv = m.feed_mm_min / max(m.length_mm, 10.0**-d)
                 w.append(self.f_word(inv))
-                self.timer.inverse_time(before, self.where(), self.per_mm(self.count(inv)))
+                self.timer.inverse_time(before, self.where(), self.per_mm(self.count(inv)), a_before, self.a_now())
             else:
                 if m.feed_mm_min != self.feed:
                     w.append(self.f_word(m.feed_mm_min))
@@ -200,7 +204,7 @@ class _Writer:
         if isinstance(m, Comment):
             self.emit(self.comment(m.text))
             return False
-        before = self.where()
+        before, a_before = self.where(), self.a_now()
         if isinstance(m, Feed) and m.a_deg is not None and not five_axis:
             raise InputError(f"post {self.post.name}: 4-axis programs are not supported by this dialect")
         if isinstance(m, ArcMove):
@@ -235,8 +239,8 @@ class _Writer:
         self.counts["rapid" if rapid else "line"] += 1
         if rapid:
             self.timer.rapid(before, self.where())
-        else:
-            self.timer.line(before, self.where(), self.per_mm(self.count(m.feed_mm_min)))
+        else:  # under M128 F is the tool tip's feed along its path in the part (A turning with it)
+            self.timer.line(before, self.where(), self.per_mm(self.count(m.feed_mm_min)), a_before, self.a_now())
         return True
 
 

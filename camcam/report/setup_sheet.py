@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from camcam.nc.result import MachiningResult
+from camcam.nc.reach import flute_text
 from camcam.post.post import Post
 from camcam.report.html import DataTable, KeyValues
 
@@ -83,8 +84,9 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
         ("program", f"{r.program_filename} (post {post.name}" + (f", program number {number}" if post.uses_program_number
                                                                else "") + ")"),
         ("work offset", f"{setup.work_offset}: {offset_words}"),
-        ("tool", f"T{tool}, Ø{r.tool_diameter_mm:g} mm flat end mill, flute length ≥ {depth:g} mm "
-                 f"(deepest pass {depth:g} mm below the top)"),
+        ("tool", f"T{tool}, Ø{r.tool_diameter_mm:g} mm flat end mill, "
+                 + (flute_text(r.reach) if r.reach is not None
+                    else f"flute length ≥ {depth:g} mm (deepest pass {depth:g} mm below the top)")),
         ("tool length offset", length_offset_text(post, tool)),
         ("spindle", f"{spindle_rpm:g} rev/min clockwise"),
         ("coolant", f"{setup.coolant} ({post.coolant_word(setup.coolant)} on, {post.coolant_off} off)"),
@@ -92,9 +94,9 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
                                   f"tool change {post.tool_change_s:g} s, acceleration not counted"),
     ]
     n = len(passes)
-    table = DataTable(("pass", "kind", "contour", "Z", "feed mm/min", "spindle rev/min"),
-                      tuple((f"{i + 1}/{n}", p.kind + (f" ({p.note})" if p.note else ""), r.contours[p.contour].label,
-                             f"{p.z:g}", f"{machining.feed_mm_min:g}",
-                             f"{spindle_rpm:g}") for i, p in enumerate(passes)),
+    # "plan": how a pass is planned where its kind does not say it (a roughing spiral's turns, Pass.note)
+    table = DataTable(("pass", "kind", "contour", "Z", "feed mm/min", "spindle rev/min", "plan"),
+                      tuple((f"{i + 1}/{n}", p.kind, r.contours[p.contour].label, f"{p.z:g}",
+                             f"{machining.feed_mm_min:g}", f"{spindle_rpm:g}", p.note) for i, p in enumerate(passes)),
                       "The passes in cutting order (each opens with a comment naming it in the program).")
     return (KeyValues(tuple(rows)), table)

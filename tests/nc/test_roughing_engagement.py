@@ -14,6 +14,7 @@ from camcam.nc.job import machine
 from camcam.nc.roughing import disc_spiral
 from camcam.nc.stock import blank_for
 from camcam.nc.sweep import Move, sweep_slabs
+from camcam.report.setup_sheet import setup_blocks
 from camcam.spec import load_spec
 from camcam.toolpath.elements import Line
 
@@ -53,6 +54,8 @@ def test_concave_notch_program_holds_the_stepover():
     rough = [p for p in result.passes if p.kind == "rough"]
     assert rough and all(p.note.startswith("spiral ") and "turns" in p.note for p in rough)
     assert f"rough, profile, Z{rough[0].z:g}, {rough[0].note}" in result.program.text
+    table = setup_blocks(_built(spec), result, spec.machining)[1]
+    assert [row[6] for row in table.rows if row[1] == "rough"] == [p.note for p in rough]  # the plan column
 
 
 @pytest.mark.parametrize("stepover", [0.4, 0.2, 0.1])
