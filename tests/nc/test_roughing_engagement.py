@@ -11,6 +11,7 @@ import shapely
 
 from camcam.geometry.build import build_cam
 from camcam.nc.job import machine
+from camcam.nc.removal import RemovalReport
 from camcam.nc.roughing import disc_spiral
 from camcam.nc.stock import blank_for
 from camcam.nc.sweep import Move, sweep_slabs
@@ -138,3 +139,17 @@ def test_random_cams_hold_the_engagement_limit(tmp_path, seed, stepover):
     e, limit, sp = spiral_engagement(spec)
     assert e <= limit
     assert e > 0.5 * limit  # and the spiral really cuts at about the step
+
+
+@pytest.mark.parametrize("where, advice", [
+    ("pass 3/4: finish, profile, Z-12 at X1.000 Y2.000 Z-12.000", "lower [machining] finish_allowance or use a smaller tool"),
+    ("pass 1/4: rough, profile, Z-6, spiral 9 turns at most 5.72 mm apart at X1.000 Y2.000 Z-6.000",
+     "lower [machining] stepover (the roughing should have held it"),
+])
+def test_engagement_advice_names_the_passes_own_way_out(where, advice):
+    # a finishing pass's engagement comes from the allowance wrapping round the tool in a concave corner: a
+    # lower stepover (the old advice for every pass) changes nothing there
+    r = RemovalReport(8.0, 6.4, 3.0, 0.01, 0.3, (-6.0, -12.0), 4, 7.0, where, 0.0, 0, "", 0, "", 0.0, "", 0.0, "",
+                      0.35, "")
+    check = {c.name: c for c in r.checks()}["radial engagement"]
+    assert not check.ok and advice in check.advice
