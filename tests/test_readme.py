@@ -163,3 +163,17 @@ def test_every_benchmark_table_says_how_to_remake_it():
         if line.startswith("|"):
             last_table_end = i + 1
     assert not bad, "benchmark tables without the command that re-makes them: " + "; ".join(bad)
+
+
+def test_the_python_examples_run(monkeypatch):
+    """The README's ```python blocks are doctests: the Python face (camcam.run_job) works as shown."""
+    import doctest
+
+    blocks = re.findall(r"```python\n(.*?)\n```", README.read_text(), re.S)
+    assert blocks, "the README shows camcam.run_job"
+    monkeypatch.chdir(ROOT)  # the examples name samples/… from the repository's top
+    parser, runner = doctest.DocTestParser(), doctest.DocTestRunner(optionflags=doctest.ELLIPSIS)
+    for k, block in enumerate(blocks):
+        runner.run(parser.get_doctest(block, {}, f"README python block {k + 1}", str(README), 0))
+    result = runner.summarize(verbose=False)
+    assert result.failed == 0 and result.attempted >= 6, result
