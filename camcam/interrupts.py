@@ -97,16 +97,21 @@ class Watch:
 
 
 @contextmanager
-def deferred() -> Iterator[None]:
+def deferred() -> Iterator[list[int]]:
     """Hold SIGINT/SIGTERM/SIGHUP back until the block ends, then deliver the first one.
+
+    The block gets the list of the signals held so far: a long call into native code (a HiGHS
+    solve, :mod:`camcam.optimize.lp`) polls it from its progress callback and stops early, so
+    the signal is answered as soon as the call returns.
 
     Examples
     --------
-    >>> with deferred():
-    ...     pass
+    >>> with deferred() as came:
+    ...     came
+    []
     """
     if not _main_thread():
-        yield
+        yield []
         return
     came: list[int] = []
 
@@ -115,7 +120,7 @@ def deferred() -> Iterator[None]:
 
     old = {s: signal.signal(s, hold) for s in SIGNALS}
     try:
-        yield
+        yield came
     finally:
         for s, h in old.items():
             signal.signal(s, h)

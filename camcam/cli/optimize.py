@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 from camcam.cli.commands import help_of
@@ -14,7 +15,10 @@ from camcam.optimize.lawfile import law_document
 from camcam.spec import load_spec
 from camcam.spec.optimize import OptimizeSpec
 
-__all__ = ["register", "optimize"]
+__all__ = ["register", "optimize", "LIMIT_NOT_MET"]
+
+#: Exit status when the Complex method's law is written but exceeds a limit some law meets.
+LIMIT_NOT_MET = 3
 
 
 def register(sub) -> None:
@@ -31,12 +35,7 @@ def optimize(opt: OptimizeSpec) -> tuple[BSplineLaw, dict]:
     problem = opt.problem
     # each method imports its own modules: `camcam optimize` (exact) is meant to take at most 0.5 s
     if opt.method == "exact":
-        from camcam.optimize.exact import InfeasibleProblem, exact_optimum
-
-        try:
-            r = exact_optimum(problem)
-        except InfeasibleProblem as err:
-            raise SpecError("optimize.limits", f"{err} (degree {problem.degree}, {problem.segments} segments)") from None
+        r = _exact(problem)
         solver = {
             "method": "exact",
             "lp_rounds": r.rounds,
@@ -72,7 +71,48 @@ def optimize(opt: OptimizeSpec) -> tuple[BSplineLaw, dict]:
             "seconds": r.seconds,
         }
         x = r.x
+        law = BSplineLaw.from_free(problem.space, x)
+        if solver["worst_violation"] > settings.violation_tol:
+            solver["limits_met"] = False
+            solver["fail"] = _complex_infeasible(problem, law, r, settings)
+        return law, solver
     return BSplineLaw.from_free(problem.space, x), solver
+
+
+def _exact(problem):
+    """The exact optimum; the spec's bad sizes and limits as one line naming the key (exit 2)."""
+    from camcam.optimize.exact import InfeasibleProblem, ProblemTooLarge, exact_optimum
+
+    try:
+        return exact_optimum(problem)
+    except InfeasibleProblem as err:
+        raise SpecError("optimize.limits", f"{err} (degree {problem.degree}, {problem.segments} segments)") from None
+    except ProblemTooLarge as err:
+        raise SpecError("optimize.segments", str(err)) from None
+
+
+def _complex_infeasible(problem, law: BSplineLaw, r, settings) -> str:
+    """The Complex method ended outside a limit: decided by the exact LP, as ``method = "exact"`` decides it.
+
+    Raises :class:`SpecError` naming ``optimize.limits`` (exit 2, nothing written) when no curve of the
+    space meets the limits; otherwise returns the FAIL line's text (the law is written and the command
+    exits 3): the Complex method missed, within its budget, a law that meets them.
+    """
+    from camcam.optimize.exact import InfeasibleProblem, ProblemTooLarge, exact_optimum
+
+    k = max(range(len(r.violations)), key=lambda i: r.violations[i])
+    q, limit = problem.limits[k]
+    found = getattr(law.characteristics(), f"{q}m")
+    over = (f"the Complex method's best law has {q}m {found:.6g} over {q} = {limit:g} "
+            f"(+{100.0 * r.violations[k]:.1f} %) after {r.evaluations} evaluations")
+    try:
+        exact = exact_optimum(problem)
+    except InfeasibleProblem as err:
+        raise SpecError("optimize.limits", f"{err} (degree {problem.degree}, {problem.segments} segments); {over}") from None
+    except ProblemTooLarge:
+        return f"{over}; whether any law meets the limits is not decided (the exact LP is over its size limit)"
+    return (f"{over}; a law within the limits exists (method = \"exact\": {problem.minimize}m {exact.objective:.6g}): "
+            f"raise optimize.evaluations or use method = \"exact\"")
 
 
 def run(args) -> int:
@@ -92,4 +132,7 @@ def run(args) -> int:
         print(f"{solver['evaluations']} evaluations in {solver['seconds']:.3f} s, worst limit violation {solver['worst_violation']:.2e}")
         if args.output:
             print(f"wrote {args.output}")
+    if "fail" in solver:  # the Complex method ended outside a limit that some law meets: written, exit 3
+        print(f"camcam: FAIL: {solver['fail']}", file=sys.stderr)
+        return LIMIT_NOT_MET
     return 0

@@ -38,15 +38,54 @@ from camcam.optimize.evaluation import LINEAR_QUANTITIES, CurveEvaluator, Proble
 from camcam.optimize.extremes import piece_extremes
 from camcam.optimize.lp import IncrementalLp, solve_lp
 
-__all__ = ["ExactResult", "InfeasibleProblem", "exact_optimum"]
+__all__ = ["ExactResult", "InfeasibleProblem", "ProblemTooLarge", "exact_optimum", "lp_size", "MAX_LP_ENTRIES"]
 
 #: HiGHS's feasibility tolerance on rows scaled to O(1): 1e-10 keeps the solver's own
 #: slack below the 1e-9 relative limit check.
 _TIGHT = 1e-10
 
+#: The largest LP the exact method starts, in entries of its first constraint matrix (columns × rows,
+#: :func:`lp_size`).  Seed 000's tables are 864–11 664 entries and the N = 80 row of
+#: benchmarks/optimize_tables.py 466 560 (0.7 s); above, HiGHS's dual simplex can stall for minutes on
+#: the refined rows (degree 7, 98 symmetric segments, minimise J: 712 656 entries, one round of 240 000
+#: iterations, 41 s; degree 9, 200 segments: 1 468 800, 15 CPU-minutes in issue 50).
+MAX_LP_ENTRIES = 500_000
+
 
 class InfeasibleProblem(ValueError):
     """No curve of the problem's space meets its limits."""
+
+
+class ProblemTooLarge(ValueError):
+    """The problem's LP is over :data:`MAX_LP_ENTRIES`; the message says which sizes fit."""
+
+
+def lp_size(problem: Problem, per_piece: int = 6) -> tuple[int, int]:
+    """(columns, rows) of the exact method's first LP: the free control points and the epigraph variable;
+    two rows (±) at ``per_piece`` samples of every piece for each bounded or minimised quantity.
+
+    >>> lp_size(Problem(5, 7, True, "A", (("V", 2.0), ("J", 61.4))))
+    (8, 504)
+    """
+    quantities = len(set(dict(problem.limits)) | {problem.minimize})
+    return problem.space.n_free + 1, 2 * per_piece * problem.space.n_pieces * quantities
+
+
+def _check_size(problem: Problem, per_piece: int) -> None:
+    cols, rows = lp_size(problem, per_piece)
+    if cols * rows <= MAX_LP_ENTRIES:
+        return
+    sp = problem.space
+    quantities = rows // (2 * per_piece * sp.n_pieces)
+    fits = [n for n in range(sp.segments - 1, 0, -1)
+            if (n + sp.degree - sp.n_conditions + 1) * 2 * per_piece * (2 * n if sp.symmetric else n) * quantities
+            <= MAX_LP_ENTRIES and n + sp.degree - sp.n_conditions >= 1]
+    advice = f"at most {fits[0]} segments at degree {sp.degree}" if fits else "a lower degree"
+    raise ProblemTooLarge(
+        f"the exact LP would start with {cols} columns × {rows} rows = {cols * rows:,} entries, over camcam's "
+        f"limit of {MAX_LP_ENTRIES:,} (degree {sp.degree}, {sp.segments} segments, "
+        f"{'symmetric' if sp.symmetric else 'asymmetric'}); use {advice}"
+    )
 
 
 @dataclass(frozen=True)
@@ -85,6 +124,7 @@ def exact_optimum(
     for q, _ in problem.limits:
         if q not in LINEAR_QUANTITIES:
             raise ValueError(f"the exact optimiser handles limits on {', '.join(LINEAR_QUANTITIES)} only, got {q!r}")
+    _check_size(problem, per_piece)
     space = problem.space
     ev = CurveEvaluator(space)
     nf, h = space.n_free, space.h

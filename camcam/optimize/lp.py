@@ -9,6 +9,11 @@ than the whole exact optimisation takes after it; ``import highspy`` costs a
 few tens of milliseconds on top of numpy.  The options are linprog's for
 ``highs-ds``: presolve on, the dual simplex, no output.
 
+A solve is answered by Ctrl-C, SIGTERM and SIGHUP within one simplex (or interior-point)
+iteration: the signals are held (:func:`camcam.interrupts.deferred`) while HiGHS runs, its
+interrupt callbacks — called every iteration — tell it to stop once one came, and the held
+signal is delivered as the call returns (before, a stalled solve answered after 30–60 s).
+
 Examples
 --------
 >>> sol = solve_lp(np.array([-1.0, -1.0]), np.array([[1.0, 2.0], [3.0, 1.0]]), np.array([4.0, 6.0]),
@@ -23,7 +28,9 @@ from dataclasses import dataclass
 
 import highspy
 import numpy as np
-from highspy._core import _Highs
+from highspy._core import _Highs, cb
+
+from camcam.interrupts import deferred
 
 __all__ = ["IncrementalLp", "LpSolution", "solve_lp"]
 
@@ -106,9 +113,20 @@ class IncrementalLp:
                             np.nonzero(nz)[1].astype(np.int32), A[nz])
 
     def solve(self) -> LpSolution:
-        """Solve over the rows added so far."""
+        """Solve over the rows added so far; a signal that comes meanwhile stops it and is raised after."""
         h = self._highs
-        h.run()
+        with deferred() as came:
+            def poll(kind, message, data_out, data_in, user_data) -> None:
+                if came and data_in is not None:
+                    data_in.user_interrupt = True
+
+            h.setCallback(poll, None)
+            h.startCallback(cb.HighsCallbackType.kCallbackSimplexInterrupt)
+            h.startCallback(cb.HighsCallbackType.kCallbackIpmInterrupt)
+            try:
+                h.run()
+            finally:
+                h.setCallback(None, None)  # stops the callbacks: none refers to this block's list afterwards
         model_status = h.getModelStatus()
         status = _STATUS.get(model_status, h.modelStatusToString(model_status))
         x = np.array(h.getSolution().col_value, dtype=float)
