@@ -74,7 +74,7 @@ def optimize(opt: OptimizeSpec) -> tuple[BSplineLaw, dict]:
         law = BSplineLaw.from_free(problem.space, x)
         if solver["worst_violation"] > settings.violation_tol:
             solver["limits_met"] = False
-            solver["fail"] = _complex_infeasible(problem, law, r, settings)
+            solver["fail"] = _complex_infeasible(problem, law, r)
         return law, solver
     return BSplineLaw.from_free(problem.space, x), solver
 
@@ -91,7 +91,7 @@ def _exact(problem):
         raise SpecError("optimize.segments", str(err)) from None
 
 
-def _complex_infeasible(problem, law: BSplineLaw, r, settings) -> str:
+def _complex_infeasible(problem, law: BSplineLaw, r) -> str:
     """The Complex method ended outside a limit: decided by the exact LP, as ``method = "exact"`` decides it.
 
     Raises :class:`SpecError` naming ``optimize.limits`` (exit 2, nothing written) when no curve of the
