@@ -112,7 +112,13 @@ def main(argv=None) -> int:
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--json", help="write every case's record here (JSON lines)")
     ap.add_argument("--show", type=int, nargs="*", help="print these cases' specs and exit")
+    ap.add_argument("--merge", nargs="+", help="print the summary of earlier --json files (no runs)")
+    ap.add_argument("--wall", type=float, help="with --merge: the runs' wall seconds in all")
     a = ap.parse_args(argv)
+    if a.merge:
+        records = [json.loads(line) for f in a.merge for line in open(f) if line.strip()]
+        print(summary(records, a.wall or float("nan"), sum(r["cpu_s"] for r in records)))
+        return 0
     if a.show:
         for i in a.show:
             print(f"# case {a.seed}:{i} ({draw_case(a.seed, i).family})\n{to_toml(draw_case(a.seed, i).spec)}")

@@ -383,19 +383,25 @@ def message(status: int, lines: list[str]) -> str:
 
 # ------------------------------------------------------------------------------------------- advice
 
-_ADVICE = re.compile(r"\b(?:\[(cam|follower|machining|stock|motion|report)\]\s*|(cam|follower|machining|stock|motion|report)\.)"
+_ADVICE = re.compile(r"(?:\[(cam|follower|machining|stock|motion|report)\]\s*|\b(cam|follower|machining|stock|motion|report)\.)"
                      r"([a-z_]+)\s*(>=|<=|=|≥|≤|to|at least|at most)\s*([-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?)")
+#: a bad-input line naming its key first: "stock.diameter: 227 mm is smaller than the cam …; expected at least 240 mm"
+_EXPECTED = re.compile(r"error: (cam|follower|machining|stock|motion|report)\.([a-z_]+): .*\bexpected "
+                       r"(?:at least|at most|>=|<=|≥|≤)\s*([-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?)")
 _TOL = re.compile(r"accept a tolerance of at least ([\d.]+) mm|tolerance of at least ([\d.]+)")
 _STEP = re.compile(r"\b(lower|raise|reduce|increase)\s+(?:the\s+)?(?:\[(\w+)\]\s*|(\w+)\.)?([a-z_]+)")
 
 
 def parse_advice(line: str, strict: bool = False) -> list[tuple[str, str, float]]:
     """``(section, key, value)`` settings a one-line message names with a value, in the order given:
-    ``cam.base_radius >= 44.47 mm``, ``[machining] depth to 8``.  Unless ``strict``, also the informal
+    ``cam.base_radius >= 44.47 mm``, ``[machining] axes = 5``, ``stock.diameter: … expected at least 240 mm``.  Unless ``strict``, also the informal
     "accept a tolerance of at least X mm" (no key named: listed by the campaign as a form to normalise)."""
     out = []
     for m in _ADVICE.finditer(line):
         out.append((m.group(1) or m.group(2), m.group(3), float(m.group(5))))
+    m = _EXPECTED.search(line)
+    if m:
+        out.append((m.group(1), m.group(2), float(m.group(3))))
     if not out and not strict:
         m = _TOL.search(line)
         if m:
@@ -419,6 +425,8 @@ def apply_advice(spec: dict, advice: list[tuple[str, str, float]]) -> dict | Non
             value = math.floor(value * 100) / 100
         else:
             value = math.ceil(value * 100) / 100
+        if float(value).is_integer() and (old is None or (isinstance(old, int) and not isinstance(old, bool))):
+            value = int(value)  # axes = 5, not 5.0 (an integer key refuses a float)
         new[section][key] = value
         return new
     return None
