@@ -13,8 +13,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
-import resource
 import sys
 import time
 from collections import Counter, defaultdict
@@ -23,7 +21,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from tests.designspace import draw_case, run_case, to_toml  # noqa: E402
+from tests.designspace import classify, draw_case, run_case, to_toml  # noqa: E402
 
 
 def _one(args):
@@ -117,6 +115,8 @@ def main(argv=None) -> int:
     a = ap.parse_args(argv)
     if a.merge:
         records = [json.loads(line) for f in a.merge for line in open(f) if line.strip()]
+        for r in records:  # classified again, by this version's table
+            r["cause"] = classify(r["status"], r["lines"])
         print(summary(records, a.wall or float("nan"), sum(r["cpu_s"] for r in records)))
         return 0
     if a.show:

@@ -345,6 +345,7 @@ CAUSES = (
     (r"FAIL: 3-D groove deviation", "3-D groove FAIL"),
     (r"FAIL: NC deviation", "NC deviation FAIL"),
     (r"FAIL: ([^0-9]+?) [-\d.]+ ", "FAIL {0}"),
+    (r"part outline", "part outline (drawing) fault"),
     (r"undercut|cusp", "undercut advice"),
     (r"smallest concave radius|concave", "tool too large for a concave part"),
     (r"stock\.diameter|blank .*smaller|smaller than the cam", "stock too small"),
