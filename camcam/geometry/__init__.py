@@ -7,6 +7,7 @@ from camcam.lazy import lazy_exports
 
 __getattr__, __dir__, __all__ = lazy_exports(__name__, {
     **dict.fromkeys(("CamSpec", "FollowerSpec", "CAM_KINDS", "FOLLOWER_KINDS"), "camcam.geometry.params"),
+    **dict.fromkeys(("FOLLOWERS", "follower_kind"), "camcam.geometry.followers"),
     **dict.fromkeys(("BuiltCam", "build_cam"), "camcam.geometry.build"),
     **dict.fromkeys(("DiscCam",), "camcam.geometry.disc"),
     **dict.fromkeys(("GrooveCam",), "camcam.geometry.groove"),

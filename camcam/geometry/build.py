@@ -9,9 +9,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from camcam.geometry.analysis import DiscAnalysis, analyse, analyse_cylindrical, check_undercut
-from camcam.geometry.cylindrical import BarrelOscillatingRoller, BarrelTranslatingRoller, CylindricalCam
+from camcam.geometry.cylindrical import CylindricalCam
 from camcam.geometry.disc import DiscCam
-from camcam.geometry.followers import OscillatingFlat, OscillatingRoller, TranslatingFlat, TranslatingRoller
+from camcam.geometry.followers import follower_kind
 from camcam.geometry.groove import GrooveCam
 from camcam.geometry.mesh import MeshParts, cylinder_parts, disc_parts, groove_parts, ring_points
 from camcam.motion.program import MotionProgram
@@ -44,13 +44,7 @@ class BuiltCam:
 
 def disc_follower(f: FollowerSpec):
     """The geometry stage's disc follower for a validated ``[follower]`` table."""
-    if f.kind == "translating-roller":
-        return TranslatingRoller(f.roller_radius, f.offset)
-    if f.kind == "oscillating-roller":
-        return OscillatingRoller(f.roller_radius, f.pivot_distance, f.arm_length)
-    if f.kind == "translating-flat":
-        return TranslatingFlat(f.offset)
-    return OscillatingFlat(f.pivot_distance)
+    return follower_kind(f.kind).from_spec(f)
 
 
 def build_cam(c: CamSpec, f: FollowerSpec, program: MotionProgram) -> BuiltCam:
@@ -83,11 +77,7 @@ def build_cam(c: CamSpec, f: FollowerSpec, program: MotionProgram) -> BuiltCam:
     (22.256, True)
     """
     if c.kind == "cylindrical":
-        fol = (
-            BarrelTranslatingRoller(f.roller_radius)
-            if f.kind == "translating-roller"
-            else BarrelOscillatingRoller(f.roller_radius, f.pivot_distance, f.arm_length)
-        )
+        fol = follower_kind(f.kind).barrel_from_spec(f)
         cam = CylindricalCam(fol, program, c.base_radius, c.length, c.groove_depth, c.rotation, c.bore)
         return BuiltCam(cam, analyse_cylindrical(cam), cylinder_parts(cam), c)
     disc = DiscCam(disc_follower(f), program, c.base_radius, c.rotation)

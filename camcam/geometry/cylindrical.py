@@ -7,7 +7,8 @@ follower's start position, so a radial end mill of the roller's radius cuts
 the groove the roller needs.  Cam-frame point of a fixed point p at program
 angle θ: p turned by −σθ about X.
 
-Followers:
+Followers (their classes live with their kinds in :mod:`camcam.geometry.followers`,
+each kind's ``barrel``; the cam asks them for the roller axis, :meth:`axis_point`):
 
 * :class:`BarrelTranslatingRoller` – roller axis along Z at x = x₀ + s(θ),
   the lift centred on the cylinder's length.
@@ -56,6 +57,7 @@ import numpy as np
 
 from camcam.errors import GeometryError
 from camcam.geometry.disc import SIGMA, CamBasics
+from camcam.geometry.followers import BarrelOscillatingRoller, BarrelTranslatingRoller
 from camcam.geometry.jet import Jet
 from camcam.geometry.jetcurve import JetCurve, LiftJet, SpaceCurve, program_breaks
 from camcam.motion.program import MotionProgram
@@ -63,31 +65,11 @@ from camcam.motion.program import MotionProgram
 __all__ = ["BarrelTranslatingRoller", "BarrelOscillatingRoller", "CylindricalCam"]
 
 
-
-@dataclass(frozen=True)
-class BarrelTranslatingRoller:
-    roller_radius: float
-    kind = "translating-roller"
-    unit = "mm"
-
-
-@dataclass(frozen=True)
-class BarrelOscillatingRoller:
-    """Seed 002's follower: pivot distance d, roller radius r_r; ``arm_length`` r names the
-    cross-section of the paper's eqs. 10–12 (radius d − r); default: mid-depth of the groove."""
-
-    roller_radius: float
-    pivot_distance: float
-    arm_length: float | None = None
-    kind = "oscillating-roller"
-    unit = "deg"
-
-
 @dataclass(frozen=True)
 class CylindricalCam(CamBasics):
     """A barrel cam: cylinder of radius ``base_radius`` and ``length``, groove ``groove_depth`` deep."""
 
-    follower: BarrelTranslatingRoller | BarrelOscillatingRoller
+    follower: BarrelTranslatingRoller | BarrelOscillatingRoller  # a kind's ``barrel`` follower
     program: MotionProgram
     base_radius: float
     length: float
@@ -110,14 +92,7 @@ class CylindricalCam(CamBasics):
         mid = 0.5 * (lo.value + hi.value)
         scale = math.pi / 180 if f.unit == "deg" else 1.0
         object.__setattr__(self, "lift", LiftJet(self.program, scale, mid))
-        if isinstance(f, BarrelOscillatingRoller):
-            if not f.pivot_distance > R:
-                raise GeometryError(f"follower.pivot_distance {f.pivot_distance:g} mm must exceed the cylinder radius {R:g} mm")
-            if f.arm_length is not None and not f.pivot_distance - R <= f.arm_length <= f.pivot_distance - R + h:
-                raise GeometryError(
-                    f"follower.arm_length {f.arm_length:g} mm must reach into the groove: between "
-                    f"{f.pivot_distance - R:g} and {f.pivot_distance - R + h:g} mm (pivot_distance − radius)"
-                )
+        f.check_barrel(R, h)
         span = self.axial_extent()
         if span[0] < 0 or span[1] > self.length:
             raise GeometryError(
@@ -136,10 +111,8 @@ class CylindricalCam(CamBasics):
     @property
     def reference_radius(self) -> float:
         """Radius of seed 002's cross-section (d − r), or mid-depth."""
-        f = self.follower
-        if isinstance(f, BarrelOscillatingRoller) and f.arm_length is not None:
-            return f.pivot_distance - f.arm_length
-        return self.base_radius - 0.5 * self.groove_depth
+        own = self.follower.reference_radius(self.base_radius, self.groove_depth)
+        return own if own is not None else self.base_radius - 0.5 * self.groove_depth
 
     def axial_extent(self) -> tuple[float, float]:
         """Smallest and largest x the groove reaches (both flanks, all depths), mm, from a dense view."""
@@ -160,15 +133,7 @@ class CylindricalCam(CamBasics):
         n = s.d.shape[1]
         one = Jet.constant(1.0, n, K)
         rho = np.broadcast_to(np.asarray(rho, float), (n,))
-        if isinstance(self.follower, BarrelTranslatingRoller):
-            C = (s.truncate(K) + 0.5 * self.length, one * 0.0, one * rho)
-            return C, (one, one * 0.0, one * 0.0), s.derivative(), one * rho
-        d = self.follower.pivot_distance
-        ell = d - rho
-        th = s.truncate(K)
-        c, sn = th.cos(), th.sin()
-        C = (0.5 * self.length - sn * ell, one * 0.0, d - c * ell)
-        return C, (-c, one * 0.0, sn), s.derivative() * ell, d - c * ell
+        return self.follower.axis_point(s, K, rho, self.length, one)
 
     def _contact(self, theta, K, piece, rho, side, lift=None):
         """Fixed-frame contact point jets on flank ``side`` (0: −X wall, 1: +X wall) at radius ρ."""
@@ -176,7 +141,7 @@ class CylindricalCam(CamBasics):
         alpha = Jet.atan2(v * (-self.sigma), R)
         ca, sa = alpha.cos(), alpha.sin()
         m = (nvec[0] * ca, sa, nvec[2] * ca)
-        plus_side = 1 if isinstance(self.follower, BarrelTranslatingRoller) else 0
+        plus_side = self.follower.plus_side
         sign = self.roller_radius * (1.0 if side == plus_side else -1.0)
         return tuple(C[i] + m[i] * sign for i in range(3))
 

@@ -29,14 +29,14 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from camcam.errors import GeometryError
-from camcam.geometry.followers import Element, OscillatingFlat, OscillatingRoller, TranslatingFlat, TranslatingRoller
+from camcam.geometry.followers import Element, FollowerKind, TranslatingRoller
 from camcam.geometry.jet import Jet, hypot
 from camcam.geometry.jetcurve import JetCurve, LiftJet, program_breaks
 from camcam.motion.program import MotionProgram
 
 __all__ = ["DiscCam", "CamBasics", "Follower", "SIGMA"]
 
-Follower = TranslatingRoller | OscillatingRoller | TranslatingFlat | OscillatingFlat
+Follower = FollowerKind  # any kind of camcam.geometry.followers.FOLLOWERS
 
 SIGMA = {"ccw": 1, "cw": -1}
 
@@ -100,12 +100,12 @@ class DiscCam(CamBasics):
         self.follower.check(self.base_radius)
         scale = math.pi / 180.0 if self.follower.unit == "deg" else 1.0
         object.__setattr__(self, "lift", LiftJet(self.program, scale))
-        self._check_flat_contact()
+        self.follower.check_cam(self)
 
     # -- basics (sigma, kind, roller_radius: CamBasics) ----------------------
     @property
     def is_roller(self) -> bool:
-        return self.follower.kind.endswith("roller")
+        return self.follower.is_roller
 
     @property
     def breaks(self) -> np.ndarray:
@@ -195,17 +195,3 @@ class DiscCam(CamBasics):
         if self.is_roller:
             raise GeometryError("a roller follower has no face")
         return self.element(theta, K, piece).along
-
-    # -- validity -----------------------------------------------------------
-    def _check_flat_contact(self) -> None:
-        if not isinstance(self.follower, OscillatingFlat):
-            return
-        t = np.linspace(0.0, 2 * math.pi, 3601)
-        s1 = self.lift(t, 1).d[1] * self.sigma
-        ell = self.element(t, 0).along.value
-        bad = np.flatnonzero((1.0 + s1 <= 0) | (ell <= 0))
-        if bad.size:
-            raise GeometryError(
-                f"follower: the flat face loses contact at cam angle {math.degrees(t[bad[0]]):.2f}° "
-                "(the contact point passes the pivot); use a larger pivot_distance or a slower swing"
-            )

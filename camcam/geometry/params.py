@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from camcam.geometry.followers import FOLLOWER_KINDS, follower_kind
+
 __all__ = ["CamSpec", "FollowerSpec", "CAM_KINDS", "FOLLOWER_KINDS"]
 
 CAM_KINDS = ("disc", "disc-groove", "cylindrical")
@@ -30,12 +32,9 @@ class CamSpec:
     design_limits: str = "warn"  # "warn": a design limit missed is a warning (WARN); "fail": it fails the run (exit 3)
 
 
-FOLLOWER_KINDS = ("translating-roller", "oscillating-roller", "translating-flat", "oscillating-flat")
-
-
 @dataclass(frozen=True)
 class FollowerSpec:
-    """The follower (lengths in mm): ``kind`` one of :data:`FOLLOWER_KINDS`."""
+    """The follower (lengths in mm): ``kind`` one of :data:`camcam.geometry.followers.FOLLOWERS`."""
 
     kind: str
     roller_radius: float = 0.0
@@ -45,9 +44,9 @@ class FollowerSpec:
 
     @property
     def unit(self) -> str:
-        """Motion unit: "deg" for an oscillating follower, else "mm"."""
-        return "deg" if self.kind.startswith("oscillating") else "mm"
+        """Motion unit: "deg" for an oscillating follower, else "mm" (the kind's ``unit``)."""
+        return follower_kind(self.kind).unit
 
     @property
     def is_roller(self) -> bool:
-        return self.kind.endswith("roller")
+        return follower_kind(self.kind).is_roller

@@ -1,6 +1,7 @@
 """Sizing: the smallest base radius (and the best offset) for a pressure-angle limit.
 
-Defaults: 30° for a translating follower, 35° for an oscillating one.  The
+Defaults: the kind's ``default_max_pressure_angle_deg`` (30° for a translating
+follower, 35° for an oscillating one).  The
 search runs on a dense sample of the lift (fast, vectorised); the answer is
 then polished against the exact analysis (:func:`camcam.geometry.analysis.analyse`,
 root-found extremes) so that the returned cam meets the limit exactly to
@@ -21,9 +22,7 @@ from camcam.geometry.analysis import max_pressure_angle, smallest_base_radius_wi
 from camcam.geometry.disc import DiscCam
 from camcam.geometry.followers import TranslatingRoller
 
-__all__ = ["Sizing", "DEFAULT_LIMIT_DEG", "size_cam"]
-
-DEFAULT_LIMIT_DEG = {"mm": 30.0, "deg": 35.0}
+__all__ = ["Sizing", "size_cam"]
 
 #: Samples of the lift per revolution for the search stage (the result is polished exactly).
 SEARCH_SAMPLES = 7200
@@ -84,12 +83,12 @@ def size_cam(cam: DiscCam, limit_deg: float | None = None, optimise_offset: bool
         rb = smallest_base_radius_without_undercut(replace(cam, base_radius=1e-3))
         sized = replace(cam, base_radius=rb)
         return Sizing(sized, rb, None, 0.0, None)
-    limit_deg = DEFAULT_LIMIT_DEG[cam.follower.unit] if limit_deg is None else float(limit_deg)
+    limit_deg = cam.follower.default_max_pressure_angle_deg if limit_deg is None else float(limit_deg)
     if not 0 < limit_deg < 90:
         raise GeometryError(f"pressure-angle limit must be between 0 and 90°, got {limit_deg:g}")
     limit = math.radians(limit_deg)
     offset = None
-    if isinstance(cam.follower, TranslatingRoller) and optimise_offset:
+    if "offset" in cam.follower.spec_keys and optimise_offset:  # a roller on a stem: the offset is free
         rb, offset = _search_translating(cam, limit)
         base = replace(cam, follower=replace(cam.follower, offset=offset), base_radius=rb)
     else:

@@ -32,6 +32,7 @@ from typing import Callable
 
 from camcam.errors import GeometryError
 from camcam.geometry.analysis import analyse, analyse_cylindrical, max_pressure_angle
+from camcam.geometry.followers import follower_kind
 from camcam.verdict import Check
 
 __all__ = ["design_checks", "default_max_pressure_angle_deg", "default_min_curvature_radius_mm", "base_radius_meeting"]
@@ -40,9 +41,9 @@ __all__ = ["design_checks", "default_max_pressure_angle_deg", "default_min_curva
 CURVATURE_ROLLERS = 0.5
 
 
-def default_max_pressure_angle_deg(follower_kind: str) -> float:
-    """30° for translating followers, 35° for oscillating ones."""
-    return 35.0 if follower_kind.startswith("oscillating") else 30.0
+def default_max_pressure_angle_deg(kind: str) -> float:
+    """30° for translating followers, 35° for oscillating ones (the kind's ``default_max_pressure_angle_deg``)."""
+    return follower_kind(kind).default_max_pressure_angle_deg
 
 
 def default_min_curvature_radius_mm(roller_radius_mm: float) -> float:

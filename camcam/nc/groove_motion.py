@@ -16,7 +16,7 @@ from abc import ABC, abstractmethod
 
 import numpy as np
 
-from camcam.geometry.cylindrical import BarrelOscillatingRoller, CylindricalCam
+from camcam.geometry.cylindrical import CylindricalCam
 from camcam.nc.toolposes import A_AXIS_SENSE, CylinderTool, ToolPoses
 
 __all__ = ["section_interval", "sincos_sum", "wall_extents", "side_extent", "Motion", "ProgramMotion", "RollerMotion",
@@ -181,7 +181,7 @@ class RollerMotion(Motion):
         self.cam = cam
         self.r = cam.roller_radius
         f = cam.follower
-        self.osc = isinstance(f, BarrelOscillatingRoller)
+        self.osc = f.pivot_distance is not None  # an arm about a pivot
         self.d = f.pivot_distance if self.osc else 0.0
         self.L = 2.0 * self.d if self.osc else 2.0 * cam.base_radius
         self.p_lo, self.p_hi = 0.0, 2 * math.pi

@@ -89,7 +89,7 @@ def _plan(cam, r_t: float, rho_d: float):
     if groove_passes(r_t, r_r) == "centre":
         return [("groove centre", centre, r_r, "slot")], 0.0
     rough = ("groove centre (rough)", centre, r_r, "slot")
-    if cam.kind == "translating-roller":
+    if not cam.follower.roller_axis_tilts:
         plan = plan_flank(cam, r_t, rho_d)
         # flank 0 is the −X wall: to the right of the centre line in (u, x) (u grows with the cam angle)
         return [rough, ("flank 0 (-X wall)", DisplacedCurve(centre, -1.0, plan), r_t, "finish"),
@@ -130,7 +130,7 @@ def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool
     value, tol = groove.max_deviation_mm, m.tolerance_mm
     holds = math.ceil(value * 1e4) / 1e4
     r_r = cam.roller_radius
-    if cam.kind == "oscillating-roller":
+    if cam.follower.roller_axis_tilts:
         advice = ("the roller axis tilts with the arm and a radial tool cannot follow it: cut it with "
                   f"[machining] axes = 5 and a tool of the roller's diameter (D{2 * r_r:g} mm), "
                   f"or accept a tolerance of at least {holds:g} mm")
@@ -184,7 +184,7 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     # The dearest first, so that the workers end together: the search, then the passes from the last (the
     # walls' finishing passes before the rough centre; cylindrical-translating-small-tool: 0.46, 0.31,
     # 0.32 and 0.18 CPU s, 0.64 s for each of two workers against 0.49 and 0.78 in plan order)
-    thinner = cam.kind == "translating-roller" and r_t < cam.roller_radius - SAME_TOOL_MM
+    thinner = not cam.follower.roller_axis_tilts and r_t < cam.roller_radius - SAME_TOOL_MM
     results = parallel_map(job, ([None] if thinner else []) + list(plan)[::-1], workers)
     # rounded up to a size one can buy and hold to (0.01 mm): the note, the advice and the report name this one
     smallest = math.ceil(results[0] * 100.0 - 1e-9) / 100.0 if thinner else None

@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from camcam.geometry.followers import follower_kind
 from camcam.nc.result import MachiningResult
 from camcam.nc.reach import flute_text
 from camcam.post.post import Post
@@ -55,11 +56,8 @@ def _datum(built) -> str:
     cam = built.cam
     p0 = cam.profile.evaluate(np.array([cam.profile.t_start]))[0]
     ang = math.degrees(math.atan2(p0[1], p0[0])) % 360.0
-    if cam.kind.startswith("translating"):
-        off = getattr(getattr(cam, "follower", None), "offset", 0.0)
-        where = f"the follower rides on the line X{off:g}, moving along +Y"
-    else:
-        where = "the follower arm pivots on the +X axis"
+    # a face groove's cam has no follower of its own: X0 (its offset is the inner cam's, cam.cam.follower)
+    where = follower_kind(cam.kind).datum_note(getattr(getattr(cam, "follower", None), "offset", 0.0))
     turn = "counter-clockwise" if cam.rotation == "ccw" else "clockwise"
     return (f"program and drawing show the cam at cam angle 0: {where}; the cam-angle-0 contact point lies at "
             f"{ang:.2f}° from +X (DXF layer ANGLE-ZERO, X0 Y0 through that point). Clamp the part with its "

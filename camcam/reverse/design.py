@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from camcam.errors import GeometryError, InputError
+from camcam.geometry.followers import follower_kind
 from camcam.motion.program import MotionProgram
 from camcam.reverse.cylindrical import BarrelFollower, flank_tangents, solve_cylindrical
 from camcam.reverse.disc import disc_follower, profile_normals, solve_disc
@@ -206,7 +207,7 @@ def _reverse_cylindrical(points, cam, follower, options) -> ReverseResult:
         raise GeometryError(f'follower.kind "{follower.kind}": a cylindrical cam needs a roller follower')
     if options.flank not in (0, 1):
         raise ValueError(f"flank must be 0 or 1, got {options.flank!r}")
-    pivot = follower.pivot_distance if follower.kind == "oscillating-roller" else None
+    pivot = follower_kind(follower.kind).barrel_from_spec(follower).pivot_distance  # None: a translating roller
     bf = BarrelFollower(follower.roller_radius, cam.length, cam.rotation, pivot, options.flank,
                         cam.base_radius - cam.groove_depth, cam.base_radius)
     order, phi, X = _polar_order(points, points.xyz, (1, 2), options.smoothing)

@@ -22,8 +22,8 @@ oscillating flat (face line through the pivot)
     β = π − asin(p/a) (the branch of the forward model), ψ = β₀ − β and
     θ = σ(β − π/2 − ∠n).
 
-Each raises :class:`GeometryError` naming the first point the follower cannot
-reach.
+Each is its kind's ``invert`` (:mod:`camcam.geometry.followers`) and raises
+:class:`GeometryError` naming the first point the follower cannot reach.
 """
 
 from __future__ import annotations
@@ -32,9 +32,7 @@ import math
 
 import numpy as np
 
-from camcam.errors import GeometryError
 from camcam.geometry.build import disc_follower
-from camcam.geometry.followers import OscillatingRoller, TranslatingFlat, TranslatingRoller
 from camcam.geometry.disc import SIGMA
 
 __all__ = ["disc_follower", "profile_normals", "solve_disc"]
@@ -58,12 +56,6 @@ def profile_normals(phi, r, dr) -> np.ndarray:
     return np.stack([nx / h, ny / h], axis=-1)
 
 
-def _reject(mask, points, what: str) -> None:
-    if np.any(mask):
-        i = int(np.flatnonzero(mask)[0])
-        raise GeometryError(f"point ({points[i, 0]:.4f}, {points[i, 1]:.4f}) does not fit the follower: {what}")
-
-
 def solve_disc(follower, base_radius: float, rotation: str, points, normals) -> tuple[np.ndarray, np.ndarray]:
     """Cam angle θ (rad, in [0, 2π)) and lift (mm, or rad for an oscillating follower) of each profile point.
 
@@ -73,36 +65,5 @@ def solve_disc(follower, base_radius: float, rotation: str, points, normals) -> 
     n = np.asarray(normals, dtype=float)
     sg = SIGMA[rotation]
     follower.check(base_radius)
-    if isinstance(follower, (TranslatingRoller, OscillatingRoller)):
-        C = P + follower.roller_radius * n
-        rho, gamma = np.hypot(C[:, 0], C[:, 1]), np.arctan2(C[:, 1], C[:, 0])
-        if isinstance(follower, TranslatingRoller):
-            e = follower.offset
-            _reject(rho <= abs(e), P, f"its roller centre is {rho.min():.4f} mm from the cam centre, inside the offset {e:g} mm")
-            y = np.sqrt(rho**2 - e**2)
-            theta = sg * (np.arctan2(y, e) - gamma)
-            lift = y - math.sqrt((base_radius + follower.roller_radius) ** 2 - e**2)
-        else:
-            a, L = follower.pivot_distance, follower.arm_length
-            x = (a * a + rho**2 - L * L) / (2 * a)
-            _reject(
-                (rho <= abs(a - L)) | (rho >= a + L), P,
-                f"the arm of {L:g} mm pivoting {a:g} mm from the cam centre cannot reach its roller centre",
-            )
-            y = np.sqrt(np.maximum(rho**2 - x**2, 0.0))
-            beta = np.arctan2(y, x - a)
-            lift = follower.start_angle(base_radius) - beta
-            theta = sg * (np.arctan2(y, x) - gamma)
-    else:
-        nu = np.arctan2(n[:, 1], n[:, 0])
-        p = np.einsum("ij,ij->i", P, n)
-        if isinstance(follower, TranslatingFlat):
-            theta = sg * (0.5 * math.pi - nu)
-            lift = p - base_radius
-        else:
-            a = follower.pivot_distance
-            _reject(p >= a, P, f"its tangent lies {p.max():.4f} mm from the cam centre, beyond the pivot at {a:g} mm")
-            beta = math.pi - np.arcsin(p / a)
-            lift = follower.start_angle(base_radius) - beta
-            theta = sg * (beta - 0.5 * math.pi - nu)
+    theta, lift = follower.invert(P, n, base_radius, sg)
     return np.mod(theta, 2 * math.pi), lift

@@ -14,7 +14,7 @@ from scipy.optimize import minimize_scalar
 from camcam.errors import GeometryError
 from camcam.geometry.analysis import analyse, max_pressure_angle, undercut_margin
 from camcam.geometry.disc import DiscCam
-from camcam.geometry.followers import OscillatingRoller, TranslatingFlat, TranslatingRoller
+from camcam.geometry.followers import follower_kind
 from camcam.motion.program import MotionProgram
 
 __all__ = ["ExactFigures", "exact_figures", "design_cam", "outer_radius"]
@@ -40,15 +40,7 @@ class ExactFigures:
 
 def design_cam(kind: str, program: MotionProgram, params: dict[str, float], rotation: str) -> DiscCam:
     """The disc cam of one design (raises :class:`GeometryError` when it cannot be built)."""
-    if kind == "translating-roller":
-        f = TranslatingRoller(params["roller_radius"], params["offset"])
-    elif kind == "oscillating-roller":
-        f = OscillatingRoller(params["roller_radius"], params["pivot_distance"], params["arm_length"])
-    elif kind == "translating-flat":
-        f = TranslatingFlat(0.0)
-    else:
-        raise ValueError(f"no sizing for a {kind} follower")
-    return DiscCam(f, program, params["base_radius"], rotation)
+    return DiscCam(follower_kind(kind).from_params(params), program, params["base_radius"], rotation)
 
 
 def outer_radius(cam: DiscCam, per_piece: int = 720) -> float:

@@ -1,7 +1,7 @@
 """The design grid: every combination of the swept axes and law choices, numbered, cut in chunks.
 
 Design numbers run law combination first (slowest), then the axes in
-:data:`camcam.spec.size.AXES` order, the last axis fastest.  Chunks are fixed
+:func:`camcam.spec.size.sized_followers` order, the last axis fastest.  Chunks are fixed
 slices of one law combination (:data:`CHUNK` designs), so the work a worker
 gets, and the order results are put back in, never depend on how many
 workers there are.

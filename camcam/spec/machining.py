@@ -33,6 +33,7 @@ import math
 from pathlib import Path
 
 from camcam.errors import InputError, SpecError
+from camcam.geometry.followers import follower_kind as follower_class
 from camcam.nc.settings import COOLANTS, WORK_OFFSETS, MachiningSpec, ProgramSetup
 from camcam.post.post import load_post
 from camcam.spec.reader import Table
@@ -40,7 +41,7 @@ from camcam.toolpath.budget import DEFAULT_BUDGET
 
 __all__ = ["MachiningSpec", "read_machining", "FEED_RANGE_MM_MIN", "SPINDLE_RANGE_RPM", "MAX_PASSES",
            "MIN_SIZE_MM", "BREAK_THROUGH_MM", "check_passes",
-           "default_axes", "PLAUSIBLE_FEED_MM_MIN", "PLAUSIBLE_TOLERANCE_SHARE"]
+           "default_axes", "barrel_axes", "PLAUSIBLE_FEED_MM_MIN", "PLAUSIBLE_TOLERANCE_SHARE"]
 
 #: Feeds a milling machine runs (mm/min): below 1 nothing is cut, above 100 m/min no machine feeds.
 FEED_RANGE_MM_MIN = (1.0, 100_000.0)
@@ -76,10 +77,16 @@ def check_passes(m: MachiningSpec) -> None:
 
 def default_axes(cam_kind: str | None, follower_kind: str | None) -> int:
     """Axes a job uses when ``[machining] axes`` is not given: 5 for an oscillating roller on a
-    cylindrical cam (its roller axis tilts with the arm), 4 for other cylindrical cams, 3 for discs."""
+    cylindrical cam (its roller axis tilts with the arm), 4 for other cylindrical cams, 3 for discs
+    (the first of the follower kind's ``barrel_axes``)."""
     if cam_kind != "cylindrical":
         return 3
-    return 5 if follower_kind == "oscillating-roller" else 4
+    return barrel_axes(follower_kind)[0]
+
+
+def barrel_axes(kind: str | None) -> tuple[int, ...]:
+    """The ``axes`` a cylindrical cam with a follower of ``kind`` may be cut with, the default first."""
+    return follower_class(kind).barrel_axes if kind is not None else (4,)
 
 
 def _feed_units(t: Table, key: str, feed: float, checked: bool) -> None:
@@ -139,7 +146,7 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
     if t.has("axes"):
         if cam_kind != "cylindrical":
             raise t.error("axes", "applies to cylindrical cams only (a disc cam is cut with 3 axes)")
-        allowed = (4, 5) if follower_kind == "oscillating-roller" else (4,)
+        allowed = barrel_axes(follower_kind)
         axes = t.integer("axes", minimum=4, maximum=5)
         t.check("axes", axes in allowed, f"expected 4 for a {follower_kind} follower (its roller axis stays radial, "
                 f"so B would stay 0), got {axes}")

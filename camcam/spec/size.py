@@ -17,6 +17,9 @@ samples = 3600                     # cam-angle samples per revolution for the sw
 ```
 
 An axis the table leaves out keeps the value of ``[cam]`` / ``[follower]``.
+The axes of each kind are its ``size_axes`` in the follower registry
+(:data:`camcam.geometry.followers.FOLLOWERS`), its default pressure-angle limit
+its ``default_max_pressure_angle_deg``.
 No undercut (roller) and no cusp (flat face) are always required.  The sweep
 covers the translating roller, the oscillating roller and the translating
 flat-faced follower on a plain disc cam (``[cam] kind = "disc"``).
@@ -28,29 +31,26 @@ import math
 from dataclasses import dataclass
 
 from camcam.errors import SpecError
+from camcam.geometry.followers import FOLLOWERS, follower_kind
 from camcam.motion.catalog import LAWS
 from camcam.spec.reader import Table, fmt
 
-__all__ = ["SizeAxis", "LawChoice", "SizeSpec", "read_size", "MAX_DESIGNS", "AXES", "OBJECTIVES", "SIZED_FOLLOWERS"]
+__all__ = ["SizeAxis", "LawChoice", "SizeSpec", "read_size", "MAX_DESIGNS", "OBJECTIVES", "sized_followers"]
 
 #: The largest sweep `camcam size` runs: about two minutes on one core at the default
 #: samples; a larger one is almost always a step typed too small.
 MAX_DESIGNS = 1_000_000
 
-#: The swept geometry of each follower kind, in table order.
-AXES = {
-    "translating-roller": ("base_radius", "offset", "roller_radius"),
-    "oscillating-roller": ("base_radius", "pivot_distance", "arm_length", "roller_radius"),
-    "translating-flat": ("base_radius",),
-}
-SIZED_FOLLOWERS = tuple(AXES)
+
+def sized_followers() -> dict[str, tuple[str, ...]]:
+    """The swept geometry of each follower kind that can be sized, in table order (its ``size_axes``)."""
+    return {kind: cls.size_axes for kind, cls in FOLLOWERS.items() if cls.size_axes is not None}
+
 
 #: Axes given as lists of values (catalogue sizes); the others are [from, to, step] ranges.
 LIST_AXES = ("roller_radius",)
 
 OBJECTIVES = ("outer-radius", "pressure-angle")
-
-DEFAULT_PRESSURE_LIMIT_DEG = {"translating-roller": 30.0, "oscillating-roller": 35.0}
 
 
 @dataclass(frozen=True)
@@ -137,12 +137,13 @@ def read_size(t: Table, cam, follower, motion, machining) -> SizeSpec:
         raise SpecError("size", "a sizing sweep needs [motion], [cam] and [follower] tables")
     if cam.kind != "disc":
         raise SpecError("size", f'sizes plain disc cams; cam.kind is {fmt(cam.kind)}, expected "disc"')
-    if follower.kind not in AXES:
-        raise SpecError("size", f"sizes {', '.join(SIZED_FOLLOWERS)} followers; follower.kind is {fmt(follower.kind)}")
+    sized = sized_followers()
+    if follower.kind not in sized:
+        raise SpecError("size", f"sizes {', '.join(sized)} followers; follower.kind is {fmt(follower.kind)}")
     if motion.lift_table is not None:
         raise SpecError("size", "needs [motion] segments (a lift table has no law to swap); the sized spec must run from any folder")
     axes = []
-    for name in AXES[follower.kind]:
+    for name in sized[follower.kind]:
         if t.has(name):
             vals = _values(t, name) if name in LIST_AXES else _range(t, name)
             if name != "offset" and min(vals) <= 0:
@@ -151,7 +152,7 @@ def read_size(t: Table, cam, follower, motion, machining) -> SizeSpec:
             vals = (_fixed(name, cam, follower),)
         axes.append(SizeAxis(name, vals))
     for name in ("offset", "roller_radius", "pivot_distance", "arm_length"):
-        if name not in AXES[follower.kind] and t.has(name):
+        if name not in sized[follower.kind] and t.has(name):
             raise t.error(name, f"a {follower.kind} follower has no {name} to sweep")
     for i, seg in enumerate(motion.segments):
         if seg.law_name.startswith("file:") or seg.law_name == "lift-table":
@@ -177,7 +178,7 @@ def read_size(t: Table, cam, follower, motion, machining) -> SizeSpec:
             choices.append(LawChoice(k, tuple(raw)))
     roller = follower.is_roller
     if roller:
-        pa = t.number("max_pressure_angle_deg", DEFAULT_PRESSURE_LIMIT_DEG[follower.kind], minimum=0, maximum=90, inclusive=False)
+        pa = t.number("max_pressure_angle_deg", follower_kind(follower.kind).default_max_pressure_angle_deg, minimum=0, maximum=90, inclusive=False)
     else:
         t.check("max_pressure_angle_deg", not t.has("max_pressure_angle_deg"),
                 "a flat face's pressure angle is zero throughout; there is nothing to limit")

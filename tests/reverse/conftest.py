@@ -6,8 +6,9 @@ from pathlib import Path
 
 import pytest
 
-from camcam.geometry.cylindrical import BarrelOscillatingRoller, BarrelTranslatingRoller, CylindricalCam
+from camcam.geometry.cylindrical import CylindricalCam
 from camcam.geometry.disc import DiscCam
+from camcam.geometry.followers import follower_kind
 from camcam.reverse.disc import disc_follower
 from camcam.spec import load_spec
 
@@ -20,8 +21,7 @@ def spec_cam(name: str):
     prog = spec.motion.program(spec.unit)
     c, f = spec.cam, spec.follower
     if c.kind == "cylindrical":
-        fol = (BarrelTranslatingRoller(f.roller_radius) if f.kind == "translating-roller"
-               else BarrelOscillatingRoller(f.roller_radius, f.pivot_distance, f.arm_length))
+        fol = follower_kind(f.kind).barrel_from_spec(f)
         cam = CylindricalCam(fol, prog, c.base_radius, c.length, c.groove_depth, c.rotation, c.bore)
     else:
         cam = DiscCam(disc_follower(f), prog, c.base_radius, c.rotation)

@@ -18,6 +18,7 @@ from camcam.geometry.analysis import analyse, convex_curvature, flat_radius
 from camcam.motion.catalog import make_law
 from camcam.motion.program import MotionProgram, Segment
 from camcam.motion.standard import dwell
+from camcam.geometry.followers import OscillatingRoller, TranslatingFlat, TranslatingRoller, closedform
 from camcam.size import kernels
 from camcam.size.exact import design_cam, exact_figures, outer_radius
 from camcam.size.samples import sample_program
@@ -40,13 +41,13 @@ def pieces(p: MotionProgram, ps) -> np.ndarray:
 
 def spy(monkeypatch):
     seen = {}
-    orig = kernels._roller_figures
+    orig = closedform.roller_figures
 
     def capture(kc, ratio, *rest):
         seen["kc"], seen["ratio"] = kc, ratio
         return orig(kc, ratio, *rest)
 
-    monkeypatch.setattr(kernels, "_roller_figures", capture)
+    monkeypatch.setattr(closedform, "roller_figures", capture)
     return seen
 
 
@@ -73,7 +74,7 @@ def test_translating_roller_matches_full_geometry_at_every_sample(rot, monkeypat
     designs = [d for d in TRANSLATING if d[3] == rot]
     rb, e, rr = (np.array([d[i] for d in designs]) for i in range(3))
     sg = 1 if rot == "ccw" else -1
-    figs = kernels.translating_roller(ps, sg, rb, e, rr)
+    figs = TranslatingRoller.figures(ps, sg, rb, e, rr)
     for k, (b, off, r, _) in enumerate(designs):
         cam = design_cam("translating-roller", p, {"base_radius": b, "offset": off, "roller_radius": r}, rot)
         pa, kc = exact_pointwise(cam, p, ps)
@@ -91,7 +92,7 @@ def test_oscillating_roller_matches_full_geometry_at_every_sample(monkeypatch):
     designs = [(rb, a, L, rr) for rb in (30.0, 45.0) for a in (100.0, 110.0) for L in (80.0, 95.0) for rr in (6.0,)]
     for rot, sg in (("ccw", 1), ("cw", -1)):
         arr = [np.array([d[i] for d in designs]) for i in range(4)]
-        figs = kernels.oscillating_roller(ps, sg, *arr)
+        figs = OscillatingRoller.figures(ps, sg, *arr)
         for k, (b, a, L, r) in enumerate(designs):
             cam = design_cam("oscillating-roller", p, {"base_radius": b, "pivot_distance": a, "arm_length": L, "roller_radius": r}, rot)
             pa, kc = exact_pointwise(cam, p, ps)
@@ -107,7 +108,7 @@ def test_translating_flat_matches_full_geometry_at_every_sample():
     ps = sample_program(p, SAMPLES)
     for rot, sg in (("ccw", 1), ("cw", -1)):
         for rb in (20.0, 35.0):
-            figs = kernels.translating_flat(ps, sg, np.array([rb]))
+            figs = TranslatingFlat.figures(ps, sg, np.array([rb]))
             cam = design_cam("translating-flat", p, {"base_radius": rb}, rot)
             _, rho = exact_pointwise(cam, p, ps)
             assert abs(figs["min_curvature_radius_mm"][0] - rho.min()) < 1e-9  # ρ = R_b + s + s″, same quantity
@@ -120,15 +121,13 @@ def test_translating_roller_closed_form_any_design(rb, e, rr, ccw, law):
     """Hypothesis: the closed forms hold for any translating-roller design, not only the swept ones."""
     p = program("mm", 15.0, law)
     ps = sample_program(p, 90)
-    import camcam.size.kernels as K
-
     captured = {}
-    orig = K._roller_figures
-    K._roller_figures = lambda kc, ratio, *rest: captured.update(kc=kc, ratio=ratio) or orig(kc, ratio, *rest)
+    orig = closedform.roller_figures
+    closedform.roller_figures = lambda kc, ratio, *rest: captured.update(kc=kc, ratio=ratio) or orig(kc, ratio, *rest)
     try:
-        K.translating_roller(ps, 1 if ccw else -1, np.array([rb]), np.array([e]), np.array([rr]))
+        TranslatingRoller.figures(ps, 1 if ccw else -1, np.array([rb]), np.array([e]), np.array([rr]))
     finally:
-        K._roller_figures = orig
+        closedform.roller_figures = orig
     cam = design_cam("translating-roller", p, {"base_radius": rb, "offset": e, "roller_radius": rr}, "ccw" if ccw else "cw")
     th = ps.theta
     idx = np.repeat(np.arange(4), [max(3, int(math.ceil((s.end_deg - s.start_deg) / 4.0)) + 1) for s in p.segments])

@@ -1,4 +1,28 @@
-"""The four disc-cam followers, placed in the fixed frame.
+"""What every follower kind declares, and the pieces the kinds share.
+
+A follower kind is one class (one module of :mod:`camcam.geometry.followers`,
+listed in its registry :data:`~camcam.geometry.followers.FOLLOWERS`).  An
+instance is the follower in the disc frame; the class declares what the other
+stages ask of the kind, so that none of them compares kind strings:
+
+* the spec: ``kind``, ``spec_keys`` (the ``[follower]`` keys it takes, read by
+  :mod:`camcam.spec.follower`), ``barrel_optional_keys``;
+* the motion: ``unit`` of its lift ("mm" or "deg"), ``is_roller``,
+  ``lift_order_extra`` (derivatives of the lift its contact needs);
+* the design checks: ``default_max_pressure_angle_deg``;
+* the disc frame: :meth:`~FollowerKind.from_spec`, :meth:`~FollowerKind.check`,
+  :meth:`~FollowerKind.check_cam`, ``element`` (the jets of its cam-touching
+  element, module notes below);
+* the barrel frame: ``barrel``, its follower class for a cylindrical cam (None:
+  it runs on disc cams only), made by :meth:`~FollowerKind.barrel_from_spec`;
+  ``barrel_axes`` the machining axes its groove can be cut with (the first is
+  the default);
+* sizing (``camcam size``): ``size_axes`` (None: not sized), the closed-form
+  kernel :meth:`~FollowerKind.size_figures` and the design
+  :meth:`~FollowerKind.from_params`;
+* reverse design: :meth:`~FollowerKind.invert` (profile points → cam angle and
+  lift) and, on the barrel class, ``pivot_distance`` (None: translating);
+* the setup sheet: :meth:`~FollowerKind.datum_note`.
 
 Fixed frame (DESIGN.md): cam centre at the origin, drawing in the XY plane seen
 from +Z.  A translating follower moves along +Y, its axis offset ``offset`` mm
@@ -23,15 +47,18 @@ profile tangent Q′ − σJQ (J = +90° turn) is parallel to the face.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, ClassVar
+
+import numpy as np
 
 from camcam.errors import GeometryError
 from camcam.geometry.jet import Jet
 
-__all__ = ["TranslatingRoller", "OscillatingRoller", "TranslatingFlat", "OscillatingFlat", "Element", "FOLLOWER_KINDS"]
+if TYPE_CHECKING:
+    from camcam.geometry.params import FollowerSpec
 
-FOLLOWER_KINDS = ("translating-roller", "oscillating-roller", "translating-flat", "oscillating-flat")
+__all__ = ["Element", "FollowerKind", "reject"]
 
 
 @dataclass(frozen=True)
@@ -47,113 +74,63 @@ class Element:
     along: Jet | None = None  # flat face: contact position along the face, mm
 
 
-@dataclass(frozen=True)
-class TranslatingRoller:
-    """Roller of radius ``roller_radius`` on a stem along +Y at x = ``offset``."""
+class FollowerKind:
+    """The declarations every follower kind makes (module notes); subclasses are frozen dataclasses."""
 
-    roller_radius: float
-    offset: float = 0.0
-    kind = "translating-roller"
-    unit = "mm"
-    lift_order_extra = 0
+    kind: ClassVar[str]
+    unit: ClassVar[str]
+    is_roller: ClassVar[bool]
+    lift_order_extra: ClassVar[int]
+    #: The ``[follower]`` keys the kind takes, of roller_radius, offset, pivot_distance, arm_length.
+    spec_keys: ClassVar[tuple[str, ...]]
+    #: Keys a cylindrical cam's follower of this kind may leave out.
+    barrel_optional_keys: ClassVar[tuple[str, ...]] = ()
+    default_max_pressure_angle_deg: ClassVar[float]
+    #: The follower class in the barrel frame (:mod:`camcam.geometry.cylindrical`); None: disc cams only.
+    barrel: ClassVar[type | None] = None
+    #: ``[machining] axes`` a barrel cam's groove may be cut with, the default first.
+    barrel_axes: ClassVar[tuple[int, ...]] = (4,)
+    #: The swept axes of ``camcam size`` in table order (base_radius first); None: not sized.
+    size_axes: ClassVar[tuple[str, ...] | None] = None
 
-    def check(self, base_radius: float) -> None:
-        rp = base_radius + self.roller_radius
-        if abs(self.offset) >= rp:
-            raise GeometryError(f"follower.offset {self.offset:g} mm must be smaller than the base pitch radius {rp:g} mm")
+    @classmethod
+    def from_spec(cls, f: "FollowerSpec") -> "FollowerKind":
+        """The disc follower of a validated ``[follower]`` table."""
+        raise NotImplementedError
 
-    def element(self, s: Jet, base_radius: float, sigma: int) -> Element:
-        rp = base_radius + self.roller_radius
-        y0 = math.sqrt(rp * rp - self.offset**2)
-        one = Jet.constant(1.0, s.d.shape[1], s.K)
-        return Element(one * self.offset, s + y0, one * 0.0, one)
+    @classmethod
+    def barrel_from_spec(cls, f: "FollowerSpec"):
+        """The barrel follower of a validated ``[follower]`` table."""
+        raise GeometryError(f"a {cls.kind} follower runs on disc cams only")
 
+    @classmethod
+    def from_params(cls, params: dict[str, float]) -> "FollowerKind":
+        """The disc follower of one sized design (``params``: the :attr:`size_axes` values)."""
+        raise ValueError(f"no sizing for a {cls.kind} follower")
 
-@dataclass(frozen=True)
-class OscillatingRoller:
-    """Roller at the end of an arm of ``arm_length`` pivoting at (``pivot_distance``, 0)."""
-
-    roller_radius: float
-    pivot_distance: float
-    arm_length: float
-    kind = "oscillating-roller"
-    unit = "deg"
-    lift_order_extra = 0
-
-    def start_angle(self, base_radius: float) -> float:
-        """Arm angle β₀ (from +X, about the pivot) at lift 0."""
-        a, L, rp = self.pivot_distance, self.arm_length, base_radius + self.roller_radius
-        if not abs(a - L) < rp < a + L:
-            raise GeometryError(
-                f"follower: an arm of {L:g} mm pivoting {a:g} mm from the cam centre cannot put the roller "
-                f"on the base pitch circle of radius {rp:g} mm (needs |pivot_distance − arm_length| < {rp:g} < pivot_distance + arm_length)"
-            )
-        x0 = (a * a + rp * rp - L * L) / (2 * a)
-        y0 = math.sqrt(rp * rp - x0 * x0)
-        return math.atan2(y0, x0 - a)
+    @staticmethod
+    def size_figures(ps, sigma: int, params: dict) -> dict:
+        """Closed-form figures of a block of designs (:mod:`camcam.size.kernels`)."""
+        raise NotImplementedError
 
     def check(self, base_radius: float) -> None:
-        self.start_angle(base_radius)
+        """Raise :class:`GeometryError` when the follower cannot touch a base circle of ``base_radius``."""
 
-    def element(self, s: Jet, base_radius: float, sigma: int) -> Element:
-        beta = self.start_angle(base_radius) - s
-        c, sn = beta.cos(), beta.sin()
-        L = self.arm_length
-        return Element(c * L + self.pivot_distance, sn * L, sn, -c)
+    def check_cam(self, cam) -> None:
+        """Raise :class:`GeometryError` when the follower loses the built disc ``cam`` (default: never)."""
 
+    def invert(self, P: np.ndarray, n: np.ndarray, base_radius: float, sg: int) -> tuple[np.ndarray, np.ndarray]:
+        """Cam angle θ (rad, not reduced) and lift (mm or rad) of cam-frame profile points ``P`` with outward normals ``n``."""
+        raise NotImplementedError
 
-@dataclass(frozen=True)
-class TranslatingFlat:
-    """Flat face perpendicular to +Y on a stem at x = ``offset``."""
-
-    offset: float = 0.0
-    roller_radius = 0.0
-    kind = "translating-flat"
-    unit = "mm"
-    lift_order_extra = 1
-
-    def check(self, base_radius: float) -> None:
-        return None
-
-    def element(self, s: Jet, base_radius: float, sigma: int) -> Element:
-        # envelope: the profile tangent Q' − σJQ has no Y part ⇒ x_Q = σ s′
-        ds = s.derivative()
-        s0 = s.truncate(ds.K)
-        xq = ds * sigma
-        one = Jet.constant(1.0, s.d.shape[1], ds.K)
-        return Element(xq, s0 + base_radius, nx=one * 0.0, ny=one, along=xq - self.offset)
+    @classmethod
+    def datum_note(cls, offset: float) -> str:
+        """Where the follower sits at cam angle 0, for the setup sheet (``offset``: the stem's, mm)."""
+        raise NotImplementedError
 
 
-@dataclass(frozen=True)
-class OscillatingFlat:
-    """Flat face whose line passes through the pivot at (``pivot_distance``, 0).
-
-    At lift 0 the face is tangent to the base circle; a lift turns it clockwise
-    about the pivot (β = β₀ − ψ), away from the cam.  With the face through the
-    pivot, the contact point moves along the face normal, so the pressure angle
-    is zero throughout.
-    """
-
-    pivot_distance: float
-    roller_radius = 0.0
-    kind = "oscillating-flat"
-    unit = "deg"
-    lift_order_extra = 1
-
-    def start_angle(self, base_radius: float) -> float:
-        a = self.pivot_distance
-        if not a > base_radius:
-            raise GeometryError(f"follower.pivot_distance {a:g} mm must exceed the base radius {base_radius:g} mm")
-        return math.pi - math.asin(base_radius / a)
-
-    def check(self, base_radius: float) -> None:
-        self.start_angle(base_radius)
-
-    def element(self, s: Jet, base_radius: float, sigma: int) -> Element:
-        # contact Q = O + ℓ e_β; the envelope condition gives ℓ (σβ′ − 1) = a cos β, β′ = −ψ′
-        a = self.pivot_distance
-        ds = s.derivative()
-        beta = (self.start_angle(base_radius) - s).truncate(ds.K)
-        c, sn = beta.cos(), beta.sin()
-        ell = -(c * a) / (ds * sigma + 1.0)
-        return Element(c * ell + a, sn * ell, nx=sn, ny=-c, along=ell)
+def reject(mask, points, what: str) -> None:
+    """Raise :class:`GeometryError` naming the first of ``points`` (n, 2) where ``mask`` holds."""
+    if np.any(mask):
+        i = int(np.flatnonzero(mask)[0])
+        raise GeometryError(f"point ({points[i, 0]:.4f}, {points[i, 1]:.4f}) does not fit the follower: {what}")
