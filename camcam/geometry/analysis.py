@@ -240,6 +240,14 @@ def check_undercut(cam) -> None:
 
 
 # -- cylindrical cams ----------------------------------------------------------
+def _groove_bend(cam) -> tuple[float, float]:
+    """(radius, program angle rad) of the sharpest bend of the developed groove centre line at the groove
+    bottom (infinite for a straight one)."""
+    centre = cam.developed_centre(cam.bottom_radius)
+    c = extreme(lambda t, i: convex_curvature(centre, 1, t, i), cam.breaks, "absmax")
+    return (1.0 / abs(c.value) if c.value else math.inf), c.t
+
+
 def analyse_cylindrical(cam) -> DiscAnalysis:
     """Pressure angle at the groove bottom (its largest) and the developed groove's curvature there.
 
@@ -248,16 +256,18 @@ def analyse_cylindrical(cam) -> DiscAnalysis:
     line minus the roller radius.  Raises :class:`GeometryError` if the roller
     does not fit the groove's bends (centre-line radius ≤ roller radius).
     """
-    br = cam.breaks
     pressure = max_pressure_angle(cam)
-    centre = cam.developed_centre(cam.bottom_radius)
-    f = lambda t, i: convex_curvature(centre, 1, t, i)  # noqa: E731
-    c = extreme(f, br, "absmax")
-    rho = 1.0 / abs(c.value) if c.value else math.inf
+    rho, t = _groove_bend(cam)
     if rho <= cam.roller_radius:
+        from camcam.geometry.resize import base_radius_advice, base_radius_meeting
+
+        # measured on the cam rebuilt at that radius (an oscillating roller's pivot moved out with it)
+        fix = base_radius_meeting(cam, lambda c: _groove_bend(c)[0] - c.roller_radius - 1e-9)
+        way = f"{base_radius_advice(cam, fix)} avoids it" if fix is not None else \
+            "no cam.base_radius up to 10 m avoids it; the motion is too steep for this follower"
         raise GeometryError(
-            f"undercut at cam angle {_deg(c.t):.2f}°: the developed groove centre line bends with radius {rho:.3f} mm "
-            f"at the groove bottom, not larger than the roller radius {cam.roller_radius:g} mm; use a larger cam.base_radius"
+            f"undercut at cam angle {_deg(t):.2f}°: the developed groove centre line bends with radius {rho:.3f} mm "
+            f"at the groove bottom, not larger than the roller radius {cam.roller_radius:g} mm; {way}"
         )
-    summary = CurvatureSummary(rho - cam.roller_radius, _deg(c.t), (), None)
-    return DiscAnalysis(pressure, CurvatureSummary(rho, _deg(c.t), (), None), summary, None)
+    summary = CurvatureSummary(rho - cam.roller_radius, _deg(t), (), None)
+    return DiscAnalysis(pressure, CurvatureSummary(rho, _deg(t), (), None), summary, None)

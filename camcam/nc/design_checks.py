@@ -26,13 +26,9 @@ Examples
 
 from __future__ import annotations
 
-import math
-from dataclasses import replace
-from typing import Callable
-
-from camcam.errors import GeometryError
 from camcam.geometry.analysis import analyse, analyse_cylindrical, max_pressure_angle
 from camcam.geometry.followers import follower_kind
+from camcam.geometry.resize import base_radius_advice, base_radius_meeting, is_barrel
 from camcam.verdict import Check
 
 __all__ = ["design_checks", "default_max_pressure_angle_deg", "default_min_curvature_radius_mm", "base_radius_meeting"]
@@ -51,82 +47,14 @@ def default_min_curvature_radius_mm(roller_radius_mm: float) -> float:
     return CURVATURE_ROLLERS * roller_radius_mm
 
 
-def _moves_pivot(cam) -> bool:
-    """A barrel cam's oscillating roller: its pivot moves out with the cylinder radius (the arm stays in the groove)."""
-    return _is_barrel(cam) and getattr(cam.follower, "pivot_distance", None) is not None
-
-
-def _is_barrel(cam) -> bool:
-    return hasattr(cam, "groove_depth") and not hasattr(cam, "flanks")
-
-
-def _cam_at(cam, base_radius_mm: float):
-    """``cam`` with another base radius (a face groove's inner cam, a cylinder's radius; a barrel cam's oscillating
-    roller's pivot moved out by as much)."""
-    if hasattr(cam, "flanks"):
-        return replace(cam, cam=replace(cam.cam, base_radius=base_radius_mm))
-    if _moves_pivot(cam):
-        pivot = cam.follower.pivot_distance + base_radius_mm - cam.base_radius
-        return replace(cam, base_radius=base_radius_mm, follower=replace(cam.follower, pivot_distance=pivot))
-    return replace(cam, base_radius=base_radius_mm)
-
-
 def _analysis(cam):
 
-    return analyse_cylindrical(cam) if _is_barrel(cam) else analyse(cam)
-
-
-def base_radius_meeting(cam, margin: Callable[[object], float], cap_mm: float = 10_000.0) -> float | None:
-    """The smallest base radius (mm, rounded up to 0.1 mm) at which ``margin(cam)`` ≥ 0 for ``cam`` rebuilt
-    with it, searched upwards from its own; None when none up to ``cap_mm`` does.  The value returned is
-    measured, not extrapolated: the cam at exactly that radius meets the limit.  A barrel cam's
-    oscillating roller has its pivot moved out by as much as the radius grows (:func:`_cam_at`)."""
-
-    def m(r: float) -> float | None:
-        try:
-            return float(margin(_cam_at(cam, r)))
-        except (GeometryError, ValueError):
-            return None
-
-    lo, m_lo = cam.base_radius, m(cam.base_radius)
-    hi, m_hi = lo, m_lo
-    while m_hi is None or m_hi < 0:
-        lo, m_lo = hi, m_hi
-        hi = hi * 1.25
-        if hi > cap_mm:
-            return None
-        m_hi = m(hi)
-    side = 0
-    for _ in range(30):  # false position (Illinois) where both ends are measured, else halving
-        if hi - lo <= 0.05:
-            break
-        if m_lo is not None and m_lo < 0 < m_hi:
-            mid = hi - m_hi * (hi - lo) / (m_hi - m_lo)
-            mid = min(max(mid, lo + 0.01 * (hi - lo)), hi - 0.01 * (hi - lo))
-        else:
-            mid = 0.5 * (lo + hi)
-        m_mid = m(mid)
-        if m_mid is not None and m_mid >= 0:
-            hi, m_hi = mid, m_mid
-            if side == 1 and m_lo is not None:
-                m_lo /= 2  # Illinois: the end kept twice is halved
-            side = 1
-        else:
-            lo, m_lo = mid, m_mid
-            if side == -1:
-                m_hi /= 2
-            side = -1
-    r = math.ceil(hi * 10.0 - 1e-9) / 10.0
-    m_r = m(r)
-    return r if m_r is not None and m_r >= 0 else hi
+    return analyse_cylindrical(cam) if is_barrel(cam) else analyse(cam)
 
 
 def _limit_advice(cam, margin, what: str, other: str, fails: bool, strict: bool) -> str:
     r = base_radius_meeting(cam, margin)
-    pivot = ""
-    if r is not None and _moves_pivot(cam):
-        pivot = f" with follower.pivot_distance = {cam.follower.pivot_distance + r - cam.base_radius:g} mm"
-    fix = f"cam.base_radius >= {r:g} mm{pivot} {what}" if r is not None else f"a larger cam.base_radius {what}"
+    fix = f"{base_radius_advice(cam, r)} {what}" if r is not None else f"a larger cam.base_radius {what}"
     text = f"{fix}; or {other}"
     if fails:
         text += (", or accept it as a warning with [cam] design_limits = \"warn\"" if not strict else

@@ -9,6 +9,8 @@ width would leave a band between those passes.
 
 from __future__ import annotations
 
+import math
+
 from camcam.errors import GeometryError
 
 __all__ = ["SAME_TOOL_MM", "check_profile_tool", "groove_passes", "job_title"]
@@ -46,12 +48,15 @@ def groove_passes(tool_radius_mm: float, roller_radius_mm: float) -> str:
     r_t, r_r = tool_radius_mm, roller_radius_mm
     if r_t > r_r + SAME_TOOL_MM:
         raise GeometryError(f"machining.tool_diameter: {2 * r_t:g} mm is wider than the groove ({2 * r_r:g} mm, "
-                            f"twice the roller radius)")
+                            f"twice the roller radius); expected at most {2 * r_r:g} mm (the roller's diameter cuts "
+                            f"the groove in one centre pass)")
     if abs(r_t - r_r) <= SAME_TOOL_MM:
         return "centre"
     if 3 * r_t < r_r:
+        smallest = math.ceil(2 * r_r / 3 * 100 - 1e-9) / 100  # a third of the width, rounded up to 0.01 mm
         raise GeometryError(f"machining.tool_diameter: {2 * r_t:g} mm is below a third of the groove width "
-                            f"{2 * r_r:g} mm: a centre pass and two flank passes would leave material between them")
+                            f"{2 * r_r:g} mm: a centre pass and two flank passes would leave material between them; "
+                            f"expected at least {smallest:g} mm (up to the roller's {2 * r_r:g} mm)")
     return "centre+flanks"
 
 
