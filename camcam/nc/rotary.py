@@ -58,6 +58,16 @@ from camcam.verdict import Check
 
 __all__ = ["machine_cylindrical", "developed_printed", "printed_axes", "groove_check", "machine_frame_lines"]
 
+#: A tilting roller axis on 4 axes (an oscillating roller): the radial tool's error e is the machine's, not the
+#: fit's, so the fit is held to this share of the tolerance.  Then a plan at tolerance T measures at most
+#: e + TILT_FIT_SHARE·T (a fit held in the developed plane at the outer radius moves the cut at most that much at
+#: every depth), and e is at most the measured D + TILT_FIT_SHARE·T: the tolerance the advice names,
+#: (D + share·T) / (1 − share − SAMPLING_SHARE), holds when accepted (issue 43: it named D itself, and a plan
+#: fitted to the wider tolerance measured more again: 0.0623 → 0.1103 → 0.1559 mm on campaign case 43:426).
+TILT_FIT_SHARE = 0.25
+#: The share of the tolerance the 3-D measurement's motion-sampling bound may take (pose_step_for: 2 %).
+SAMPLING_SHARE = 0.02
+
 
 def printed_axes(elements, quantizer: Quantizer, radius_mm: float, turn: int = 1) -> np.ndarray:
     """(X, A°) of the contour's vertices as printed: x and turn·u/ρ in degrees on the post's grid."""
@@ -131,9 +141,19 @@ def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool
     holds = math.ceil(value * 1e4) / 1e4
     r_r = cam.roller_radius
     if cam.follower.roller_axis_tilts:
-        advice = ("the roller axis tilts with the arm and a radial tool cannot follow it: cut it with "
-                  f"[machining] axes = 5 and a tool of the roller's diameter (D{2 * r_r:g} mm), "
-                  f"or accept a tolerance of at least {holds:g} mm")
+        holds = math.ceil((value + TILT_FIT_SHARE * tol) / (1 - TILT_FIT_SHARE - SAMPLING_SHARE) * 1e4) / 1e4
+        # keys and values as a spec writes them, each with its section, so that the advice applies as it reads
+        # (issue 43: it said "a tool of the roller's diameter (D8 mm)"); the tool first: axes = 5 with another
+        # tool is refused.  On a post with no 5-axis mode "axes = 5" ends in a refusal, so the tolerance comes first
+        if m.post.five_axis:
+            advice = ("the roller axis tilts with the arm and a radial tool cannot follow it: cut it with "
+                      f"[machining] tool_diameter = {2 * r_r:g} (the roller's diameter) and [machining] axes = 5, "
+                      f"or accept a tolerance of at least {holds:g} mm")
+        else:
+            advice = (f"the roller axis tilts with the arm and a radial tool cannot follow it, and post {m.post.name} "
+                      f"has no 5-axis mode: accept a tolerance of at least {holds:g} mm, or cut it on a 5-axis "
+                      f"machine (a post with tool-centre-point control, e.g. post = \"linuxcnc\", with axes = 5 and "
+                      f"tool_diameter = {2 * r_r:g}, the roller's diameter)")
     elif m.tool_diameter_mm < 2 * r_r - 2 * SAME_TOOL_MM:
         # one diameter, one meaning: the smallest tool is the one whose balanced flank error holds half the
         # tolerance (the fit has the other half); where only the roller's own diameter does, it is named once
@@ -177,6 +197,8 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
             return 2 * smallest_tool_radius(cam, 0.5 * m.tolerance_mm, rho_d)
         label, curve = item[0], item[1]
         tol = fit_tol if label.startswith("flank") else m.tolerance_mm
+        if cam.follower.roller_axis_tilts:
+            tol *= TILT_FIT_SHARE
         return fit_printed(curve, tol, "lines", post.quantizer, post.max_arc_sweep_deg, printed, f"{name} {label}")
 
     # the passes' fits and the smallest-tool search are independent: they share the workers (the same

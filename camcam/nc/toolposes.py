@@ -90,7 +90,17 @@ def poses_from_program(text: str, a_axis: str = "right-hand", assume: dict | Non
 
     Poses start once X, Y, Z and A are all known (B is 0 until given);
     ``assume`` gives axis values a program never prints (e.g. ``{"Y": 0.0}``
-    for a program that leaves Y where the machine has it).
+    for a program that leaves Y where the machine has it).  G90/G91 set
+    absolute/incremental words.  A block with G28 (return to the reference
+    point, Fanuc's ``G91 G28 Z0.``) or G53 (machine coordinates, Haas's
+    ``G53 G00 Z0.``) leaves the work frame: its words are no work-frame
+    position, so they are not read as one (they were: ``Z0.`` put the tool on
+    the cam axis, issue 43, a 2.1 mm "overcut" at the seam of a 5-axis
+    program).  G28's intermediate point is a work-frame move and is read; the
+    retract itself goes up machine Z to the top of the travel, which the
+    reader takes as far as the highest Z the program printed (a pure +Z move
+    from there only goes farther from the part); the axes it names are
+    unknown after it, and a later move that would need them is refused.
     Arcs (G2/G3) are refused: a barrel-cam program has none.
 
     Examples
@@ -98,29 +108,60 @@ def poses_from_program(text: str, a_axis: str = "right-hand", assume: dict | Non
     >>> p = poses_from_program("G0 X0 Y0 Z60 A0\\nG1 X10 A90 F3\\nM2\\n")
     >>> p.tip_mm.tolist(), p.a_deg.tolist()
     ([[0.0, 0.0, 60.0], [10.0, 0.0, 60.0]], [0.0, 90.0])
+    >>> p = poses_from_program("G0 X0 Y0 Z60 A0\\nG1 X10 Z40 A90 F3\\nG0 Z60\\nG91 G28 Z0.\\nM30\\n")
+    >>> p.tip_mm[:, 2].tolist()
+    [60.0, 40.0, 60.0]
     """
     pos = {"X": None, "Y": None, "Z": None, "A": None, "B": 0.0}
     pos.update(assume or {})
     motion = None
+    incremental = False
+    homed: set[str] = set()  # axes a reference return left at a place the work frame cannot name
+    top = -np.inf  # the highest tip Z printed
     rows = []
+
+    def add(retract: bool = False) -> None:
+        if motion is not None and all(pos[k] is not None for k in "XYZA"):
+            row = (pos["X"], pos["Y"], pos["Z"], pos["A"], pos["B"])
+            if not (retract and rows and rows[-1] == row):
+                rows.append(row)
+
     for raw in text.splitlines():
         line = _COMMENT.sub("", raw.upper()).strip()
         if not line or line.startswith("%") or line.startswith("O"):
             continue
         words = _WORD.findall(line)
-        moved = False
-        for letter, num in words:
-            if letter == "G":
-                g = float(num)
-                if g in (0.0, 1.0):
-                    motion = int(g)
-                elif g in (2.0, 3.0):
-                    raise ValueError(f"arc move in a barrel-cam program: {raw.strip()!r}")
-            elif letter in pos:
-                pos[letter] = float(num)
-                moved = True
-        if moved and motion is not None and all(pos[k] is not None for k in "XYZA"):
-            rows.append((pos["X"], pos["Y"], pos["Z"], pos["A"], pos["B"]))
+        gs = [float(num) for letter, num in words if letter == "G"]
+        for g in gs:
+            if g in (0.0, 1.0):
+                motion = int(g)
+            elif g in (2.0, 3.0):
+                raise ValueError(f"arc move in a barrel-cam program: {raw.strip()!r}")
+        incremental = (incremental or 91.0 in gs) and 90.0 not in gs
+        axes = [(letter, float(num)) for letter, num in words if letter in pos]
+        if not axes:
+            continue
+        if homed:
+            raise ValueError(f"a move after a return to the machine's reference point: {raw.strip()!r}")
+        if 28.0 in gs or 53.0 in gs:
+            if 28.0 in gs:  # the intermediate point first, in the work frame
+                for letter, v in axes:
+                    if incremental and pos[letter] is None:
+                        raise ValueError(f"incremental move of an unknown axis {letter}: {raw.strip()!r}")
+                    pos[letter] = pos[letter] + v if incremental else v
+                add(retract=True)
+            if "Z" in dict(axes) and pos["Z"] is not None:  # up machine Z, at least as high as the program went
+                pos["Z"] = max(pos["Z"], top)
+                add(retract=True)
+            homed.update(letter for letter, _ in axes)
+            continue
+        for letter, v in axes:
+            if incremental and pos[letter] is None:
+                raise ValueError(f"incremental move of an unknown axis {letter}: {raw.strip()!r}")
+            pos[letter] = pos[letter] + v if incremental else v
+        if pos["Z"] is not None:
+            top = max(top, pos["Z"])
+        add()
     if len(rows) < 2:
         raise ValueError("the program positions X, Y, Z and A fewer than twice")
     arr = np.array(rows)

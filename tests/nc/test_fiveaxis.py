@@ -217,3 +217,51 @@ def test_interpreted_program_within_tolerance_in_3d(tmp_path, post):
     assert np.abs(np.array(interpreted) - np.array(printed)).max() < 1e-9  # ≤ 4 decimals: rs274 prints them exactly
     over, left = groove_deviation(built, moves)
     assert max(over, left) <= m.tolerance_mm + SAMPLING_MM
+
+
+# -- issue 43: the design-space campaign's 5-axis FAILs at the seam (cam angle 0/360) ---------------------------
+DATA = ROOT / "tests" / "nc" / "data"
+
+
+def spec_job(path: Path):
+    spec = load_spec(path)
+    built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
+    return built, spec.machining, machine(built, spec.machining, spec.name)
+
+
+def read_back(r, m, tmp_path) -> list:
+    """The program's moves as rs274 interprets them (the printed words where rs274 is missing)."""
+    if not rs274_available():
+        return parse_moves(r.program.text)
+    tcp = tuple(line.format(tool=m.tool_number) for line in r.post.tcp_on)
+    prog, ini = tcp_readable(r.program.text, tcp, tmp_path)
+    return [("rapid" if mv.kind == "rapid" else "feed", (mv.x, mv.y, mv.z, mv.a, mv.b)) for mv in run_rs274(prog, ini=ini)]
+
+
+@pytest.mark.parametrize("key", ["43-404", "43-425"])
+def test_return_to_machine_home_is_no_cut_at_the_seam(key, tmp_path):
+    # campaign cases 43:404 (fanuc, footer "G91 G28 Z0.") and 43:425 (haas, "G53 G00 Z0."): the pose reader took
+    # the return to machine Z home for a move to work Z0, on the cam axis, after B went back to 0 — a radial tool
+    # plunged through the groove at cam angle 0/360: FAIL 2.116 mm of 0.0034 and 0.2125 of 0.002 (overcut on
+    # flank 0 at cam angle 0), and "cut depth 74.5 mm, the tool reaches R0".  The program was right all along.
+    built, m, r = spec_job(DATA / f"fiveaxis-seam-{key}.toml")
+    footer = "G91 G28 Z0." if key == "43-404" else "G53 G00 Z0."
+    assert any(line.endswith(footer) for line in r.program.text.splitlines())
+    check = {c.name: c for c in r.checks}["3-D groove deviation"]
+    assert check.ok and check.value <= m.tolerance_mm
+    assert r.reach.deepest_radius_mm > built.cam.bottom_radius - 2 * built.cam.roller_radius  # not R0
+    # the independent read-back: rs274's moves swept against the walls, five radii, 720 angles
+    over, left = groove_deviation(built, read_back(r, m, tmp_path), a_axis=m.a_axis, n_theta=720, radii=5)
+    assert max(over, left) <= m.tolerance_mm + SAMPLING_MM
+    assert check.value == pytest.approx(max(over, left), abs=0.1 * m.tolerance_mm)  # the report agrees with it
+
+
+@pytest.mark.parametrize("footer", ["G91 G28 Z0.", "G53 G00 Z0.", "G28 G91 Z0"])
+def test_pose_reader_leaves_the_work_frame_at_a_return_home(footer):
+    from camcam.nc.toolposes import poses_from_program
+    text = f"G90 G0 X5 Y0 Z90 A0 B0\nG1 Z60 F9\nG1 X8 A90 B-12\nG0 Z90\nG0 B0\nM5\n{footer}\nM30\n"
+    p = poses_from_program(text)
+    assert p.tip_mm[:, 2].min() == 60.0  # the retract goes up machine Z, never to work Z0
+    assert p.tip_mm[-1].tolist() == [8.0, 0.0, 90.0] and p.b_deg[-1] == 0.0
+    with pytest.raises(ValueError, match="reference point"):
+        poses_from_program(text.replace("M30", "G90 G0 X0 Y0 Z50 A0"))
