@@ -63,7 +63,8 @@ def test_bore_message_says_no_bore_fits_and_a_way_that_works(tmp_path):
 
 
 def _groove(smallest_tool_mm):
-    cam = SimpleNamespace(kind="translating-roller", roller_radius=8.0)
+    cam = SimpleNamespace(kind="translating-roller", roller_radius=8.0,
+                          follower=SimpleNamespace(roller_axis_tilts=False))  # a translating roller's axis stays radial
     m = SimpleNamespace(tolerance_mm=0.02, tool_diameter_mm=12.0)
     groove = SimpleNamespace(max_deviation_mm=0.0816, where=lambda: "flank 0")
     return groove_check(cam, m, groove, smallest_tool_mm).advice
