@@ -62,6 +62,9 @@ class FitResult:
     #: ``deviation`` was measured on the whole printed path over the whole curve (one section, nothing
     #: left out), so it is that path's deviation as it stands, not only the worst of its pieces'.
     measured_whole: bool = False
+    #: arcs mode: the G1 sections (lo, hi, why) whose arc spline missed and that were fitted with lines
+    #: instead (issue 43 C), so that a valid curve always has a program
+    lines_sections: tuple = ()
 
     @property
     def line_blocks(self) -> int:
@@ -115,23 +118,38 @@ def _fit_arcs(curve, tolerance_mm, band, quantizer, max_sweep, a, b, exact, prin
     # every attempt, so a tighter retry does not loosen the goal
     lbs = lower_bound_pieces(exact, tolerance_mm, edges)
     band_lb = float(sum(lbs)) * float(np.cbrt(tolerance_mm / targets[0])) if whole else None
-    elems, starts, worst = [], [], None
+    elems, starts, worst, fallbacks = [], [], None, []
     for lo, hi in sections:
         for target in targets:
-            spline = fit_arc_spline(curve, lo, hi, target, quantizer=quantizer, max_sweep=max_sweep, sag=sag,
-                                    closed=whole, workers=workers, lower_bound=band_lb)
+            try:
+                spline = fit_arc_spline(curve, lo, hi, target, quantizer=quantizer, max_sweep=max_sweep, sag=sag,
+                                        closed=whole, workers=workers, lower_bound=band_lb)
+            except FitError as err:
+                # no march closed (every start of a closed section, the one of an open one): a tighter band
+                # would march the same way, so the section is fitted with lines (below)
+                spline, missed = None, str(err)
+                break
             # arcs planned at the post's limit may print a hair over it: cut into parts before measuring
             split = [parts_within(e, quantizer, math.degrees(max_sweep)) if isinstance(e, Arc) else (e,)
                      for e in spline.elements]
             elements = tuple(p for ps in split for p in ps)
             dev_s = measure_deviation(exact, printed(elements), lo, hi, margin_mm=margin)
             if dev_s.max_deviation_mm <= tolerance_mm:
-                break
+                section_starts = [t for ps, t in zip(split, spline.starts) for _ in ps]  # a cut arc's parts count
+                break                                                                    # where it began
+            missed = (f"the printed path stays {dev_s.max_deviation_mm:.4g} mm off after {budget.attempts} "
+                      f"attempts")
         else:
-            raise FitError(f"cannot fit the curve on t ∈ [{lo:g}, {hi:g}] within {tolerance_mm:g} mm: the printed "
-                           f"path stays {dev_s.max_deviation_mm:.4g} mm off after {budget.attempts} attempts")
+            spline = None
+        if spline is None:
+            # the last resort, so that a valid smooth curve always has a program (issue 43 C): the section's
+            # analytic pieces fitted by the lines method at its own targets, printed and measured two-sided
+            # like every fit; FitError only if that misses too
+            elements, section_starts, dev_s = _lines_section(curve, exact, printed, quantizer, band, tolerance_mm,
+                                                             lo, hi, budget, missed)
+            fallbacks.append((lo, hi, missed))
         elems.extend(elements)
-        starts.extend(t for ps, t in zip(split, spline.starts) for _ in ps)  # a cut arc's parts count where it began
+        starts.extend(section_starts)
         if worst is None or dev_s.max_deviation_mm > worst.max_deviation_mm:
             worst = dev_s
     starts = np.asarray(starts)
@@ -140,7 +158,31 @@ def _fit_arcs(curve, tolerance_mm, band, quantizer, max_sweep, a, b, exact, prin
               for lo, hi in edges]  # each arc counts on the piece its start joint lies on
     measured_whole = len(sections) == 1 and sections[0] == (exact.t_start, exact.t_end)
     return FitResult(tuple(elems), "arcs", tolerance_mm, quantizer.decimals, worst, float(sum(lbs)),
-                     tuple(blocks), tuple(lbs), measured_whole)
+                     tuple(blocks), tuple(lbs), measured_whole, tuple(fallbacks))
+
+
+def _lines_section(curve, exact, printed, quantizer, band, tolerance_mm, lo, hi, budget, missed):
+    """Section [lo, hi] of an arcs fit whose arc spline missed (``missed`` says how), fitted with lines.
+
+    Each analytic piece of the section by the lines method (:func:`_fit_lines_piece`, seed 004's chords)
+    at the budget's lines targets, snapped to the printed grid; the section's printed path is measured
+    two-sided against the exact curve, and fitted again tighter while it misses.  Returns (elements, the
+    curve parameter each starts at, deviation).
+    """
+    margin = budget.margin_mm(tolerance_mm)
+    dev = None
+    for target in budget.targets(band, quantizer):
+        elements, starts = [], []
+        for p_lo, p_hi in pieces(curve, lo, hi):
+            piece = Piece(curve, p_lo, p_hi)
+            lines = quantizer.snap_elements(_fit_lines_piece(piece, target))
+            elements.extend(lines)
+            starts.extend(np.linspace(p_lo, p_hi, len(lines), endpoint=False).tolist())
+        dev = measure_deviation(exact, printed(tuple(elements)), lo, hi, margin_mm=margin)
+        if dev.max_deviation_mm <= tolerance_mm:
+            return tuple(elements), starts, dev
+    raise FitError(f"cannot fit the curve on t ∈ [{lo:g}, {hi:g}] within {tolerance_mm:g} mm: {missed}; with "
+                   f"lines the printed path stays {dev.max_deviation_mm:.4g} mm off after {budget.attempts} attempts")
 
 
 def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",

@@ -220,6 +220,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from camcam.errors import FitError
 from camcam.forked import parallel_map
 from camcam.toolpath.arcbatch import unit_rows
 from camcam.toolpath.arcclose import quiet_stretches
@@ -343,17 +344,22 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
     jobs = [(start, budget) for start in starts] + [(start, wide) for start in starts[:budget.wide_tries]]
 
     def march_from(job):
+        """The march from one start, or None where it finds no closure: one start's miss, not the contour's
+        (issue 43 C: case 43:448's 5th start of 12, 43:250's first, each beside starts that close)."""
         start, job_budget = job
-        return march(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, True, job_budget, start)
+        try:
+            return march(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, True, job_budget, start)
+        except FitError:
+            return None
 
     best = None
 
     def met(spline) -> bool:
         """Keep the spline with the fewest blocks (the first of equals); whether the best meets the goal."""
         nonlocal best
-        if best is None or len(spline.elements) < len(best.elements):
+        if spline is not None and (best is None or len(spline.elements) < len(best.elements)):
             best = spline
-        return len(best.elements) <= goal
+        return best is not None and len(best.elements) <= goal
 
     # the first start (most contours meet the goal there); then its spline optimised with the goal's count of
     # arcs (camcam.toolpath.arcpolish: a few LP solves instead of the further starts' whole marches); then,
@@ -364,7 +370,7 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
     # 2-4 % of its wall time where the first start meets the goal.)
     if met(march_from(jobs[0])):
         return best
-    if budget.fewer:
+    if budget.fewer and best is not None:
         for spline in fewer_arcs(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, best, math.floor(goal)):
             if met(spline):
                 return best
@@ -376,10 +382,15 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
         k += n
     # within ``near_miss`` blocks of the goal after all that: further starts, in the same rounds (the
     # count is a step function of the start, so one more start is one more chance of a block fewer); a
-    # contour farther over the goal is left as it is (the starts would cost time and not reach it)
-    if len(best.elements) <= goal + budget.near_miss:
+    # contour farther over the goal is left as it is (the starts would cost time and not reach it); one that no
+    # start has closed yet is marched from them too, until one closes
+    if best is None or len(best.elements) <= goal + budget.near_miss:
         for k in range(0, len(more), n):
             for spline in parallel_map(march_from, [(start, budget) for start in more[k:k + n]], n):
-                if met(spline):
+                if met(spline) or (spline is not None and len(best.elements) > goal + budget.near_miss):
                     return best
+    if best is None:
+        # every start missed: the caller (camcam.toolpath.arcfit) fits this section another way
+        raise FitError(f"cannot fit the curve on t ∈ [{a:g}, {b:g}] within {tolerance_mm:g} mm: the march found no "
+                       f"printed arc spline from any of its {len(jobs) + len(more)} starts")
     return best
