@@ -7,8 +7,9 @@ the tool radius away from the material (``offset_profile(r_t)``), cut with
 tangent leads on the free side, then the optional spring pass.  Face
 grooves: a tool as wide as the groove (diameter = 2 · roller radius) cuts it
 in one centre pass along the pitch curve (a stated slot); a narrower one
-cuts a centre pass, rough offsets no more than the stepover apart, then each
-flank at ``offset_flank(i, r_t)`` (:mod:`camcam.nc.tools`); every groove pass
+cuts a centre pass, rough offsets whose every band the tool meets is within
+the stepover (:func:`camcam.nc.roughing.groove_rings`), then each flank at
+``offset_flank(i, r_t)`` (:mod:`camcam.nc.tools`); every groove pass
 is ramped down along its contour at no more than the ramp angle.  With
 ``[machining] bore = true`` the bore is cut as a helical bore
 (:mod:`camcam.nc.bore`).  Cylindrical cams: :mod:`camcam.nc.rotary` (4 axes) and, for an
@@ -24,7 +25,6 @@ the path the post prints.
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 
 import numpy as np
@@ -36,7 +36,7 @@ from camcam.nc.bore import bore_circle_radius, bore_curve, bore_passes
 from camcam.nc.passes import finish_moves, ramp_loop_passes, spiral_moves, with_markers
 from camcam.nc.removal import RemovalReport, check_program
 from camcam.nc.result import MachiningResult, deviation_checks
-from camcam.nc.roughing import RING_STEP_FRACTION, Spiral, disc_spiral
+from camcam.nc.roughing import RING_STEP_FRACTION, Spiral, disc_spiral, groove_rings
 from camcam.nc.settings import DEFAULT_STOCK, MachiningSpec, StockSpec
 from camcam.nc.stock import blank_for
 from camcam.nc.tools import check_profile_tool, groove_passes, job_title
@@ -54,23 +54,36 @@ def _stock_side(curve, free_dir: np.ndarray) -> str:
 
 
 def _disc_plan(built: BuiltCam, r_t: float, stepover_mm: float):
-    """[(label, tool-centre curve, offset, free direction at t=0 or None for a groove pass, pass kind)]."""
+    """[(label, tool-centre curve, offset, free direction at t=0 or None for a groove pass, pass kind, note)]."""
     cam, kind = built.cam, built.spec.kind
     away = cam.normal(np.array([0.0]))[0]  # away from the material of the profile / inner flank
     if kind == "disc":
         check_profile_tool(r_t, built.analysis.profile.min_concave_radius)
-        return [("profile", cam.offset_profile(r_t), r_t, away, "finish")]
+        return [("profile", cam.offset_profile(r_t), r_t, away, "finish", "")]
     r_r = cam.roller_radius
     if groove_passes(r_t, r_r) == "centre":
-        return [("groove centre", cam.pitch, r_r, None, "slot")]
+        return [("groove centre", cam.pitch, r_r, None, "slot", "")]
     step = RING_STEP_FRACTION * stepover_mm
     span = r_r - r_t  # from the centre line to a flank pass
-    n = max(0, math.ceil(span / step - 1e-9) - 1)  # rough offsets between them, no more than the step apart
-    rough = [(f"groove rough {side} {j}", cam.offset_flank(i, r_r - span * j / (n + 1)), r_t, None, "rough")
-             for i, side in ((0, "inner"), (1, "outer")) for j in range(1, n + 1)]
-    return [("groove centre (rough)", cam.pitch, r_r, None, "slot"), *rough,
-            ("inner flank", cam.offset_flank(0, r_t), r_t, None, "finish"),
-            ("outer flank", cam.offset_flank(1, r_t), r_t, None, "finish")]
+    rough = []
+    for i, side in ((0, "inner"), (1, "outer")):
+        # rough offsets between the centre pass and the flank pass, each band within the step as the tool meets
+        # it, round the bends away from the material too (camcam.nc.roughing.groove_rings; issue 43 E)
+        rings = groove_rings(lambda o, i=i: cam.offset_flank(i, r_r - o), _material_side(cam, i), span, r_t, step)
+        rough += [(f"groove rough {side} {j}", cam.offset_flank(i, r_r - o), r_t, None, "rough", rings.describe(j))
+                  for j, o in enumerate(rings.offsets, start=1)]
+    return [("groove centre (rough)", cam.pitch, r_r, None, "slot", ""), *rough,
+            ("inner flank", cam.offset_flank(0, r_t), r_t, None, "finish", ""),
+            ("outer flank", cam.offset_flank(1, r_t), r_t, None, "finish", "")]
+
+
+def _material_side(cam, flank: int):
+    """(curve, t) → +1 where flank ``flank``'s material lies left of ``curve``'s travel (a curve between the
+    groove's centre line and that flank), −1 where right."""
+    def side(curve, t):
+        toward = cam.offset_flank(flank, 0.0).evaluate(t) - cam.pitch.evaluate(t)  # centre line → flank
+        return np.sign(np.einsum("ij,ij->i", left_normal(curve, t), toward))
+    return side
 
 
 def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK,
@@ -150,16 +163,16 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
     levels = depth_levels(m.cut_settings())
     plan = _disc_plan(built, r_t, m.stepover_mm)
     if m.bore:
-        plan.append(("bore", bore_curve(bore_circle_radius(blank, r_t)), r_t, None, "bore"))
+        plan.append(("bore", bore_curve(bore_circle_radius(blank, r_t)), r_t, None, "bore", ""))
     contours, passes = [], []
-    sides = [_stock_side(curve, free) if free is not None else "both" for _, curve, _, free, _ in plan]
+    sides = [_stock_side(curve, free) if free is not None else "both" for _, curve, _, free, _, _ in plan]
     with ChildGroup() as group:
         # a profile's roughing spiral needs only the blank and the side the material is on: with a second
         # process it is made in a child beside its contour's fit (the same call, the same spiral)
         spirals = {k: group.later(_roughing_spiral, blank, m, sides[k])
-                   for k, (_, _, _, free, kind) in enumerate(plan)
+                   for k, (_, _, _, free, kind, _) in enumerate(plan)
                    if workers > 1 and free is not None and kind != "bore"}
-        for k, (label, curve, offset, free, kind) in enumerate(plan):
+        for k, (label, curve, offset, free, kind, note) in enumerate(plan):
             fit, printed, dev, segs = fit_printed(curve, m.tolerance_mm, m.mode, post.quantizer,
                                                   post.max_arc_sweep_deg, post.quantizer.printed_elements,
                                                   f"{name} {label}", workers=workers)
@@ -172,8 +185,9 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
                 spiral = resolve(spirals[k]) if k in spirals else _roughing_spiral(blank, m, side)
                 passes += _profile_passes(k, fit.elements, spiral, m, cs, levels)
             else:
-                passes += ramp_loop_passes(k, kind, fit.elements, levels, blank.top_z_mm, m.ramp_angle_deg, cs,
-                                           m.spring_pass)
+                passes += [replace(p, note=note) if p.kind == "rough" else p  # a groove's rough ring: its plan
+                           for p in ramp_loop_passes(k, kind, fit.elements, levels, blank.top_z_mm, m.ramp_angle_deg,
+                                                     cs, m.spring_pass)]
             contours.append(CutContour(label, curve, fit, printed, dev, offset, free is not None, segs, side))
     # lead arcs, spirals and ramps planned at the post's largest sweep print within it (contours already do)
     passes = [replace(q, note=p.note) for p, q in
@@ -191,6 +205,9 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
     notes = ()
     if m.finish_allowance_mm > 0 and built.spec.kind != "disc":
         notes = ("finish_allowance does not apply to groove passes (the flanks have their own passes)",)
+    # a contour whose arc spline no march closed is cut with lines (camcam.toolpath.arcfit, issue 43 C): said
+    notes += tuple(f"{c.label}: no arc spline closed on {len(c.fit.lines_sections)} section(s); cut with "
+                   f"{c.fit.line_blocks} lines within the tolerance instead" for c in contours if c.fit.lines_sections)
     return MachiningResult(name, built.spec.kind, built.cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, m.mode,
                            tuple(contours), toolpath, program, None, notes,
                            deviation_checks(contours, m.tolerance_mm), blank=blank)

@@ -34,10 +34,11 @@ import shapely
 from shapely.geometry import Polygon
 
 from camcam.errors import GeometryError
+from camcam.geometry.curve import curvature
 from camcam.toolpath.elements import Arc, Line
 
 __all__ = ["Spiral", "disc_spiral", "polygon_distance", "polyline_elements", "polar_radii", "cut_cyclic", "ROUGH_FIT_MM",
-           "ROUGH_MARGIN_MM", "RING_STEP_FRACTION"]
+           "ROUGH_MARGIN_MM", "RING_STEP_FRACTION", "GrooveRings", "groove_rings", "band_width"]
 
 #: Fit tolerance of roughing paths (mm): they need not meet the finish tolerance, only stay off the part.
 ROUGH_FIT_MM = 0.02
@@ -207,6 +208,81 @@ def loops_needed(th: np.ndarray, r0: np.ndarray, rb: np.ndarray, tool_radius_mm:
         need = max(need, float((dr * cos_b / ae).max()))
         plain = max(plain, float((dr * cos_b).max()) / step_mm)
     return int(math.ceil(need - 1e-9)), int(math.ceil(plain - 1e-9))
+
+
+def band_width(ae, bend, tool_radius_mm: float):
+    """The width across its travel of a band ``ae`` deep that a tool meets on a path bending away from the
+    material with curvature ``bend`` (1/mm; 0 where the path is straight or bends toward the material).
+
+    The band's edge is a circle of radius ρ + r_t − ae about the path's centre of curvature (ρ = 1/bend), and
+    the tool's leading half meets the material beyond it over ae·(1 + (2 r_t − ae)/(2ρ)) (:func:`loops_needed`),
+    written with the curvature so that a straight path gives ``ae`` itself.
+
+    Examples
+    --------
+    >>> band_width(5.65, 0.0, 8.0), round(float(band_width(5.65, 1 / 28.5, 8.0)), 3)  # straight; case 43:140's ring
+    (5.65, 6.676)
+    """
+    return ae * (1.0 + (2.0 * tool_radius_mm - ae) * bend / 2.0)
+
+
+@dataclass(frozen=True)
+class GrooveRings:
+    """A face groove's rough rings on one side of its centre pass: their offsets from the centre line (mm,
+    toward the flank; the flank pass at ``span_mm`` follows them), and how many the step alone needs.
+
+    ``widest_mm`` is the widest band any ring or the flank pass meets (:func:`band_width`), within ``step_mm``.
+    """
+
+    offsets: tuple[float, ...]
+    span_mm: float
+    step_mm: float
+    plain: int
+    widest_mm: float
+
+    def describe(self, j: int) -> str:
+        """Ring ``j`` (from 1) in the pass table and the pass comment."""
+        n = len(self.offsets)
+        more = n - self.plain
+        extra = f", {more} more where the path is concave" if more > 0 else ""
+        return f"ring {j} of {n}, {self.span_mm / (n + 1):.2f} mm apart{extra}"
+
+
+def groove_rings(ring_curve, material_side, span_mm: float, tool_radius_mm: float, step_mm: float,
+                 samples: int = 4096) -> GrooveRings:
+    """The rough rings between a groove's centre pass and one flank pass, each band within ``step_mm``.
+
+    ``ring_curve(o)``: the tool-centre curve ``o`` mm from the centre line toward the flank (``o`` =
+    ``span_mm``: the flank pass); ``material_side(curve, t)``: +1 where the material lies left of its travel, −1
+    right.  The rings are spaced equally, span/(n + 1) apart: n the least count whose every band (the centre
+    pass's edge to ring 1, … , the last ring to the flank pass) is at most ``step_mm`` wide as the tool meets it,
+    widened where the ring bends away from the material (:func:`band_width`: a groove's outer rings round a
+    bend of the pitch curve; its inner rings round the opposite bends), not only straight.  Equal steps of
+    span/step gave case 43:140 one ring 5.65 mm from the centre pass, 6.687 mm wide round the pitch
+    curve's 22.9 mm bend, for a 6.4 mm stepover (issue 43 E).
+    """
+    r_t = tool_radius_mm
+    plain = max(0, math.ceil(span_mm / step_mm - 1e-9) - 1)
+    bends: dict[float, float] = {}
+
+    def bend(o: float) -> float:
+        """The largest curvature of the ring ``o`` from the centre line away from the material."""
+        if o not in bends:
+            c = ring_curve(o)
+            t = np.linspace(float(c.t_start), float(c.t_end), samples, endpoint=False)
+            t = np.union1d(t, np.clip(np.asarray(c.breaks, float), c.t_start, c.t_end - 1e-12))
+            k = curvature(c, t) * material_side(c, t)
+            bends[o] = float(np.max(np.maximum(-k, 0.0)))
+        return bends[o]
+
+    n = plain
+    while True:
+        ae = span_mm / (n + 1)
+        offsets = [span_mm * j / (n + 1) for j in range(1, n + 2)]
+        widest = max(float(band_width(ae, bend(o), r_t)) for o in offsets)
+        if widest <= step_mm or ae <= 1e-3:
+            return GrooveRings(tuple(offsets[:-1]), span_mm, step_mm, plain, widest)
+        n += 1
 
 
 # -- fitting a dense polyline with lines and arcs ------------------------------------------------------------
