@@ -39,7 +39,7 @@ import math
 
 import numpy as np
 
-from camcam.errors import GeometryError, InputError, PostError
+from camcam.errors import GeometryError, InputError, PostError, SpecError
 from camcam.forked import parallel_map
 from camcam.geometry.build import BuiltCam
 from camcam.nc.flank import DisplacedCurve, plan_flank, smallest_tool_radius
@@ -106,6 +106,27 @@ def _plan(cam, r_t: float, rho_d: float):
                 ("flank 1 (+X wall)", DisplacedCurve(centre, 1.0, plan), r_t, "finish")], plan.error_mm
     return [rough, ("flank 0 (-X wall)", OffsetCurve(cam.developed_flank(0, rho_d), r_t), r_t, "finish"),
             ("flank 1 (+X wall)", OffsetCurve(cam.developed_flank(1, rho_d), -r_t), r_t, "finish")], 0.0
+
+
+def _check_fit_floor(cam, m: MachiningSpec, quantizer: Quantizer, least_mm: float, flank_err: float,
+                     flanks: bool) -> None:
+    """Refuse, naming ``machining.tolerance`` and a value that works, a tolerance whose share for the passes'
+    fits is below what the post's decimals allow (:meth:`FitBudget.floor_mm`).  The spec's own check holds the
+    whole tolerance to that floor; a barrel's flank passes fit within max(δ − e, δ/2) (e: the flank plan's
+    error), times :data:`TILT_FIT_SHARE` where the roller's axis tilts, so the least δ that holds is
+    min(F/k + e, 2F/k) with flanks, F/k without (issue 43: it said "use at least 0.0018 mm" to a user at 0.0023)."""
+    from camcam.toolpath.budget import DEFAULT_BUDGET
+
+    k = TILT_FIT_SHARE if cam.follower.roller_axis_tilts else 1.0
+    floor = DEFAULT_BUDGET.floor_mm(quantizer)
+    if least_mm * k >= floor:
+        return
+    need = min(floor / k + flank_err, 2 * floor / k) if flanks else floor / k
+    need = math.ceil(need * 1e4 + 1e-9) / 1e4  # up to 0.0001 mm: the least tolerance that holds, as typed
+    raise SpecError("machining.tolerance", f"{m.tolerance_mm:g} mm leaves the groove passes' fits "
+                                           f"{least_mm * k:.2g} mm, below the {floor:.2g} mm the post's "
+                                           f"{quantizer.decimals} decimals allow; expected at least {need:g} mm, "
+                                           f"or a post with more decimals")
 
 
 def _corner_dip_mm(cam, r_t: float) -> float:
@@ -187,6 +208,7 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     cs = dataclasses.replace(cs0, depth_mm=m.depth_mm + corner, stepdown_mm=m.stepdown_mm * scale)
     plan, flank_err = _plan(cam, r_t, rho_d)
     fit_tol = m.tolerance_mm - flank_err if flank_err < 0.5 * m.tolerance_mm else m.tolerance_mm / 2
+    _check_fit_floor(cam, m, post.quantizer, fit_tol if len(plan) > 1 else m.tolerance_mm, flank_err, len(plan) > 1)
 
     def printed(elements):
         return developed_printed(printed_axes(elements, post.quantizer, rho_d, turn), rho_d, turn)

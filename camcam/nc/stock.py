@@ -210,10 +210,13 @@ def blank_for(built: BuiltCam, stock: StockSpec, tool_diameter_mm: float, bore: 
     cam, spec = built.cam, built.spec
     groove = spec.kind == "disc-groove"
     roller = cam.roller_radius or 0.0
-    if spec.bore > 0 and spec.bore / 2 > cam.base_radius - roller:
+    # 1e-9 mm: a bore exactly as wide as the room is taken, however the subtraction rounds (15.85 − 12 is
+    # 3.8499999999999996 in floats: the advice "base_radius >= 15.85 takes the Ø7.7 bore" refused itself)
+    if spec.bore > 0 and spec.bore / 2 > cam.base_radius - roller + 1e-9:
         room = 2 * (cam.base_radius - roller)
-        # the base radius that takes this bore (the check is strict: bore / 2 = base − roller is taken)
-        fix = f"cam.base_radius >= {roller + spec.bore / 2:g} mm takes the Ø{spec.bore:g} mm bore"
+        # the base radius that takes this bore, up to the 0.01 mm a spec is typed in
+        fix = f"cam.base_radius >= {math.ceil((roller + spec.bore / 2) * 100 - 1e-9) / 100:g} mm takes the " \
+              f"Ø{spec.bore:g} mm bore"
         if room <= 0:  # never "at most Ø-4 mm": no bore fits at all
             raise SpecError("cam.bore", f"Ø{spec.bore:g} mm: no bore fits, the base circle minus the roller leaves "
                                         f"nothing ({cam.base_radius:g} − {roller:g} mm); expected cam.bore = 0 "

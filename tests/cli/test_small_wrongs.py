@@ -79,3 +79,16 @@ def test_small_tool_advice_names_each_diameter_once():
         advice = _groove(smallest)
         assert advice.startswith("use a tool of the roller's diameter, D16 mm (no thinner tool holds half of 0.02 mm)")
         assert len(re.findall(r"D1[56]", advice)) == 1, advice
+
+
+def test_the_bore_advice_followed_takes_the_bore(tmp_path):
+    """Campaign case 43:57: "cam.base_radius >= 15.85 mm takes the Ø7.7 mm bore", followed, was refused again
+    (15.85 − 12 = 3.8499999999999996 < 3.85 in floats)."""
+    spec = tmp_path / "s.toml"
+    text = (Path(__file__).with_name("data") / "bore-advice-43-57.toml").read_text()
+    spec.write_text(text)
+    code, _, err = cli("run", str(spec), "-o", str(tmp_path / "a"))
+    assert code == 2 and "cam.base_radius >= 15.85 mm takes the Ø7.7 mm bore" in err, err
+    spec.write_text(text.replace("base_radius = 15.1", "base_radius = 15.85"))  # the advice followed
+    code, _, err = cli("run", str(spec), "-o", str(tmp_path / "b"))
+    assert code == 0 and "cam.bore" not in err, err
