@@ -41,10 +41,7 @@ CASES = {f"{fam}-{i}": (fam, 100 * k + i) for k, fam in enumerate(FAMILIES) for 
 #: full-size cases of ``benchmarks/anycam.py --seed 43`` that found a fault, pinned: case id -> index
 PINNED = {"seed43-28": 28, "seed43-67": 67, "seed43-140": 140, "seed43-250": 250}
 
-ENGAGEMENT = "roughing engagement FAIL: a rough pass cuts wider than [machining] stepover (fix in progress)"
-ARC_SWEEP = "PostError max_arc_sweep_deg on valid input (fix in progress)"
-WARNINGS = "warning lines on stderr before the one-line message (fix in progress)"
-#: case id -> reason: cases that miss a target because of a known product bug others are fixing now.  (The
+#: case id -> reason: cases that miss a target because of a known product bug (none today).  (The
 #: pinned seed 43 cases 28, 67 and 250, FitError 'the march found no printed arc spline', and 140, a face groove's
 #: rough ring 6.687 mm wide for 6.4, were marked here until issue 43 C and E landed: 2e98892, 5fb0363.)
 KNOWN: dict[str, str] = {}
