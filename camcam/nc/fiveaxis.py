@@ -392,9 +392,16 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int
     reach = tool_reach(poses, r_t, cam.base_radius, cam.bottom_radius, path.floor_radius_mm, m.flute_length_mm,
                        post.decimals, "the tilted flat end, so that both walls reach the bottom; no roller touches "
                        "the floor")
-    check = Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(),
-                  f"check flute_length (the cut needs {path.cut_length_mm:.2f} mm from the tip) and depth, "
-                  f"or accept a tolerance of at least {holds:g} mm")
+    # the flute the cut needs, as a value a spec takes (issue 43: "check flute_length (the cut needs 10.04 mm from
+    # the tip) and depth" named no setting; a short flute leaves the top of the walls uncut, 10.48 mm on 43:404
+    # with flute_length = 6, where no tolerance is the way out)
+    flute = math.ceil(max(path.cut_length_mm, reach.flute_needed_mm) * 100 - 1e-9) / 100
+    if m.flute_length_mm < flute:
+        advice = (f"the flute is shorter than the cut: [machining] flute_length = {flute:g} (the cut reaches "
+                  f"{path.cut_length_mm:.2f} mm up the tool from its tip)")
+    else:
+        advice = f"accept a tolerance of at least {holds:g} mm"
+    check = Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(), advice)
     # the same moves, with the check's result in the header
     verdict = "within" if check.ok else "OUT OF TOLERANCE"
     toolpath = dataclasses.replace(toolpath, comments=toolpath.comments + (

@@ -242,7 +242,8 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
         i0 = np.ceil((lo_s - ak - g0) / dg).astype(int)
         i1 = np.minimum(np.floor((hi_s - ak - g0) / dg).astype(int), i0 + k - 1)
         cnt = np.maximum(i1 - i0 + 1, 0)
-        chunk = max(1, int(_PAIRS_PER_CHUNK // max(1, int(cnt.mean()) + 1)))
+        # no pose reaches ρ (a cut stopped above it: depth < groove depth) leaves cnt empty, its mean NaN
+        chunk = max(1, int(_PAIRS_PER_CHUNK // max(1, (int(cnt.mean()) if cnt.size else 0) + 1)))
         # every grid index a pair may take (before its wrap onto [0, k)): the angles g0 + i·dg as the pairs had
         # them, with their sines and cosines; and each kept sample's pose with the sines and cosines of its a
         # and B (taken for every angle it reaches).  A chunk's pairs take their columns of these with one

@@ -156,8 +156,10 @@ def _corner_depth_mm(cam, r_t: float, quantizer, depth_mm: float) -> float:
     return top - quantizer.value(k)
 
 
-def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool_mm: float | None) -> Check:
-    """The 3-D groove deviation held to the tolerance, with the way out of a miss."""
+def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool_mm: float | None,
+                 flute_needed_mm: float | None = None) -> Check:
+    """The 3-D groove deviation held to the tolerance, with the way out of a miss (``flute_needed_mm``: the
+    flute the printed poses need, :func:`camcam.nc.reach.tool_reach`)."""
     value, tol = groove.max_deviation_mm, m.tolerance_mm
     holds = math.ceil(value * 1e4) / 1e4
     r_r = cam.roller_radius
@@ -185,9 +187,15 @@ def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool
         else:
             tool = f"use a tool of the roller's diameter, D{2 * r_r:g} mm (no thinner tool holds half of {tol:g} mm)"
         advice = f"{tool}, or accept a tolerance of at least {holds:g} mm"
+    elif flute_needed_mm is not None and m.flute_length_mm < flute_needed_mm:
+        # a value a spec takes (issue 43: "check depth and flute_length" named none)
+        flute = math.ceil(flute_needed_mm * 100 - 1e-9) / 100
+        advice = f"the flute is shorter than the cut: [machining] flute_length = {flute:g}"
+    elif m.depth_mm < cam.groove_depth - 1e-9:
+        advice = (f"the cut stops above the groove bottom: [machining] depth = {cam.groove_depth:g} (the groove "
+                  f"depth), or accept a tolerance of at least {holds:g} mm")
     else:
-        advice = (f"check depth and flute_length (the tool must reach the groove bottom), "
-                  f"or accept a tolerance of at least {holds:g} mm")
+        advice = f"accept a tolerance of at least {holds:g} mm"
     return Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(), advice)
 
 
@@ -255,12 +263,12 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     poses = poses_from_program(measured.text, m.a_axis)
     groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers,
                            pose_step_mm=pose_step_for(m.tolerance_mm, r_t))
-    check = groove_check(cam, m, groove, smallest)
     # how deep the printed program goes, against what the walls need: the groove depth and the corner dip
     full = m.depth_mm >= cam.groove_depth - 1e-9
     needed = cam.bottom_radius - _corner_dip_mm(cam, r_t) if full else cam.base_radius - m.depth_mm
     reach = tool_reach(poses, r_t, cam.base_radius, cam.bottom_radius, needed, m.flute_length_mm, post.decimals,
                        "so that the flat end reaches the wall corner" if full else "")
+    check = groove_check(cam, m, groove, smallest, reach.flute_needed_mm)
     # the same moves, with the check's result in the header
     verdict = "within" if check.ok else "OUT OF TOLERANCE"
     toolpath = dataclasses.replace(toolpath, comments=toolpath.comments + (

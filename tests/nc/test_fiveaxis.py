@@ -265,3 +265,28 @@ def test_pose_reader_leaves_the_work_frame_at_a_return_home(footer):
     assert p.tip_mm[-1].tolist() == [8.0, 0.0, 90.0] and p.b_deg[-1] == 0.0
     with pytest.raises(ValueError, match="reference point"):
         poses_from_program(text.replace("M30", "G90 G0 X0 Y0 Z50 A0"))
+
+
+def test_short_flute_advice_names_the_flute_that_holds(tmp_path):
+    # campaign case 43:404 with flute_length = 6 where the cut reaches 10.04 mm up the tool: the top of the walls
+    # stays (10.48 mm); the advice said "check flute_length (the cut needs 10.04 mm from the tip) and depth, or
+    # accept a tolerance of at least 10.4822 mm", no setting.  It names [machining] flute_length, and that holds
+    from tests.designspace import parse_advice
+
+    text = (DATA / "fiveaxis-seam-43-404.toml").read_text().replace("axes = 5", "axes = 5\nflute_length = 6")
+    short = tmp_path / "short.toml"
+    short.write_text(text)
+    _, _, r = spec_job(short)
+    check = {c.name: c for c in r.checks}["3-D groove deviation"]
+    assert not check.ok and check.value > 1.0
+    ((section, key, value),) = parse_advice(check.advice, strict=True)
+    assert (section, key) == ("machining", "flute_length") and value >= r.reach.flute_needed_mm
+    fixed = tmp_path / "fixed.toml"
+    fixed.write_text(text.replace("flute_length = 6", f"flute_length = {value:g}"))
+    built, m, r2 = spec_job(fixed)
+    check2 = {c.name: c for c in r2.checks}["3-D groove deviation"]
+    assert m.flute_length_mm == value and check2.ok
+    assert r2.reach.flute_needed_mm <= value
+    # independently: the moves rs274 reads, swept (the sweep does not limit the flute: the reach above holds it)
+    over, left = groove_deviation(built, read_back(r2, m, tmp_path), a_axis=m.a_axis, n_theta=360, radii=5)
+    assert max(over, left) <= m.tolerance_mm + SAMPLING_MM

@@ -240,3 +240,24 @@ def _write(tmp_path: Path, text: str) -> Path:
     out = tmp_path / "prog.ngc"
     out.write_text(text)
     return out
+
+
+@pytest.mark.parametrize("change,key", [("flute_length = 5\ndepth = 10.0", "flute_length"), ("depth = 8.0", "depth")])
+def test_flute_and_depth_advice_name_values_that_hold(tmp_path, change, key):
+    # issue 43 C: "check depth and flute_length (the tool must reach the groove bottom)" named no setting; a depth
+    # above the groove bottom was an internal fault (groove3d: no pose reached the bottom radius, NaN)
+    from tests.designspace import parse_advice
+    from tests.nc.test_fiveaxis import spec_job
+
+    text = (ROOT / "samples" / "cylindrical-translating.toml").read_text()
+    spec = tmp_path / "c.toml"
+    spec.write_text(text.replace("\ndepth = 10.0", "\n" + change))
+    _, _, r = spec_job(spec)
+    (check,) = [c for c in r.checks if c.name == "3-D groove deviation"]
+    assert not check.ok
+    (section, name, value), *_ = parse_advice(check.advice, strict=True)
+    assert (section, name) == ("machining", key)
+    spec.write_text(text.replace("\ndepth = 10.0", "\n" + change.replace(f"{key} = ", f"{key} = {value:g}\n# ")))
+    built, m, r2 = spec_job(spec)
+    (check2,) = [c for c in r2.checks if c.name == "3-D groove deviation"]
+    assert check2.ok and check2.value <= m.tolerance_mm
