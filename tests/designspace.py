@@ -390,16 +390,40 @@ _ADVICE = re.compile(r"(?:\[(cam|follower|machining|stock|motion|report)\]\s*|\b
 _EXPECTED = re.compile(r"error: (cam|follower|machining|stock|motion|report)\.([a-z_]+): .*\bexpected "
                        r"(?:at least|at most|>=|<=|≥|≤)\s*([-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?)")
 _TOL = re.compile(r"accept a tolerance of at least ([\d.]+) mm|tolerance of at least ([\d.]+)")
+#: the text between two settings that belong together (not an alternative: no "or")
+_JOINED = re.compile(r"\s*(?:mm|°|deg)?\s*(?:\([^()]*\))?\s*(?:with|and)\s+(?:\[\w+\]\s*)?")
 _STEP = re.compile(r"\b(lower|raise|reduce|increase)\s+(?:the\s+)?(?:\[(\w+)\]\s*|(\w+)\.)?([a-z_]+)")
 
 
 def parse_advice(line: str, strict: bool = False) -> list[tuple[str, str, float]]:
-    """``(section, key, value)`` settings a one-line message names with a value, in the order given:
-    ``cam.base_radius >= 44.47 mm``, ``[machining] axes = 5``, ``stock.diameter: … expected at least 240 mm``.  Unless ``strict``, also the informal
-    "accept a tolerance of at least X mm" (no key named: listed by the campaign as a form to normalise)."""
+    """Every ``(section, key, value)`` setting the line names, in order (:func:`advice_pieces`, flattened)."""
+    return [item for piece in advice_pieces(line, strict)
+            for item in (piece if isinstance(piece[0], tuple) else (piece,))]
+
+
+def advice_pieces(line: str, strict: bool = False) -> list:
+    """The pieces of advice a one-line message names with a value, in the order given: each a ``(section, key,
+    value)`` setting (``cam.base_radius >= 44.47 mm``, ``[machining] axes = 5``, ``stock.diameter: … expected at
+    least 240 mm``), or a tuple of settings joined by "with" or "and", which go together.  Unless ``strict``,
+    also the informal "accept a tolerance of at least X mm" (no key named: listed by the campaign as a form to
+    normalise).
+
+    >>> advice_pieces("camcam: error: …; cam.base_radius >= 27.8 mm with follower.pivot_distance = 232.7 mm avoids it")
+    [(('cam', 'base_radius', 27.8), ('follower', 'pivot_distance', 232.7))]
+    >>> advice_pieces("camcam: error: …; expected cam.bore = 0 (no bore), or cam.base_radius >= 16 mm takes it")
+    [('cam', 'bore', 0.0), ('cam', 'base_radius', 16.0)]
+    """
     out = []
+    last = None
     for m in _ADVICE.finditer(line):
-        out.append((m.group(1) or m.group(2), m.group(3), float(m.group(5))))
+        item = (m.group(1) or m.group(2), m.group(3), float(m.group(5)))
+        # "cam.base_radius >= 27.8 mm with follower.pivot_distance = 232.7 mm" and "… = 8 … and … = 5" are one
+        # piece of advice: the settings are applied together (an alternative is introduced by "or")
+        if last is not None and _JOINED.fullmatch(line[last.end():m.start()]):
+            out[-1] = out[-1] + (item,) if isinstance(out[-1][0], tuple) else (out[-1], item)
+        else:
+            out.append(item)
+        last = m
     m = _EXPECTED.search(line)
     if m:
         out.append((m.group(1), m.group(2), float(m.group(3))))
@@ -410,27 +434,38 @@ def parse_advice(line: str, strict: bool = False) -> list[tuple[str, str, float]
     return out
 
 
-def apply_advice(spec: dict, advice: list[tuple[str, str, float]]) -> dict | None:
+def apply_advice(spec: dict, advice: list) -> dict | None:
     """``spec`` with the first piece of advice that changes it applied (a value a little beyond the stated bound,
-    rounded outward so the printed number still meets it), or None if none applies."""
-    for section, key, value in advice:
+    rounded outward so the printed number still meets it), or None if none applies.  A piece is one
+    ``(section, key, value)`` or a tuple of them that go together (:func:`advice_pieces`)."""
+    for piece in advice:
+        settings = piece if isinstance(piece[0], tuple) else (piece,)
         new = json.loads(json.dumps(spec))
-        if section not in new:
-            new[section] = {"kind": "round"} if section == "stock" else {}
-        old = new[section].get(key)
-        if isinstance(old, (int, float)) and not isinstance(old, bool) and math.isclose(old, value, rel_tol=1e-9):
-            continue
-        if key in ("tolerance",):
-            value = math.ceil(value * 1e4) / 1e4
-        elif isinstance(old, (int, float)) and old > value:
-            value = math.floor(value * 100) / 100
-        else:
-            value = math.ceil(value * 100) / 100
-        if float(value).is_integer() and (old is None or (isinstance(old, int) and not isinstance(old, bool))):
-            value = int(value)  # axes = 5, not 5.0 (an integer key refuses a float)
-        new[section][key] = value
-        return new
+        changed = False
+        for section, key, value in settings:
+            changed |= _set(new, section, key, value)
+        if changed:
+            return new
     return None
+
+
+def _set(new: dict, section: str, key: str, value: float) -> bool:
+    """Set one advised value in ``new`` (see :func:`apply_advice`); False when it holds that value already."""
+    if section not in new:
+        new[section] = {"kind": "round"} if section == "stock" else {}
+    old = new[section].get(key)
+    if isinstance(old, (int, float)) and not isinstance(old, bool) and math.isclose(old, value, rel_tol=1e-9):
+        return False
+    if key in ("tolerance",):
+        value = math.ceil(value * 1e4) / 1e4
+    elif isinstance(old, (int, float)) and old > value:
+        value = math.floor(value * 100) / 100
+    else:
+        value = math.ceil(value * 100) / 100
+    if float(value).is_integer() and (old is None or (isinstance(old, int) and not isinstance(old, bool))):
+        value = int(value)  # axes = 5, not 5.0 (an integer key refuses a float)
+    new[section][key] = value
+    return True
 
 
 def advice_forms(line: str) -> str:
@@ -495,7 +530,7 @@ def run_case(case: Case, workdir: str | Path | None = None, follow: bool = True,
             attempts.append(att)
             if att.status not in (2, 3) or not follow or step == ADVICE_STEPS:
                 break
-            new = apply_advice(spec, parse_advice(att.message))
+            new = apply_advice(spec, advice_pieces(att.message))
             if new is None:
                 break
             spec = new
