@@ -52,7 +52,7 @@ def groove_passes(tool_radius_mm: float, roller_radius_mm: float) -> str:
                             f"the groove in one centre pass)")
     if abs(r_t - r_r) <= SAME_TOOL_MM:
         return "centre"
-    if 3 * r_t < r_r:
+    if 3 * r_t < r_r - 1e-9:  # 1e-9 mm: a third typed as advised (10.2 of 30.6 mm: 3 x 5.1 = 15.299999999999999)
         smallest = math.ceil(2 * r_r / 3 * 100 - 1e-9) / 100  # a third of the width, rounded up to 0.01 mm
         raise GeometryError(f"machining.tool_diameter: {2 * r_t:g} mm is below a third of the groove width "
                             f"{2 * r_r:g} mm: a centre pass and two flank passes would leave material between them; "

@@ -28,3 +28,17 @@ def test_the_least_tolerance_named_is_the_least_that_runs(tmp_path):
     assert code == 0 and "machining.tolerance" not in err, err  # followed: it runs (the sample accepts its FAIL)
     code, _, err = run_inproc(["run", _spec(tmp_path, round(need - 0.0001, 4)), "-o", tmp_path / "c"])
     assert "machining.tolerance" in assert_clean_error(code, err)  # 0.0001 mm less is still too fine
+
+
+def test_the_smallest_groove_tool_advised_is_taken():
+    """Campaign case 43:20: "expected at least 10.2 mm (up to the roller's 30.6 mm)", followed, was refused by the
+    same check (3 × 5.1 = 15.299999999999999 < 15.3 in floats)."""
+    import pytest
+
+    from camcam.errors import GeometryError
+    from camcam.nc.tools import groove_passes
+
+    with pytest.raises(GeometryError, match=r"expected at least 10\.2 mm") as e:
+        groove_passes(3.0, 15.3)
+    least = float(re.search(r"expected at least ([0-9.]+) mm", str(e.value)).group(1))
+    assert groove_passes(least / 2, 15.3) == "centre+flanks"
