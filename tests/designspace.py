@@ -574,7 +574,8 @@ def _report(out: Path) -> dict:
     return json.loads(files[0].read_text()) if files else {}
 
 
-_PASS = re.compile(r"^pass \d+/\d+: (\w+), (.+), Z(-?[\d.]+)$")
+#: a pass's comment: kind, contour, Z and, on rough passes, the plan ("ring 1 of 2, 3.77 mm apart", "spiral 11 turns …")
+_PASS = re.compile(r"^pass \d+/\d+: (\w+), (.+?), Z(-?[\d.]+)(?:, .*)?$")
 
 
 def read_back(spec: dict, out: Path) -> dict:
@@ -628,6 +629,8 @@ def read_back(spec: dict, out: Path) -> dict:
     for mv in moves:
         if isinstance(mv, str):
             hit = _PASS.match(mv)
+            if mv.startswith("pass ") and hit is None:  # never fold an unread pass into the one before it
+                raise RuntimeError(f"a pass comment the read-back cannot parse: {mv!r}")
             if hit:
                 # a parentheses-comment post prints the label's "(rough)" as "[rough]"
                 current = (hit.group(1), hit.group(2).replace("[", "(").replace("]", ")"), float(hit.group(3)))
