@@ -199,13 +199,8 @@ def _disc(rng, spec, family, base, lift_mm, rotation, rpm, quick=False) -> None:
     if family == "disc-groove":
         cam["kind"] = "disc-groove"
         fol = {"kind": "translating-roller"}
-        if rng.random() < 0.6:  # a tool of the roller's diameter: one centre pass
-            tool = _tool(rng)
-            rr = tool / 2 if tool >= 8 else 4.0
-            tool = 2 * rr
-        else:
-            rr = _r(rng.uniform(4.0, 20.0), 1)
-            tool = _tool(rng, min(16.0, 2 * rr))
+        # a tool of the roller's diameter: one centre pass
+        rr, tool = _groove_roller_and_tool(rng, rng.random() < 0.6)
         fol["roller_radius"] = rr
         if rng.random() < 0.4:
             fol["offset"] = _r(rng.uniform(-0.3, 0.3) * base, 1)
@@ -265,16 +260,21 @@ def _disc(rng, spec, family, base, lift_mm, rotation, rpm, quick=False) -> None:
     spec["_shape"] = shape
 
 
+def _groove_roller_and_tool(rng: random.Random, same: bool) -> tuple[float, float]:
+    """(roller radius, tool diameter) of a groove: the roller's diameter (one centre pass) when ``same``, else a
+    roller of 4-20 mm radius and a tool no wider than it (a centre pass and flank passes)."""
+    if same:
+        tool = _tool(rng)
+        rr = tool / 2 if tool >= 8 else 4.0
+        return rr, 2 * rr
+    rr = _r(rng.uniform(4.0, 20.0), 1)
+    return rr, _tool(rng, min(16.0, 2 * rr))
+
+
 def _barrel(rng, spec, family, base, lift_mm, rotation, rpm, quick=False) -> None:
     base = max(base, 25.0)
     # the roller's diameter: one centre pass (5 axes: always, the tool rides on the roller's axis)
-    if family.endswith("5axis") or rng.random() < 0.6:
-        tool = _tool(rng)
-        rr = tool / 2 if tool >= 8 else 4.0
-        tool = 2 * rr
-    else:
-        rr = _r(rng.uniform(4.0, 20.0), 1)
-        tool = _tool(rng, min(16.0, 2 * rr))
+    rr, tool = _groove_roller_and_tool(rng, family.endswith("5axis") or rng.random() < 0.6)
     groove = _r(min(rr * rng.uniform(0.8, 1.6), 0.5 * base), 1)
     cam = {"kind": "cylindrical", "base_radius": base, "groove_depth": groove, "rotation": rotation}
     if rng.random() < 0.6:
