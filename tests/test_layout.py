@@ -21,7 +21,7 @@ RANK = {
     "__init__": 0, "errors": 0, "inputs": 0, "verdict": 0, "lazy": 0, "forked": 0, "servers": 0, "interrupts": 0, "data": 0,
     "motion": 1,
     "geometry": 2, "optimize": 2, "lifttable": 2,
-    "reverse": 3, "toolpath": 3,
+    "reverse": 3, "toolpath": 3, "dynamics": 3,
     "nc": 4,
     "post": 5, "export": 5, "plots": 5, "report": 5, "verify": 5,
     "spec": 6, "size": 6, "scale": 6,
