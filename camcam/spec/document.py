@@ -24,6 +24,7 @@ from camcam.spec.size import SizeSpec, read_size
 from camcam.spec.stock import DEFAULT_STOCK, StockSpec, read_stock
 
 if TYPE_CHECKING:
+    from camcam.dynamics.train import DynamicsSpec
     from camcam.spec.cam import CamSpec
     from camcam.spec.follower import FollowerSpec
     from camcam.spec.machining import MachiningSpec
@@ -52,6 +53,7 @@ class Spec:
     report: ReportSpec = DEFAULT_REPORT
     stock: StockSpec = DEFAULT_STOCK
     size: SizeSpec | None = None  # `camcam size` sweeps it; `camcam run` runs the design as written
+    dynamics: DynamicsSpec | None = None  # forces, torque, contact stress, jump speed (camcam.dynamics)
 
     @property
     def unit(self) -> str:
@@ -111,8 +113,11 @@ def parse_spec(data: dict, source: Path) -> Spec:
     stock = read_stock(stock_t, cam) if stock_t is not None else DEFAULT_STOCK
     size_t = root.table("size", None)
     size_spec = read_size(size_t, cam, follower, motion_spec, machining_spec) if size_t is not None else None
+    dynamics_t = root.table("dynamics", None)
+    dynamics = _reader("dynamics", "read_dynamics")(dynamics_t, cam, follower) if dynamics_t is not None else None
     root.done()
-    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec, stock, size_spec)
+    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec, stock, size_spec,
+                dynamics)
 
 
 def _check_depth(m: MachiningSpec, cam: CamSpec) -> None:
