@@ -56,10 +56,10 @@ def main() -> None:
     a = ap.parse_args()
 
     from camcam.geometry.disc import SIGMA
-    from camcam.scale.engine import DaskExecutor, InProcess
-    from camcam.size.grid import DesignGrid
-    from camcam.size.samples import sample_program
-    from camcam.size.sweep import SweepContext, evaluate_chunk, run_sweep
+    from camcam.dask_batch.engine import DaskExecutor, InProcess
+    from camcam.sizing.grid import DesignGrid
+    from camcam.sizing.samples import sample_program
+    from camcam.sizing.sweep import SweepContext, evaluate_chunk, run_sweep
 
     load0 = os.getloadavg()[0]
     spec = sweep_spec(a.designs)

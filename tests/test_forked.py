@@ -31,7 +31,7 @@ def test_later_returns_the_child_result():
 class _Unpicklable(Exception):
     def __init__(self, a, b):
         super().__init__(f"{a}/{b}")
-        # a lock never pickles: without it, importing distributed (tests/scale, tests/cli's batch runs)
+        # a lock never pickles: without it, importing distributed (tests/dask_batch, tests/cli's batch runs)
         # installs tblib's reduce for every exception class, which rebuilds this one from its __dict__
         self.handle = threading.Lock()
 
@@ -259,7 +259,7 @@ def test_a_failed_run_leaves_no_child_behind(tmp_path, monkeypatch):
         raise ZeroDivisionError("a bug after the children started")
 
     # the report analysis runs after the plot server, the model child and the NC children started
-    monkeypatch.setattr("camcam.report.job.report_analysis", broken)
+    monkeypatch.setattr("camcam.report.job_report.report_analysis", broken)
     before = _children()
     code = main(["run", "samples/disc-translating-roller.toml", "-o", str(tmp_path / "out")])
     assert code == 1

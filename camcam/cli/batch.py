@@ -16,7 +16,7 @@ from pathlib import Path
 
 from camcam.cli.output import add_output_arguments, output_set, print_json, to_json
 from camcam.cli.commands import help_of
-from camcam.cli.scaling import add_scale_arguments, executor_from_args, tell_scale_note
+from camcam.cli.dask_options import add_scale_arguments, executor_from_args, tell_scale_note
 
 __all__ = ["register", "batch_task", "summary_row", "COLUMNS"]
 

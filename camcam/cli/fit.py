@@ -61,7 +61,7 @@ def fit_summary(ft: FittedTable) -> dict:
 
 def run(args) -> int:
     from camcam.plots.comb import lift_comb_png  # plotting is loaded only when a plot is drawn
-    from camcam.plots.roughness import roughness_png  # plotting is loaded only when a plot is drawn
+    from camcam.plots.roughness_plot import roughness_png  # plotting is loaded only when a plot is drawn
     from camcam.cli.motion import check_step
 
     check_step(args.step)

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from camcam.cli.output import add_output_arguments, output_set, print_json
 from camcam.cli.commands import help_of
-from camcam.cli.scaling import add_scale_arguments, executor_from_args, tell_scale_note
+from camcam.cli.dask_options import add_scale_arguments, executor_from_args, tell_scale_note
 
 __all__ = ["register"]
 
@@ -38,8 +38,8 @@ def run(args) -> int:
     import json
 
     from camcam.errors import SpecError
-    from camcam.size.files import parquet_available, sizing_files
-    from camcam.size.sweep import run_sweep
+    from camcam.sizing.outputs import parquet_available, sizing_files
+    from camcam.sizing.sweep import run_sweep
     from camcam.spec import load_spec
 
     spec = load_spec(args.spec)

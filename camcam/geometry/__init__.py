@@ -13,5 +13,5 @@ __getattr__, __dir__, __all__ = lazy_exports(__name__, {
     **dict.fromkeys(("GrooveCam",), "camcam.geometry.groove"),
     **dict.fromkeys(("CylindricalCam", "BarrelTranslatingRoller", "BarrelOscillatingRoller"), "camcam.geometry.cylindrical"),
     **dict.fromkeys(("DiscAnalysis", "analyse"), "camcam.geometry.analysis"),
-    **dict.fromkeys(("Sizing", "size_cam"), "camcam.geometry.sizing"),
+    **dict.fromkeys(("Sizing", "size_cam"), "camcam.geometry.smallest_cam"),
 })

@@ -11,5 +11,5 @@ __getattr__, __dir__, __all__ = lazy_exports(__name__, {
     **dict.fromkeys(("deviation_png", "fitted_motion_png"), "camcam.plots.report_plots"),
     **dict.fromkeys(("lift_comb_png", "profile_comb_png"), "camcam.plots.comb"),
     **dict.fromkeys(("reverse_png",), "camcam.plots.reverse"),
-    **dict.fromkeys(("roughness_png",), "camcam.plots.roughness"),
+    **dict.fromkeys(("roughness_png",), "camcam.plots.roughness_plot"),
 })

@@ -1,7 +1,7 @@
 """Post definitions: one TOML file per controller dialect, validated when loaded.
 
-The bundled posts live in ``camcam/post_data/`` (the repository's top-level
-``post/`` is that folder); a user's own post is loaded by path.
+The bundled posts live in ``camcam/post/data/`` beside this code (package data, shipped in
+the wheel); a user's own post is loaded by path.
 
 Keys (all required unless a default is given):
 
@@ -164,7 +164,7 @@ class Post:
 
 
 def _post_dir():
-    return resources.files("camcam") / "post_data"
+    return resources.files("camcam.post") / "data"
 
 
 def known_posts() -> list[str]:

@@ -179,7 +179,7 @@ def test_broken_post_files(data):
     from tests.hostile.harness import assert_program_safe
 
     base = data.draw(st.sampled_from(["linuxcnc", "fanuc", "sinumerik", "heidenhain"]))
-    doc = tomllib.loads((ROOT / "post" / f"{base}.toml").read_text())
+    doc = tomllib.loads((ROOT / "camcam" / "post" / "data" / f"{base}.toml").read_text())
     key = data.draw(st.sampled_from(sorted(doc) + ["header", "footer", "units", "max_line_number"]))
     doc[key] = data.draw(POST_VALUES)
     try:

@@ -14,7 +14,7 @@ from camcam.geometry.curve import curvature
 from camcam.geometry.disc import DiscCam
 from camcam.geometry.followers import OscillatingFlat, OscillatingRoller, TranslatingFlat, TranslatingRoller
 from camcam.geometry.groove import GrooveCam
-from camcam.geometry.sizing import size_cam
+from camcam.geometry.smallest_cam import size_cam
 from camcam.motion.catalog import make_law
 from camcam.motion.program import MotionProgram, Segment
 from camcam.motion.standard import dwell

@@ -180,9 +180,9 @@ def test_a_registered_kind_runs_through_every_stage(toy, tmp_path):
     size = load_spec(sized).size
     assert [a.name for a in size.axes] == ["base_radius", "roller_radius"]
     assert size.max_pressure_angle_deg == 21.0
-    from camcam.size.exact import exact_figures
-    from camcam.size.kernels import block_figures
-    from camcam.size.samples import sample_program
+    from camcam.sizing.exact_check import exact_figures
+    from camcam.sizing.kernels import block_figures
+    from camcam.sizing.samples import sample_program
 
     prog = spec.motion.program(spec.unit)
     figs = block_figures("toy-roller", sample_program(prog, 3600), 1,

@@ -106,7 +106,7 @@ BAD_TEMPLATES = {
 
 def test_footer_that_is_no_program_line_is_refused():
     # the failing example itself: a footer line "0" used to load and print a bare "0"
-    data = tomllib.loads((SAMPLES.parent / "post" / "linuxcnc.toml").read_text())
+    data = tomllib.loads((SAMPLES.parent / "camcam" / "post" / "data" / "linuxcnc.toml").read_text())
     data["footer"] = ["0"]
     with pytest.raises(InputError, match=r"^post mill: footer\[0\]: '0' is not G-code words"):
         parse_post(data, "mill")
@@ -114,7 +114,7 @@ def test_footer_that_is_no_program_line_is_refused():
 
 @pytest.mark.parametrize("line,why", list(BAD_TEMPLATES.items()))
 def test_bad_templates_reject_the_whole_post(line, why):
-    data = tomllib.loads((SAMPLES.parent / "post" / "linuxcnc.toml").read_text())
+    data = tomllib.loads((SAMPLES.parent / "camcam" / "post" / "data" / "linuxcnc.toml").read_text())
     data["header"] = data["header"] + [line]
     with pytest.raises(InputError) as e:
         parse_post(data, "mill")
@@ -131,7 +131,7 @@ def test_templates_render_only_their_fields():
 def test_hostile_post_file_name_end_to_end(tmp_path):
     """A post file whose name closes the title comment: the program still has only its own lines."""
     post = tmp_path / "mill) G0 Z-50 (x.toml"
-    post.write_bytes((SAMPLES.parent / "post" / "linuxcnc.toml").read_bytes())
+    post.write_bytes((SAMPLES.parent / "camcam" / "post" / "data" / "linuxcnc.toml").read_bytes())
     doc = tomllib.loads((SAMPLES / "disc-translating-roller.toml").read_text())
     doc["machining"]["post"] = str(post)
     doc["machining"]["mode"] = "lines"
@@ -148,7 +148,7 @@ def test_hostile_post_file_name_end_to_end(tmp_path):
 @pytest.mark.parametrize("stem", ["mill\nG0 Z-50", "mill\rx", "m\x1bx"])
 def test_post_file_names_that_cannot_be_printed_are_refused(tmp_path, stem):
     post = tmp_path / f"{stem}.toml"
-    post.write_bytes((SAMPLES.parent / "post" / "linuxcnc.toml").read_bytes())
+    post.write_bytes((SAMPLES.parent / "camcam" / "post" / "data" / "linuxcnc.toml").read_bytes())
     with pytest.raises(InputError) as e:
         load_post(str(post))
     assert "printable" in str(e.value)

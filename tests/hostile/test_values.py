@@ -51,7 +51,7 @@ def test_bad_numbers_are_refused_naming_the_key(tmp_path, table, key, value, nam
 
 
 def _post(**over):
-    data = tomllib.loads((SAMPLES.parent / "post" / "fanuc.toml").read_text())
+    data = tomllib.loads((SAMPLES.parent / "camcam" / "post" / "data" / "fanuc.toml").read_text())
     data.update(over)
     return data
 

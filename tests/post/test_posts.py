@@ -20,11 +20,16 @@ def test_all_bundled_posts_load():
         assert load_post(n).name == n
 
 
-def test_top_level_post_dir_is_the_package_data():
+def test_posts_live_in_the_package_with_a_sample_each():
+    """The bundled posts are camcam/post/data/*.toml, shipped as package data; samples/posts/ has a spec per post."""
+    import tomllib
     from pathlib import Path
 
     root = Path(__file__).resolve().parents[2]
-    assert sorted(p.stem for p in (root / "post").glob("*.toml")) == known_posts()
+    assert sorted(p.stem for p in (root / "camcam" / "post" / "data").glob("*.toml")) == known_posts()
+    assert sorted(p.stem for p in (root / "samples" / "posts").glob("*.toml")) == known_posts()
+    package_data = tomllib.loads((root / "pyproject.toml").read_text())["tool"]["setuptools"]["package-data"]
+    assert "data/*.toml" in package_data["camcam.post"]
 
 
 def test_unknown_post_lists_known():

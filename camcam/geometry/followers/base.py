@@ -110,7 +110,7 @@ class FollowerKind:
 
     @staticmethod
     def size_figures(ps, sigma: int, params: dict) -> dict:
-        """Closed-form figures of a block of designs (:mod:`camcam.size.kernels`)."""
+        """Closed-form figures of a block of designs (:mod:`camcam.sizing.kernels`)."""
         raise NotImplementedError
 
     def check(self, base_radius: float) -> None:

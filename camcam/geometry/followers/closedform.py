@@ -21,8 +21,8 @@ most h²·max|f″|/8, and Δ²f ≈ h²f″), taken around the sampled extreme 
 (Δ²f averages f″ over two steps, so the estimate alone can fall a little short).
 
 Each sized kind's :meth:`size_figures` is one of these, validated point by point against
-:mod:`camcam.geometry.disc` in ``tests/size/test_kernels.py``; ``ps`` is the program's samples
-(:class:`camcam.size.samples.ProgramSamples`: ``s``, ``s1``, ``s2`` per radian, ``inner``, ``lift_min``,
+:mod:`camcam.geometry.disc` in ``tests/sizing/test_kernels.py``; ``ps`` is the program's samples
+(:class:`camcam.sizing.samples.ProgramSamples`: ``s``, ``s1``, ``s2`` per radian, ``inner``, ``lift_min``,
 ``lift_max``).
 """
 

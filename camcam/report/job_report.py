@@ -15,7 +15,7 @@ from camcam.geometry.build import BuiltCam
 from camcam.geometry.disc import DiscCam
 from camcam.geometry.groove import GrooveCam
 from camcam.motion.program import MotionProgram
-from camcam.forked import Pending, call_target, later
+from camcam.workers import Pending, call_target, later
 from camcam.report.deviation_along import signed_deviation
 from camcam.report.fitted_motion import fitted_motion
 from camcam.report.html import Code, DataTable, Figure, KeyValues, Paragraph, Section, VerdictBlock, render_html
@@ -28,14 +28,14 @@ from camcam.nc.result import MachiningResult
 __all__ = ["JobReport", "job_report", "ReportAnalysis", "report_analysis", "render_later", "GROOVE_MAP_PLOT", "DEVIATION_PLOT", "FITTED_MOTION_PLOT"]
 
 #: The report's plots, as ``"module:function"`` names: they are drawn where matplotlib is imported (a
-#: child process, camcam.forked), never in the process assembling the report.
+#: child process, camcam.workers), never in the process assembling the report.
 GROOVE_MAP_PLOT = "camcam.plots.groove_map:groove_map_png"
 DEVIATION_PLOT = "camcam.plots.report_plots:deviation_png"
 FITTED_MOTION_PLOT = "camcam.plots.report_plots:fitted_motion_png"
 
 
 def render_later(target: str, *args, **kwargs) -> Pending | bytes:
-    """Draw the plot ``target`` (``"module:function"``) in a forked child (:func:`camcam.forked.later`)."""
+    """Draw the plot ``target`` (``"module:function"``) in a forked child (:func:`camcam.workers.later`)."""
     return later(call_target, target, *args, **kwargs)
 
 
@@ -105,7 +105,7 @@ def report_analysis(name: str, built: BuiltCam | None, machining: MachiningResul
                     inspection_step_deg: float = 10.0, render=render_later) -> ReportAnalysis:
     """The deviation along the profile, the follower motion as machined and the inspection table.
 
-    ``render(target, *args)`` draws a plot (PNG bytes, or a :class:`~camcam.forked.Pending`): by
+    ``render(target, *args)`` draws a plot (PNG bytes, or a :class:`~camcam.workers.Pending`): by
     default in a forked child of its own; `camcam run` passes its plot server's ``submit``.
     """
     files: dict = {}

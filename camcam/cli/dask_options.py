@@ -6,7 +6,7 @@ import argparse
 import sys
 
 from camcam.cli.progress import Progress, add_progress_flag
-from camcam.scale.engine import WORKER_TIMEOUT_S, open_executor
+from camcam.dask_batch.engine import WORKER_TIMEOUT_S, open_executor
 
 __all__ = ["add_scale_arguments", "executor_from_args", "tell_scale_note"]
 

@@ -1,4 +1,5 @@
-"""Sizing: the smallest base radius (and the best offset) for a pressure-angle limit.
+"""One cam's smallest base radius (and best offset) for a pressure-angle limit (the sweep over
+many designs, `camcam size`, is :mod:`camcam.sizing`).
 
 Defaults: the kind's ``default_max_pressure_angle_deg`` (30° for a translating
 follower, 35° for an oscillating one).  The

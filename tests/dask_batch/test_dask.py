@@ -10,7 +10,7 @@ import pytest
 
 distributed = pytest.importorskip("distributed")
 
-from tests.size.helpers import BASE, ROOT, cli  # noqa: E402
+from tests.sizing.helpers import BASE, ROOT, cli  # noqa: E402
 
 
 

@@ -4,13 +4,13 @@ Rows are designs, columns cam angles.  The kernels themselves belong to their
 kinds (``size_figures`` of each class in :mod:`camcam.geometry.followers`, the
 shared forms in :mod:`camcam.geometry.followers.closedform`); this module names
 the figures they return and looks the kind up.  They are validated point by
-point against :mod:`camcam.geometry.disc` in ``tests/size/test_kernels.py``.
+point against :mod:`camcam.geometry.disc` in ``tests/sizing/test_kernels.py``.
 """
 
 from __future__ import annotations
 
 from camcam.geometry.followers import follower_kind
-from camcam.size.samples import ProgramSamples
+from camcam.sizing.samples import ProgramSamples
 
 __all__ = ["FIGURES", "block_figures"]
 

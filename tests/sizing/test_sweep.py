@@ -19,7 +19,7 @@ from camcam.geometry.disc import DiscCam
 from camcam.geometry.followers import TranslatingRoller
 from camcam.motion.catalog import make_law
 from camcam.spec import load_spec
-from tests.size.helpers import SAMPLE, cli
+from tests.sizing.helpers import SAMPLE, cli
 
 
 SMALL = """

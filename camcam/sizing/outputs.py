@@ -14,9 +14,9 @@ import numpy as np
 
 from camcam.export.jsontext import to_json
 from camcam.export.spec_toml import dumps, sized_spec_data
-from camcam.plots.sizing import sizing_png
+from camcam.sizing.chart import sizing_png
 from camcam.report.html import DataTable, Figure, KeyValues, Paragraph, Section, render_html
-from camcam.size.sweep import SizingResult, grid_bounds
+from camcam.sizing.sweep import SizingResult, grid_bounds
 
 __all__ = ["sizing_files", "table_bytes", "parquet_available", "TOP"]
 

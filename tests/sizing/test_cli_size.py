@@ -9,8 +9,8 @@ import io
 import pytest
 
 from camcam.cli import main
-from camcam.scale import engine
-from tests.size.helpers import BASE, ROOT, cli
+from camcam.dask_batch import engine
+from tests.sizing.helpers import BASE, ROOT, cli
 
 
 

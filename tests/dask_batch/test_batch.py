@@ -7,8 +7,8 @@ import csv
 import json
 
 import camcam.flow as flow
-from camcam.scale import engine
-from tests.size.helpers import ROOT, cli
+from camcam.dask_batch import engine
+from tests.sizing.helpers import ROOT, cli
 
 
 def test_batch_without_dask_reports_every_spec(tmp_path, monkeypatch):

@@ -19,9 +19,9 @@ from camcam.motion.catalog import make_law
 from camcam.motion.program import MotionProgram, Segment
 from camcam.motion.standard import dwell
 from camcam.geometry.followers import OscillatingRoller, TranslatingFlat, TranslatingRoller, closedform
-from camcam.size import kernels
-from camcam.size.exact import design_cam, exact_figures, outer_radius
-from camcam.size.samples import sample_program
+from camcam.sizing import kernels
+from camcam.sizing.exact_check import design_cam, exact_figures, outer_radius
+from camcam.sizing.samples import sample_program
 
 SAMPLES = 720
 

@@ -1,8 +1,8 @@
 """A sizing sweep: every design on the grid by closed forms, the best one checked by the full geometry.
 
 1. Each law combination's motion program is sampled once (:func:`sample_program`)
-   and broadcast against the design parameters in chunks (:mod:`camcam.size.grid`),
-   on whatever :class:`~camcam.scale.engine.Executor` is given.
+   and broadcast against the design parameters in chunks (:mod:`camcam.sizing.grid`),
+   on whatever :class:`~camcam.dask_batch.engine.Executor` is given.
 2. A design is *feasible on the grid* when its sampled figures meet every
    constraint.  A sampled maximum can only be lower than the true one (and a
    sampled minimum only higher), so the grid's feasible set contains every
@@ -10,14 +10,14 @@
 3. The feasible designs are ranked by the objective (smallest outer radius, or
    smallest pressure angle), ties by pressure angle, then by design number.
    Candidates are taken in that order and checked with the exact geometry
-   (:func:`camcam.size.exact.exact_figures`) until one passes and no later
+   (:func:`camcam.sizing.exact_check.exact_figures`) until one passes and no later
    candidate's grid objective (a lower bound of its exact one) can beat it.
 
 Examples
 --------
 >>> from pathlib import Path
 >>> from camcam.spec import load_spec
->>> from camcam.scale.engine import InProcess
+>>> from camcam.dask_batch.engine import InProcess
 >>> spec = load_spec(Path(__file__).parents[2] / "samples" / "size" / "translating-roller.toml")
 >>> r = run_sweep(spec, InProcess())                      # doctest: +SKIP
 >>> r.best is not None                                    # doctest: +SKIP
@@ -35,11 +35,11 @@ from camcam.errors import SpecError
 from camcam.geometry.disc import SIGMA
 from camcam.motion.catalog import make_law
 from camcam.motion.program import MotionProgram
-from camcam.scale.engine import Executor
-from camcam.size.exact import ExactFigures, exact_figures
-from camcam.size.grid import Chunk, DesignGrid
-from camcam.size.kernels import FIGURES, block_figures
-from camcam.size.samples import ProgramSamples, sample_program
+from camcam.dask_batch.engine import Executor
+from camcam.sizing.exact_check import ExactFigures, exact_figures
+from camcam.sizing.grid import Chunk, DesignGrid
+from camcam.sizing.kernels import FIGURES, block_figures
+from camcam.sizing.samples import ProgramSamples, sample_program
 from camcam.spec.size import SizeSpec
 
 __all__ = ["SweepContext", "Limits", "SizingResult", "evaluate_chunk", "run_sweep", "combo_program", "MAX_EXACT_CHECKS"]
