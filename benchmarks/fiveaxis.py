@@ -1,7 +1,7 @@
 """Figures of the 5-axis barrel-cam job (docs/barrel-cams.md, "5 axes for an oscillating roller"; the table in docs/benchmarks.md).
 
 For seed 002's cam (samples/cylindrical-oscillating.toml) and each post: blocks, the fit's own error
-model, the 3-D groove measurement (camcam.nc.groove3d) on the printed program and on the program as
+model, the 3-D groove measurement (camcam.verify.groove3d) on the printed program and on the program as
 LinuxCNC's rs274 interprets it, and the brute-force swept-tool check of tests/nc/swept.py.
 
     PYTHONPATH=. python benchmarks/fiveaxis.py
@@ -18,9 +18,10 @@ from pathlib import Path
 import numpy as np
 
 from camcam.geometry.build import build_cam
-from camcam.nc.toolposes import CylinderTool, poses_from_canon
-from camcam.nc.groove3d import measure_groove
-from camcam.nc.job import machine
+from camcam.toolpath.poses import CylinderTool
+from camcam.verify.rs274 import poses_from_canon
+from camcam.verify.groove3d import measure_groove
+from camcam.verify import checked
 from camcam.post.post import load_post
 from camcam.spec import load_spec
 from camcam.verify.rs274 import rs274_available, run_rs274, tcp_readable
@@ -49,7 +50,7 @@ def main(posts=("linuxcnc", "fanuc", "haas", "sinumerik", "heidenhain")) -> None
     for rotation, a_axis, post, axes in cases:
         built = build_cam(replace(spec.cam, rotation=rotation), spec.follower, spec.motion.program(spec.unit))
         m = replace(spec.machining, post=load_post(post), a_axis=a_axis, axes=axes)
-        r = machine(built, m, spec.name)
+        r = checked(built, m, spec.name)
         interp = "—"
         if rs274_available() and post in ("linuxcnc", "fanuc", "haas"):
             with tempfile.TemporaryDirectory() as d:

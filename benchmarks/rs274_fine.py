@@ -21,7 +21,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from camcam.geometry.build import build_cam
-from camcam.nc import machine
+from camcam.verify import checked
 from camcam.spec import load_spec
 from camcam.toolpath.deviation import measure_deviation
 from camcam.verify.rs274 import feed_passes, print_margin_mm, rs274_available, run_rs274
@@ -37,7 +37,7 @@ def check(case: str, folder: Path) -> bool:
     sample, tol = case.rsplit("@", 1)
     spec = load_spec(ROOT / "samples" / f"{sample}.toml")
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
-    result = machine(built, replace(spec.machining, tolerance_mm=float(tol), mode="arcs"), spec.name, spec.stock)
+    result = checked(built, replace(spec.machining, tolerance_mm=float(tol), mode="arcs"), spec.name, spec.stock)
     path = folder / result.program_filename
     path.write_text(result.program.text)
     passes = feed_passes(run_rs274(path))

@@ -27,7 +27,7 @@ from pathlib import Path
 from camcam.geometry.build import build_cam
 from camcam.spec import load_spec
 from camcam.toolpath.arcfit import line_estimate_blocks, lower_bound_blocks
-from camcam.nc import machine
+from camcam.verify import checked
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -76,7 +76,7 @@ def arcs_table(samples=DISC_SAMPLES, tolerances=TOLERANCES) -> bool:
             m = replace(spec.machining, tolerance_mm=tol, mode="arcs")
             t0 = time.perf_counter()
             with _FitClock() as clock:
-                r = machine(built, m, sample)
+                r = checked(built, m, sample)
             dt = time.perf_counter() - t0
             for c in r.contours:
                 arcs, lines = c.fit.arc_blocks, c.fit.line_blocks
@@ -104,7 +104,7 @@ def blocks_table(sample: str = "disc-translating-roller") -> None:
         for mode in ("lines", "arcs"):
             m = replace(spec.machining, tolerance_mm=tol, mode=mode)
             t0 = time.perf_counter()
-            r = machine(built, m, sample)
+            r = checked(built, m, sample)
             row[mode] = (r, time.perf_counter() - t0)
         (rl, tl), (ra, ta) = row["lines"], row["arcs"]
         c = ra.contours[0]

@@ -14,7 +14,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from camcam.geometry.build import build_cam
-from camcam.nc import machine
+from camcam.verify import checked
 from camcam.spec import load_spec
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -30,7 +30,7 @@ def main() -> None:
     for name in SAMPLES:
         spec = load_spec(ROOT / "samples" / f"{name}.toml")
         built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
-        r = machine(built, spec.machining, spec.name, spec.stock)
+        r = checked(built, spec.machining, spec.name, spec.stock)
         rem, b = r.removal, r.blank
         kinds: dict[str, int] = {}
         for p in r.passes:

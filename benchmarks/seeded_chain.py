@@ -30,7 +30,7 @@ import numpy as np
 
 import camcam.toolpath.arcfit as arcfit
 from camcam.geometry.build import build_cam
-from camcam.nc import machine
+from camcam.verify import checked
 from camcam.spec import load_spec
 from camcam.toolpath.arcchain import CurveTable
 from camcam.toolpath.arcclose import quiet_stretches
@@ -63,7 +63,7 @@ def main(samples) -> None:
         built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
         for tol in TOLERANCES:
             marches.clear()
-            machine(built, replace(spec.machining, tolerance_mm=tol, mode="arcs"), sample)
+            checked(built, replace(spec.machining, tolerance_mm=tol, mode="arcs"), sample)
             for curve, a, b, band, kw, arcs, seconds in marches:
                 _, integral = quiet_stretches(curve, a, b)
                 ratio = integral / np.cbrt(192.0 * band) / kw["lower_bound"]

@@ -4,8 +4,8 @@
 
 Runs ``camcam run SPEC`` once in this process's child (a fresh interpreter, as `camcam` itself runs)
 with a benchmark-only hook: each forked process says what it runs (the function a
-:func:`camcam.forked.later` job, a :func:`~camcam.forked.parallel_map` worker or a
-:mod:`camcam.servers` child was given), when it was forked and when it left, its CPU seconds and
+:func:`camcam.workers.later` job, a :func:`~camcam.workers.parallel_map` worker or a
+:mod:`camcam.workers` child was given), when it was forked and when it left, its CPU seconds and
 how many of them its cyclic garbage collector took (a ``gc.callbacks`` hook); the run's own steps
 (``Progress.step``) and each job a server child ran (its plots, the drawing) are timed too.  Seconds count from the start of the timed
 interpreter's first line (its own start-up, about 0.03 s, is before it).  ``--tolerance`` runs a copy of the spec at
@@ -61,8 +61,8 @@ def leave(status):
 
 os._exit = leave
 
-import camcam.forked as forked
-import camcam.servers as servers
+import camcam.workers as forked
+import camcam.workers as servers
 from camcam.cli import progress
 
 def named(fn):

@@ -41,7 +41,7 @@ class SpecError(CamcamError, ValueError):
         super().__init__(f"{path}: {message}" if path else message)
 
     def __reduce__(self):
-        # pickled as (path, message): a check run in a child process (camcam.forked) raises it in the parent
+        # pickled as (path, message): a check run in a child process (camcam.workers) raises it in the parent
         return (type(self), (self.path, self.message))
 
 

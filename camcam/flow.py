@@ -9,7 +9,7 @@ nothing (:class:`~camcam.export.files.OutputSet`).  `camcam run` and each spec
 of `camcam batch` are this call and a print.
 
 How the work is shared out is an implementation detail behind it: plots are
-drawn by a forked plot worker (:mod:`camcam.servers`), the drawing, STL and
+drawn by a forked plot worker (:mod:`camcam.workers`), the drawing, STL and
 material check by a prepared child, and the NC step splits independent work
 with a second process (:func:`nc_step`).
 
@@ -43,13 +43,19 @@ DEFAULT_SPEC = "default.toml"
 
 
 def nc_step(spec, built):
-    """The NC step's program (:func:`camcam.nc.machine_program`), without its material check (see
-    :func:`drawing_and_check`)."""
+    """The NC step's program (:func:`camcam.nc.machine_program`); a barrel program checked in 3-D at once
+    (:func:`camcam.verify.check_job`), a disc's material check left to :func:`drawing_and_check`."""
     from camcam.nc import machine_program
 
     # work that splits into independent parts (a closed contour's further arc starts, a barrel cam's passes
     # and 3-D measurement) is shared with a second process: the same results
-    return machine_program(built, spec.machining, spec.name, spec.stock, workers=min(2, _cores()))
+    workers = min(2, _cores())
+    result = machine_program(built, spec.machining, spec.name, spec.stock, workers=workers)
+    if result.groove_plan is None:
+        return result
+    from camcam.verify import check_job, with_checks
+
+    return with_checks(result, check_job(result, built, spec.machining, workers), spec.machining)
 
 
 def model(built, name: str) -> tuple[dict, dict]:
@@ -72,19 +78,19 @@ def drawing(built, machining) -> tuple[dict, float | None]:
 
 
 def drawing_and_check(built, machining, machining_spec):
-    """:func:`drawing` and the program's material check (:func:`camcam.nc.material_check`, None for a job
-    without a blank): (files, part outline deviation, removal report or None).
+    """:func:`drawing` and the program's material check (:func:`camcam.verify.check_job`, None for a job
+    without a blank): (files, part outline deviation, :class:`~camcam.verify.JobChecks` or None).
 
-    `camcam run` calls this in a prepared child (:class:`camcam.servers.Prepared`) that imported ezdxf and
+    `camcam run` calls this in a prepared child (:class:`camcam.workers.Prepared`) that imported ezdxf and
     scipy while the NC step ran: the check runs in a child of its own (which inherits them) beside the
     drawing, so the run's own process never imports scipy."""
-    from camcam.forked import ChildGroup, resolve
-    from camcam.nc import material_check
+    from camcam.workers import ChildGroup, resolve
+    from camcam.verify import check_job
 
     with ChildGroup() as group:
-        # the check's slabs are swept by two processes (camcam.nc.sweep): the top slab, which every deeper
+        # the check's slabs are swept by two processes (camcam.verify.swept): the top slab, which every deeper
         # move cuts too, beside the others
-        check = group.later(material_check, machining, built, machining_spec, min(2, _cores())) \
+        check = group.later(check_job, machining, built, machining_spec, min(2, _cores())) \
             if machining.blank is not None else None
         files, part_deviation = drawing(built, machining)
         return files, part_deviation, resolve(check)
@@ -133,7 +139,7 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
 
     On fewer than three cores the plot server draws its first plots (the SVAJ and the cam) only once the
     drawing's child has loaded its modules or the NC step has ended, whichever comes first
-    (:class:`camcam.servers.Gate`): the fitting process, whose NC step everything else waits for, then has
+    (:class:`camcam.workers.Gate`): the fitting process, whose NC step everything else waits for, then has
     a core to itself while the two children load and draw one after the other on the other, instead of
     three processes sharing two.  Medians of 6
     alternated runs on the 2-core benchmark machine (2026-12-06, ``benchmarks/ab.py``): at 0.001 mm
@@ -143,12 +149,11 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
     (still 1.3 × the import floor, within its 1.7 ×).
     """
     from camcam.export.motion_table import SVAJ_PLOT, motion_outputs, motion_summary, svaj_title
-    from camcam.forked import ChildGroup, freeze_start_up, resolve
-    from camcam.servers import Prepared
+    from camcam.workers import ChildGroup, Prepared, freeze_start_up, resolve
 
     freeze_start_up()
     verdict = Verdict(())
-    # one child process draws every plot, and only it imports matplotlib (camcam.servers.Server): the
+    # one child process draws every plot, and only it imports matplotlib (camcam.workers.Server): the
     # plots' data goes to it pickled (a cam pickles in about a millisecond)
     plots, gate = plot_server() if plots is None else plots
     # the run's other child processes: stopped if the run fails before it collects them
@@ -198,13 +203,13 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
         with progress.step("drawing, model and material check"):
             files, report["mesh"] = resolve(model_files)
             if machining is not None:
-                from camcam.nc import with_removal
+                from camcam.verify import with_checks
 
-                nc, part_deviation, removal = resolve(drawn)
+                nc, part_deviation, checks = resolve(drawn)
                 for name, data in nc.items():
                     out.add(name, data)
-                if removal is not None:
-                    machining = with_removal(machining, removal)
+                if checks is not None:
+                    machining = with_checks(machining, checks, spec.machining)
                 nc_figures(report, machining, part_deviation, said)
         verdict = job_verdict(machining, spec.machining)
         verdict = Verdict(verdict.checks + design_and_drawing_checks(
@@ -234,10 +239,10 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
 
 
 def plot_server():
-    """The child process that draws a run's plots (:class:`camcam.servers.Server`), started at once, and the
-    gate it waits at before its first plot (:class:`camcam.servers.Gate`, opened by :func:`job`): it
+    """The child process that draws a run's plots (:class:`camcam.workers.Server`), started at once, and the
+    gate it waits at before its first plot (:class:`camcam.workers.Gate`, opened by :func:`job`): it
     imports matplotlib (about a second) while the run itself reads the spec and designs the cam."""
-    from camcam.servers import Gate, Server
+    from camcam.workers import Gate, Server
 
     gate = Gate()
     # on three cores or more the three processes each have one: nothing waits
@@ -253,18 +258,18 @@ def _cores() -> int:
         return os.cpu_count() or 1
 
 
-#: Loads modules in a server child before its first job (camcam.forked.preload).
-PRELOAD = "camcam.forked:preload"
+#: Loads modules in a server child before its first job (camcam.workers.preload).
+PRELOAD = "camcam.workers:preload"
 #: What the plot server imports before its first plot: matplotlib comes with them.
 PLOT_MODULES = ("camcam.plots.svaj", "camcam.plots.profile")
 #: What the drawing's child imports while the NC step runs: ezdxf, scipy.interpolate and the material
 #: check's scipy.spatial come with them.
-DRAWING_MODULES = ("camcam.export.nc", "camcam.nc.removal", "scipy.spatial")
+DRAWING_MODULES = ("camcam.export.nc", "camcam.verify.removal", "camcam.verify.job_checks", "scipy.spatial")
 #: The drawing's and material check's function (run in its child, on the pickled cam and program).
 DRAWING = "camcam.flow:drawing_and_check"
 
 
-#: The cam profile plot's function (drawn in the plot server, camcam.forked).
+#: The cam profile plot's function (drawn in the plot server, camcam.workers).
 CAM_PLOT = "camcam.plots.profile:cam_png"
 
 
@@ -332,7 +337,7 @@ class _Files:
         self._files[name] = data.encode("utf-8") if isinstance(data, str) else data
 
     def contents(self) -> dict[str, bytes]:
-        from camcam.forked import resolve
+        from camcam.workers import resolve
 
         return {name: resolve(data) for name, data in self._files.items()}
 

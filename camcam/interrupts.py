@@ -55,7 +55,7 @@ class Interrupted(KeyboardInterrupt):
         self.signum = int(signum)
 
     def __reduce__(self):
-        # pickled as its signal: an interrupt in a child process (camcam.forked) is raised in the parent
+        # pickled as its signal: an interrupt in a child process (camcam.workers) is raised in the parent
         return (type(self), (self.signum,))
 
 

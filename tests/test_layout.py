@@ -18,7 +18,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "camcam"
 
 #: Rank of each top-level package or module of camcam: an import may only go to the same or a lower rank.
 RANK = {
-    "__init__": 0, "errors": 0, "inputs": 0, "verdict": 0, "lazy": 0, "forked": 0, "servers": 0, "interrupts": 0, "data": 0,
+    "__init__": 0, "errors": 0, "inputs": 0, "verdict": 0, "lazy": 0, "workers": 0, "interrupts": 0, "data": 0,
     "motion": 1,
     "geometry": 2, "optimize": 2, "lifttable": 2,
     "reverse": 3, "toolpath": 3, "dynamics": 3,
@@ -201,3 +201,24 @@ def test_module_names_are_unique_unless_parallel():
 def test_cycle_finder(graph, cycle):
     # the checks above are only as good as this
     assert (_cycle(graph) is not None) == cycle
+
+
+def test_nc_plans_and_does_not_read_a_program_back():
+    """Issue 44: ``nc`` plans and prints; reading the printed program back (``camcam.post.readback``) and
+    measuring it (``camcam.verify``) are the stages after it.  Lazy imports count."""
+    bad = [f"{path.relative_to(PACKAGE.parent)}:{line} imports {target}"
+           for name, (path, imports) in MODULES.items() if _top(name) == "nc"
+           for target, names, line in imports
+           if target.startswith(("camcam.verify", "camcam.post.readback"))
+           or (target == "camcam.post" and "readback" in names)]
+    assert not bad, "\n".join(bad)
+
+
+def test_no_dialect_names_outside_post():
+    """Issue 44: all of a dialect's knowledge (writing, reading back, TCP codes, Klartext) lives in
+    ``camcam.post``; no other module names a dialect (the post data files do, they are data)."""
+    bad = [f"{path.relative_to(PACKAGE.parent)}:{no}"
+           for path in sorted(PACKAGE.rglob("*.py")) if path.relative_to(PACKAGE).parts[0] != "post"
+           for no, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
+           if "heidenhain" in line.lower() or "klartext" in line.lower()]
+    assert not bad, "\n".join(bad)

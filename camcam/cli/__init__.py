@@ -17,7 +17,7 @@ plotting, geometry and NC stages.  This module assembles them and maps what went
 The command asks OpenBLAS (numpy's and scipy's) for one thread unless the
 environment says otherwise (:func:`single_threaded_blas`): camcam's arrays are
 far below the sizes BLAS threads pay off at, its work is spread over the cores
-by forked processes (:mod:`camcam.forked`), and starting each library's idle
+by forked processes (:mod:`camcam.workers`), and starting each library's idle
 threads cost about 0.1 CPU s per import (numpy 0.23 → 0.12 CPU s, scipy.interpolate
 0.74 → 0.62 CPU s on the 2-core benchmark machine).
 """

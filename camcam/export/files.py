@@ -44,7 +44,7 @@ from camcam import __version__
 from camcam.errors import OutputError
 from camcam.inputs import os_reason
 from camcam.interrupts import deferred
-from camcam.forked import Pending, resolve
+from camcam.workers import Pending, resolve
 
 __all__ = ["OutputSet", "DiskLog", "atomic_write", "MANIFEST", "read_manifest"]
 

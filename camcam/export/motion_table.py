@@ -62,12 +62,12 @@ def motion_summary(program: MotionProgram) -> dict:
 
 def motion_outputs(out, name: str, program: MotionProgram, step_deg: float, svaj=None):
     """Add the motion table and the SVAJ plot to ``out``; returns the plot (the report shows it too),
-    a :class:`~camcam.forked.Pending` while it is drawn in a child process.
+    a :class:`~camcam.workers.Pending` while it is drawn in a child process.
 
     ``svaj`` is the plot when a caller already has it being drawn (`camcam run`'s plot server);
     otherwise it is drawn in a forked child that imports matplotlib itself.
     """
-    from camcam.forked import call_target, later
+    from camcam.workers import call_target, later
 
     out.add(f"{name}-motion.csv", motion_csv(program, step_deg))
     if svaj is None:

@@ -70,7 +70,7 @@ class MeshParts:
     """A cam's triangles before trimesh sees them: ``vertices`` (n, 3) mm, ``faces`` (m, 3) indices.
 
     Cheap to make (numpy only); :meth:`solid` makes the watertight trimesh (and imports trimesh:
-    a `camcam run` does that in the child process that writes the STL, camcam.forked).
+    a `camcam run` does that in the child process that writes the STL, camcam.workers).
     """
 
     vertices: np.ndarray

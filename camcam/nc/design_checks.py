@@ -8,7 +8,7 @@
   flat face, whose cusp is refused as bad input anyway);
 * a cut depth beyond the part: below a disc's bottom face (into the fixture)
   or below a face groove's floor (a barrel's is the job's check on its
-  printed program, :mod:`camcam.nc.reach`);
+  printed program, :mod:`camcam.verify.reach`);
 * a finishing allowance larger than the stepdown (the finish pass would take
   more side stock than a roughing pass takes depth).
 
@@ -100,7 +100,7 @@ def design_checks(built, machining=None, strict: bool = False) -> tuple[Check, .
         checks.append(Check("cut depth", depth, spec.groove_depth, "mm", depth <= spec.groove_depth, severity,
                             f"groove depth {spec.groove_depth:g} mm",
                             "the tool goes below the groove floor: set [machining] depth to the groove depth"))
-    # a barrel's cut depth is the job's check, measured on the printed program (camcam.nc.reach): its tool goes
+    # a barrel's cut depth is the job's check, measured on the printed program (camcam.verify.reach): its tool goes
     # below the groove floor by design (4 axes: to the wall corner; 5 axes: the tilted flat end), which the
     # stated depth does not say ("8 mm / 8 mm within" where the flat end dipped 3.9 mm below the floor)
     if spec.kind == "disc":

@@ -41,19 +41,15 @@ tip's path length in the part frame.
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from camcam.errors import FitError, GeometryError, InputError, PostError
+from camcam.errors import FitError, GeometryError, InputError
 from camcam.geometry.build import BuiltCam
-from camcam.nc.toolposes import CylinderTool, poses_from_program
-from camcam.nc.groove3d import measure_groove, pose_step_for
 from camcam.nc.passes import with_markers
-from camcam.nc.reach import tool_reach
-from camcam.nc.result import MachiningResult
+from camcam.nc.result import GroovePlan, MachiningResult
 from camcam.nc.settings import MachiningSpec
 from camcam.nc.tools import SAME_TOOL_MM, job_title
 from camcam.toolpath.arcfit import FitResult
@@ -62,7 +58,6 @@ from camcam.toolpath.deviation import Deviation
 from camcam.toolpath.elements import Line
 from camcam.toolpath.path import Feed, Pass, Rapid, Toolpath, depth_levels
 from camcam.toolpath.quantizer import Quantizer
-from camcam.verdict import Check
 
 __all__ = ["ToolPose", "FivePath", "fit_five_axis", "machine_five_axis", "frame_comments", "tool_axis", "part_pose"]
 
@@ -259,20 +254,6 @@ def frame_comments(a_axis: str, sign: int, tcp: str) -> tuple[str, ...]:
             f"X Y Z = tool tip (centre of the flat end), tool-centre-point control on ({tcp})")
 
 
-def klartext_as_gcode(text: str) -> str:
-    """A Heidenhain program's straight-line blocks as G0/G1 lines (same words), for the pose reader.
-
-    ``L X+1 Z+2 A+3 B+4 R0 F100`` → ``G1 X+1 Z+2 A+3 B+4``; ``FMAX`` makes a G0; other blocks are dropped.
-    """
-    out = []
-    for line in text.splitlines():
-        words = line.split()
-        if len(words) > 1 and words[0].isdigit() and words[1] == "L":
-            axes = [w for w in words[2:] if w[0] in "XYZAB"]
-            out.append(("G0 " if "FMAX" in words else "G1 ") + " ".join(axes))
-    return "\n".join(out) + "\n"
-
-
 def _developed(pose: ToolPose, nodes: np.ndarray, rho: float) -> tuple:
     """The printed path's roller-axis point at cross-section ρ, developed at ρ: lines in (u, x)."""
     d = pose.cam.follower.pivot_distance
@@ -367,51 +348,20 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int
     raises = [(n - 1 - k) * step for k in range(n)]
     passes = with_markers(tuple(Pass(0, "slot", _lowest_tip_z(nodes, h, post.quantizer),
                                      tuple(_pass_moves(nodes, h, m, outer, r_t))) for h in raises), [LABEL])
-    tcp = "; ".join(post.tcp_on) or "in the machine's kinematics"
-    tcp = tcp.replace("{tool}", str(m.tool_number)).replace("{tool:02d}", f"{m.tool_number:02d}")
-    feed_note = ("F = tool-tip feed in mm/min (M128)" if post.dialect == "heidenhain"
-                 else "G93 inverse time: F = 1 / block time, the tool tip's path in the part at the feed")
-    comments = frame_comments(m.a_axis, pose.sign, tcp) + (
+    comments = frame_comments(m.a_axis, pose.sign, post.tcp_comment(m.tool_number)) + (
         f"tool D{m.tool_diameter_mm:g} flat end mill = the roller; the cut reaches {path.cut_length_mm:.2f} mm "
         f"up the tool from its tip",
         f"{n} depth passes raised along the tool axis; final tip deep enough to cut both walls to the groove "
         f"bottom R{cam.bottom_radius:g} [the flat end dips to R{path.floor_radius_mm:.2f} in the floor]",
-        feed_note)
+        post.five_axis_feed_note)
     title = job_title(name, built.spec.kind, cam.kind, m.tool_diameter_mm, "lines", m.tolerance_mm, post.name) \
         + ", 5 axes"
     toolpath = Toolpath(title, passes, m.spindle_rpm, m.tool_number, m.tool_diameter_mm, True, comments,
                         opening=(Rapid(None, None, outer + m.safe_z_mm),),
                         closing=(Rapid(None, None, None, None, 0.0),), five_axis=True)
-    measured = post.write_program(toolpath, name, m.setup)
-    poses = poses_from_program(klartext_as_gcode(measured.text) if post.dialect == "heidenhain" else measured.text,
-                               m.a_axis)
-    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers,
-                           pose_step_mm=pose_step_for(m.tolerance_mm, r_t))
-    value, tol = groove.max_deviation_mm, m.tolerance_mm
-    holds = math.ceil(value * 1e4) / 1e4
-    reach = tool_reach(poses, r_t, cam.base_radius, cam.bottom_radius, path.floor_radius_mm, m.flute_length_mm,
-                       post.decimals, "the tilted flat end, so that both walls reach the bottom; no roller touches "
-                       "the floor")
-    # the flute the cut needs, as a value a spec takes (issue 43: "check flute_length (the cut needs 10.04 mm from
-    # the tip) and depth" named no setting; a short flute leaves the top of the walls uncut, 10.48 mm on 43:404
-    # with flute_length = 6, where no tolerance is the way out)
-    flute = math.ceil(max(path.cut_length_mm, reach.flute_needed_mm) * 100 - 1e-9) / 100
-    if m.flute_length_mm < flute:
-        advice = (f"the flute is shorter than the cut: [machining] flute_length = {flute:g} (the cut reaches "
-                  f"{path.cut_length_mm:.2f} mm up the tool from its tip)")
-    else:
-        advice = f"accept a tolerance of at least {holds:g} mm"
-    check = Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(), advice)
-    # the same moves, with the check's result in the header
-    verdict = "within" if check.ok else "OUT OF TOLERANCE"
-    toolpath = dataclasses.replace(toolpath, comments=toolpath.comments + (
-        f"3-D groove check of this program: {value:.4f} mm, {verdict} {tol:g} mm",))
+    # printed without the 3-D check: camcam.verify.job_checks measures this program and adds its result to the
+    # header (the same moves)
     program = post.write_program(toolpath, name, m.setup)
-    again = poses_from_program(klartext_as_gcode(program.text) if post.dialect == "heidenhain" else program.text,
-                               m.a_axis)
-    if not (np.array_equal(again.tip_mm, poses.tip_mm) and np.array_equal(again.a_deg, poses.a_deg)
-            and np.array_equal(again.b_deg, poses.b_deg)):
-        raise PostError("the program's moves changed with its header comment")
     rho = cam.base_radius
     curve = cam.developed_centre(rho)
     printed = _developed(pose, nodes, rho)
@@ -437,6 +387,8 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int
              f"radius {path.floor_radius_mm:.2f} mm in the groove floor")
     if m.flute_length_mm < path.cut_length_mm:
         notes += (f"flute_length {m.flute_length_mm:g} mm is shorter than the {path.cut_length_mm:.2f} mm the walls need",)
+    plan = GroovePlan(axes=5, reach_radius_mm=path.floor_radius_mm,
+                      reach_why="the tilted flat end, so that both walls reach the bottom; no roller touches the floor",
+                      cut_length_mm=path.cut_length_mm)
     return MachiningResult(name, built.spec.kind, cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, "lines",
-                           (contour,), toolpath, program, rho, notes, (check, reach.check()), groove=groove,
-                           reach=reach)
+                           (contour,), toolpath, program, rho, notes, groove_plan=plan)

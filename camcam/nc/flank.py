@@ -14,7 +14,7 @@ the development radius ρ_d, g(ρ) = (ρ·N_d)/(ρ_d·N_ρ) what that displaceme
 is along n_ρ (N_ρ = √(ρ² + s′²)).  The error changes with depth because n_ρ
 and the section shapes do: one q cannot zero it at every radius.  Each
 station's q is the one that minimises the largest |e(ρ)| over the flank
-depth (times the 3-D factor √(1 − n_r²), see :mod:`camcam.nc.groove3d`):
+depth (times the 3-D factor √(1 − n_r²), see :mod:`camcam.verify.groove3d`):
 all e(ρ) rise with q, so the optimum balances the largest overcut against
 the largest material left (bisection).  q(θ) is interpolated by a quintic
 spline per motion segment, so the flank curve keeps exact derivatives for

@@ -15,8 +15,8 @@ is ramped down along its contour at no more than the ramp angle.  With
 (:mod:`camcam.nc.bore`).  Cylindrical cams: :mod:`camcam.nc.rotary` (4 axes) and, for an
 oscillating roller, :mod:`camcam.nc.fiveaxis` (5 axes, ``[machining] axes``).
 
-The printed program is read back and checked against the blank, 2.5-D
-(:mod:`camcam.nc.removal`); its figures are checks of the job.
+The printed program is read back and checked against the blank, 2.5-D, by
+:mod:`camcam.verify` (:mod:`camcam.verify.removal`); its figures are checks of the job.
 
 Every contour is fitted at the spec's tolerance with the post's printed
 rounding (:attr:`Post.quantizer`) and arc sweep; its deviation is measured on
@@ -29,12 +29,11 @@ from dataclasses import replace
 
 import numpy as np
 
-from camcam.forked import ChildGroup, resolve
+from camcam.workers import ChildGroup, resolve
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
 from camcam.nc.bore import bore_circle_radius, bore_curve, bore_passes
 from camcam.nc.passes import finish_moves, ramp_loop_passes, spiral_moves, with_markers
-from camcam.nc.removal import RemovalReport, check_program
 from camcam.nc.result import MachiningResult, deviation_checks
 from camcam.nc.roughing import RING_STEP_FRACTION, Spiral, disc_spiral, groove_rings
 from camcam.nc.settings import DEFAULT_STOCK, MachiningSpec, StockSpec
@@ -44,7 +43,7 @@ from camcam.toolpath.arcsweep import passes_within_sweep
 from camcam.toolpath.contours import CutContour, fit_printed
 from camcam.toolpath.path import Pass, Rapid, Toolpath, depth_levels
 
-__all__ = ["machine", "machine_program", "material_check", "with_removal"]
+__all__ = ["machine_program"]
 
 
 def _stock_side(curve, free_dir: np.ndarray) -> str:
@@ -86,14 +85,12 @@ def _material_side(cam, flank: int):
     return side
 
 
-def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK,
-            workers: int = 1) -> MachiningResult:
-    """Tool-centre curves, fitted contours, passes, program and its material check for ``built`` (no I/O).
+def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK,
+                    workers: int = 1) -> MachiningResult:
+    """Tool-centre curves, fitted contours, passes and the printed program for ``built`` (no I/O).
 
-    The same as :func:`machine_program` followed, for a disc or face-groove
-    job, by :func:`material_check` and :func:`with_removal` (`camcam run`
-    calls them one by one, to check the material in a child process while it
-    writes the drawing).
+    What is measured on the printed program (a disc's material check, a barrel's 3-D groove check) is
+    :mod:`camcam.verify`'s: :func:`camcam.verify.check_job` (``checked`` does both steps).
 
     Parameters
     ----------
@@ -108,9 +105,8 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEF
     workers : int
         Processes the work may be shared with where it splits into independent
         parts: the further starts of a closed contour's arc spline
-        (:func:`camcam.toolpath.arcspline.fit_arc_spline`), a barrel cam's passes
-        (:func:`camcam.nc.rotary.machine_cylindrical`) and its 3-D groove
-        measurement (:func:`camcam.nc.groove3d.measure_groove`); the same result
+        (:func:`camcam.toolpath.arcspline.fit_arc_spline`) and a barrel cam's
+        passes (:func:`camcam.nc.rotary.machine_cylindrical`); the same result
         for any count.
 
     Returns
@@ -128,26 +124,6 @@ def machine(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEF
     FitError, PostError
         Faults of the fitter or the writer on valid input.
     """
-    result = machine_program(built, m, name, stock, workers)
-    if result.blank is None:
-        return result  # a barrel cam: measured in 3-D by its own job
-    return with_removal(result, material_check(result, built, m, workers))
-
-
-def material_check(result: MachiningResult, built: BuiltCam, m: MachiningSpec, workers: int = 1) -> RemovalReport:
-    """The material-removal check of ``result``'s printed program against its blank (:mod:`camcam.nc.removal`),
-    its slabs swept by ``workers`` processes (the same report for any count)."""
-    return check_program(result.program.text, result.post, result.blank, m, built, workers)
-
-
-def with_removal(result: MachiningResult, removal: RemovalReport) -> MachiningResult:
-    """``result`` with its material check: the report and its checks added to the job's."""
-    return replace(result, checks=result.checks + removal.checks(), removal=removal)
-
-
-def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSpec = DEFAULT_STOCK,
-                    workers: int = 1) -> MachiningResult:
-    """:func:`machine` without the material check of a disc or face-groove job (``removal`` is None)."""
     if built.spec.kind == "cylindrical":
         if m.axes == 5:
             from camcam.nc.fiveaxis import machine_five_axis

@@ -5,19 +5,19 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from camcam.nc.reach import ToolReach
-from camcam.nc.removal import RemovalReport
 from camcam.nc.settings import PostDialect
-from camcam.nc.timing import CycleTime
 from camcam.nc.stock import Blank
 from camcam.toolpath.contours import CutContour
 from camcam.toolpath.path import Pass, Toolpath
 from camcam.verdict import Check
 
-if TYPE_CHECKING:
-    from camcam.nc.groove3d import GrooveMeasurement
+if TYPE_CHECKING:  # what camcam.verify measures on the printed program (camcam.verify.job_checks)
+    from camcam.post.timing import CycleTime
+    from camcam.verify.groove3d import GrooveMeasurement
+    from camcam.verify.reach import ToolReach
+    from camcam.verify.removal import RemovalReport
 
-__all__ = ["MachiningResult", "Program", "deviation_checks"]
+__all__ = ["MachiningResult", "Program", "GroovePlan", "deviation_checks"]
 
 
 @dataclass(frozen=True)
@@ -29,7 +29,7 @@ class Program:
     line_blocks: int
     arc_blocks: int
     rapid_blocks: int
-    cycle_time: CycleTime | None = None  # the writer's estimate (:mod:`camcam.nc.timing`)
+    cycle_time: CycleTime | None = None  # the writer's estimate (:mod:`camcam.post.timing`)
 
 
 def deviation_checks(contours, tolerance_mm: float) -> tuple[Check, ...]:
@@ -40,6 +40,22 @@ def deviation_checks(contours, tolerance_mm: float) -> tuple[Check, ...]:
                  for c in contours)
 
 
+@dataclass(frozen=True, kw_only=True)
+class GroovePlan:
+    """What a barrel job's plan tells the 3-D check of its printed program (:mod:`camcam.verify.job_checks`).
+
+    ``axes`` is 4 (a radial tool, :mod:`camcam.nc.rotary`) or 5 (the tool on the roller's axis,
+    :mod:`camcam.nc.fiveaxis`); ``reach_radius_mm`` the deepest radius the plan takes the tool to (the groove
+    floor less the dip it plans below it), ``reach_why`` why it dips; ``cut_length_mm`` (5 axes) how far up
+    the tool from its tip the plan's cut reaches.
+    """
+
+    axes: int
+    reach_radius_mm: float
+    reach_why: str = ""
+    cut_length_mm: float | None = None
+
+
 @dataclass(frozen=True)
 class MachiningResult:
     """Everything the NC step made for one cam (no files: exporters write them).
@@ -47,9 +63,15 @@ class MachiningResult:
     ``toolpath.passes`` are the pass records (:class:`~camcam.toolpath.path.Pass`):
     which contour each pass follows, its kind and depth, in the order the
     program cuts them.  ``checks`` are the job's figures held to their limits
-    (:mod:`camcam.verdict`).  ``blank`` and ``removal`` (disc and face-groove
-    jobs): the blank the job starts from and the material-removal check of
-    the printed program (:mod:`camcam.nc.removal`).
+    (:mod:`camcam.verdict`).  ``blank`` (disc and face-groove jobs): the
+    blank the job starts from; ``groove_plan`` (barrel jobs): what the 3-D
+    check needs from the plan.
+
+    :mod:`camcam.nc` plans and prints; the figures measured on the printed
+    program are added by :func:`camcam.verify.job_checks.with_checks`:
+    ``removal`` (the material-removal check of a disc or face-groove job),
+    ``groove`` and ``reach`` (a barrel job's 3-D check and tool reach) and
+    their checks.
     """
 
     name: str
@@ -70,6 +92,7 @@ class MachiningResult:
     blank: Blank | None = None
     removal: RemovalReport | None = None
     reach: ToolReach | None = None  # barrel programs: how deep the printed tool goes, the flute it needs
+    groove_plan: GroovePlan | None = None
 
     @property
     def rotary(self) -> bool:
@@ -87,7 +110,7 @@ class MachiningResult:
     def max_deviation_mm(self) -> float:
         """Largest two-sided deviation of a printed contour from its exact tool-centre curve.
 
-        Barrel cams: the 3-D groove figure (:mod:`camcam.nc.groove3d`), both walls, every radius.
+        Barrel cams: the 3-D groove figure (:mod:`camcam.verify.groove3d`), both walls, every radius.
         """
         if self.groove is not None:
             return self.groove.max_deviation_mm

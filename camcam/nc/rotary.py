@@ -27,9 +27,10 @@ needs to reach the wall corner there: the wall contact is r_t·sin α off the
 tool's axis plane (α the pressure angle at the bottom), where the end face
 sits at √(Z² + (r_t sin α)²) from the cam axis.
 
-The result is measured, from the printed program's own axis words, by
-:func:`camcam.nc.groove3d.measure_groove`: that 3-D figure is the job's
-deviation and the ``Check`` it returns.
+The printed program is measured, from its own axis words, by
+:func:`camcam.verify.job_checks.check_job` (:mod:`camcam.verify.groove3d`):
+that 3-D figure is the job's deviation.  The plan hands it what it needs
+(:class:`~camcam.nc.result.GroovePlan`).
 """
 
 from __future__ import annotations
@@ -39,24 +40,21 @@ import math
 
 import numpy as np
 
-from camcam.errors import GeometryError, InputError, PostError, SpecError
-from camcam.forked import parallel_map
+from camcam.errors import GeometryError, InputError, SpecError
+from camcam.workers import parallel_map
 from camcam.geometry.build import BuiltCam
 from camcam.nc.flank import DisplacedCurve, plan_flank, smallest_tool_radius
-from camcam.nc.toolposes import A_AXIS_SENSE, CylinderTool, poses_from_program
-from camcam.nc.groove3d import GrooveMeasurement, measure_groove, pose_step_for
 from camcam.nc.passes import with_markers
-from camcam.nc.reach import tool_reach
-from camcam.nc.result import MachiningResult, deviation_checks
+from camcam.nc.result import GroovePlan, MachiningResult, deviation_checks
 from camcam.nc.settings import MachiningSpec
 from camcam.nc.tools import SAME_TOOL_MM, groove_passes
 from camcam.toolpath.contours import CutContour, OffsetCurve, fit_printed
 from camcam.toolpath.elements import Line
 from camcam.toolpath.path import join_toolpaths, rotary_toolpath
+from camcam.toolpath.poses import A_AXIS_SENSE
 from camcam.toolpath.quantizer import Quantizer
-from camcam.verdict import Check
 
-__all__ = ["machine_cylindrical", "developed_printed", "printed_axes", "groove_check", "machine_frame_lines"]
+__all__ = ["machine_cylindrical", "developed_printed", "printed_axes", "machine_frame_lines", "TILT_FIT_SHARE"]
 
 #: A tilting roller axis on 4 axes (an oscillating roller): the radial tool's error e is the machine's, not the
 #: fit's, so the fit is held to this share of the tolerance.  Then a plan at tolerance T measures at most
@@ -156,49 +154,6 @@ def _corner_depth_mm(cam, r_t: float, quantizer, depth_mm: float) -> float:
     return top - quantizer.value(k)
 
 
-def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool_mm: float | None,
-                 flute_needed_mm: float | None = None) -> Check:
-    """The 3-D groove deviation held to the tolerance, with the way out of a miss (``flute_needed_mm``: the
-    flute the printed poses need, :func:`camcam.nc.reach.tool_reach`)."""
-    value, tol = groove.max_deviation_mm, m.tolerance_mm
-    holds = math.ceil(value * 1e4) / 1e4
-    r_r = cam.roller_radius
-    if cam.follower.roller_axis_tilts:
-        holds = math.ceil((value + TILT_FIT_SHARE * tol) / (1 - TILT_FIT_SHARE - SAMPLING_SHARE) * 1e4) / 1e4
-        # keys and values as a spec writes them, each with its section, so that the advice applies as it reads
-        # (issue 43: it said "a tool of the roller's diameter (D8 mm)"); the tool first: axes = 5 with another
-        # tool is refused.  On a post with no 5-axis mode "axes = 5" ends in a refusal, so the tolerance comes first
-        if m.post.five_axis:
-            advice = ("the roller axis tilts with the arm and a radial tool cannot follow it: cut it with "
-                      f"[machining] tool_diameter = {2 * r_r:g} (the roller's diameter) and [machining] axes = 5, "
-                      f"or accept a tolerance of at least {holds:g} mm")
-        else:
-            advice = (f"the roller axis tilts with the arm and a radial tool cannot follow it, and post {m.post.name} "
-                      f"has no 5-axis mode: accept a tolerance of at least {holds:g} mm, or cut it on a 5-axis "
-                      f"machine (a post with tool-centre-point control, e.g. post = \"linuxcnc\", with axes = 5 and "
-                      f"tool_diameter = {2 * r_r:g}, the roller's diameter)")
-    elif m.tool_diameter_mm < 2 * r_r - 2 * SAME_TOOL_MM:
-        # one diameter, one meaning: the smallest tool is the one whose balanced flank error holds half the
-        # tolerance (the fit has the other half); where only the roller's own diameter does, it is named once
-        least = math.ceil(smallest_tool_mm * 100.0 - 1e-9) / 100.0 if smallest_tool_mm is not None else None
-        if least is not None and least < 2 * r_r - 0.01:
-            tool = (f"use a tool from D{least:g} mm (its flank error holds half of {tol:g} mm) up to the roller's "
-                    f"diameter, D{2 * r_r:g} mm")
-        else:
-            tool = f"use a tool of the roller's diameter, D{2 * r_r:g} mm (no thinner tool holds half of {tol:g} mm)"
-        advice = f"{tool}, or accept a tolerance of at least {holds:g} mm"
-    elif flute_needed_mm is not None and m.flute_length_mm < flute_needed_mm:
-        # a value a spec takes (issue 43: "check depth and flute_length" named none)
-        flute = math.ceil(flute_needed_mm * 100 - 1e-9) / 100
-        advice = f"the flute is shorter than the cut: [machining] flute_length = {flute:g}"
-    elif m.depth_mm < cam.groove_depth - 1e-9:
-        advice = (f"the cut stops above the groove bottom: [machining] depth = {cam.groove_depth:g} (the groove "
-                  f"depth), or accept a tolerance of at least {holds:g} mm")
-    else:
-        advice = f"accept a tolerance of at least {holds:g} mm"
-    return Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(), advice)
-
-
 def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: int = 1) -> MachiningResult:
     """The 4-axis program of a cylindrical cam and its 3-D measurement (see the module notes)."""
     cam, post = built.cam, m.post
@@ -232,7 +187,7 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
         return fit_printed(curve, tol, "lines", post.quantizer, post.max_arc_sweep_deg, printed, f"{name} {label}")
 
     # the passes' fits and the smallest-tool search are independent: they share the workers (the same
-    # results as one by one, camcam.forked.parallel_map); the search is only needed for a thinner tool.
+    # results as one by one, camcam.workers.parallel_map); the search is only needed for a thinner tool.
     # The dearest first, so that the workers end together: the search, then the passes from the last (the
     # walls' finishing passes before the rough centre; cylindrical-translating-small-tool: 0.46, 0.31,
     # 0.32 and 0.18 CPU s, 0.64 s for each of two workers against 0.49 and 0.78 in plan order)
@@ -259,24 +214,14 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     # every pass opens with a comment naming it (pass 1/4: slot, groove centre, Z45.0), as a disc's do
     toolpath = dataclasses.replace(joined, comments=comments,
                                    passes=with_markers(joined.passes, [c.label for c in contours]))
-    measured = post.write_program(toolpath, name, m.setup)
-    poses = poses_from_program(measured.text, m.a_axis)
-    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers,
-                           pose_step_mm=pose_step_for(m.tolerance_mm, r_t))
-    # how deep the printed program goes, against what the walls need: the groove depth and the corner dip
+    # printed without the 3-D check: camcam.verify.job_checks measures this program and adds its result to the
+    # header (the same moves)
+    program = post.write_program(toolpath, name, m.setup)
+    # how deep the printed program has to go: the groove bottom, less the corner dip with a full-depth cut
     full = m.depth_mm >= cam.groove_depth - 1e-9
     needed = cam.bottom_radius - _corner_dip_mm(cam, r_t) if full else cam.base_radius - m.depth_mm
-    reach = tool_reach(poses, r_t, cam.base_radius, cam.bottom_radius, needed, m.flute_length_mm, post.decimals,
-                       "so that the flat end reaches the wall corner" if full else "")
-    check = groove_check(cam, m, groove, smallest, reach.flute_needed_mm)
-    # the same moves, with the check's result in the header
-    verdict = "within" if check.ok else "OUT OF TOLERANCE"
-    toolpath = dataclasses.replace(toolpath, comments=toolpath.comments + (
-        f"3-D groove check of this program: {groove.max_deviation_mm:.4f} mm, {verdict} {m.tolerance_mm:g} mm",))
-    program = post.write_program(toolpath, name, m.setup)
-    again = poses_from_program(program.text, m.a_axis)
-    if not (np.array_equal(again.tip_mm, poses.tip_mm) and np.array_equal(again.a_deg, poses.a_deg)):
-        raise PostError("the program's moves changed with its header comment")
+    plan = GroovePlan(axes=4, reach_radius_mm=needed,
+                      reach_why="so that the flat end reaches the wall corner" if full else "")
     notes = (f"4-axis: X along the cam axis, A = {'+' if turn > 0 else '-'}cam angle (deg), developed at R{rho_d:g} mm",)
     if m.mode == "arcs":
         notes += ("mode arcs: a 4-axis G1 X A program has lines only",)
@@ -286,7 +231,6 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     if flank_err > 0:
         notes += (f"4-axis: flank passes balanced over the depth; first-order flank error {flank_err:.4f} mm"
                   + (f", smallest tool holding half the tolerance D{smallest:.2f} mm" if smallest else ""),)
-    checks = deviation_checks(contours, m.tolerance_mm) + (check, reach.check())
     return MachiningResult(name, built.spec.kind, cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, "lines",
-                           tuple(contours), toolpath, program, rho_d, notes, checks, groove=groove,
-                           smallest_tool_mm=smallest, reach=reach)
+                           tuple(contours), toolpath, program, rho_d, notes,
+                           deviation_checks(contours, m.tolerance_mm), smallest_tool_mm=smallest, groove_plan=plan)

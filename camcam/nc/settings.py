@@ -88,9 +88,11 @@ class PostDialect(Protocol):
     name: str
     max_arc_sweep_deg: float
     inverse_time: bool
-    dialect: str  # "gcode" or "heidenhain" (5-axis: Klartext prints the tip feed, not inverse time)
     five_axis: bool  # has tool-centre-point control (5-axis programs)
-    tcp_on: tuple[str, ...]  # the blocks that switch it on (header comment of a 5-axis program)
+    five_axis_feed_note: str  # what the F word of a 5-axis move means (header comment of a 5-axis program)
+
+    def tcp_comment(self, tool_number: int) -> str:
+        """The blocks that switch tool-centre-point control on (header comment of a 5-axis program)."""
 
     @property
     def quantizer(self) -> Quantizer:

@@ -5,7 +5,7 @@ gives the same bytes.  After the post's header come the generator line
 (camcam's version and the spec's file name, no date), the work offset, the
 tool length offset and coolant on (:class:`~camcam.nc.settings.ProgramSetup`);
 coolant off precedes the footer.  The writer times every move it prints
-(:mod:`camcam.nc.timing`).  Arcs print X/Y and I/J (incremental or absolute) or R,
+(:mod:`camcam.post.timing`).  Arcs print X/Y and I/J (incremental or absolute) or R,
 or Heidenhain's CC/C pair.  A 4-axis path (``rotary``) is printed in inverse
 time (G93): every feed move carries F = feed / move length (1/min).  A 5-axis
 path (``five_axis``: X Y Z = tool tip, A, B) sits between the post's
@@ -23,7 +23,7 @@ from camcam.errors import InputError, PostError
 from camcam.nc.result import Program
 from camcam import __version__
 from camcam.nc.settings import ProgramSetup
-from camcam.nc.timing import MoveTimer
+from camcam.post.timing import MoveTimer
 from camcam.post.template import parse_template
 from camcam.post.text import encode_comment
 from camcam.toolpath.arcsweep import printed_sweep_rad

@@ -73,7 +73,7 @@ from camcam.post.gcode import write_program
 from camcam.toolpath.path import Toolpath
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["Post", "load_post", "known_posts", "parse_post", "MAX_POST_BYTES", "MAX_LINE_NUMBER",
+__all__ = ["Post", "load_post", "known_posts", "five_axis_posts", "parse_post", "MAX_POST_BYTES", "MAX_LINE_NUMBER",
            "MAX_PROGRAM_NUMBER", "METRIC_UNITS", "WORK_OFFSETS"]
 
 _ARC_FORMATS = {"gcode": ("ij_incremental", "ij_absolute", "r"), "heidenhain": ("cc_absolute",)}
@@ -152,6 +152,33 @@ class Post:
         """The word switching ``coolant`` ("flood", "mist", "off") on; ``""`` when the controller has none."""
         return {"flood": self.coolant_flood, "mist": self.coolant_mist, "off": self.coolant_off}[coolant]
 
+    def length_offset_text(self, tool: int) -> str:
+        """How the program applies the tool length (the setup sheet's line): ``H3 (G43)``, ``D1``, the tool
+        call, or nothing (GRBL)."""
+        lines = self.header + ((self.tool_length_offset,) if self.tool_length_offset else ())
+        for line in lines:
+            if "G43" in line and "{tool" in line:
+                return f"H{line.split('H', 1)[1].format(tool=tool)} (G43 in the program)"
+        if self.dialect == "heidenhain":
+            return f"from the tool table (TOOL CALL {tool})"
+        for line in lines:
+            if "D1" in line:
+                return "D1 with the tool call (tool table)"
+        return "none: the controller has no tool table; set Z0 on the top face with this tool"
+
+    def tcp_comment(self, tool_number: int) -> str:
+        """The blocks that switch tool-centre-point control on, as a 5-axis program's header names them
+        (``{tool}`` filled in), or where the machine's kinematics do it without a block."""
+        tcp = "; ".join(self.tcp_on) or "in the machine's kinematics"
+        return tcp.replace("{tool}", str(tool_number)).replace("{tool:02d}", f"{tool_number:02d}")
+
+    @property
+    def five_axis_feed_note(self) -> str:
+        """What the F word of this dialect's 5-axis moves means (a header comment of the program)."""
+        if self.dialect == "heidenhain":
+            return "F = tool-tip feed in mm/min (M128)"
+        return "G93 inverse time: F = 1 / block time, the tool tip's path in the part at the feed"
+
     @property
     def quantizer(self) -> Quantizer:
         """The printed rounding of this post (decimals and arc format): the one model of what it prints."""
@@ -170,6 +197,11 @@ def _post_dir():
 def known_posts() -> list[str]:
     """Names of the bundled posts."""
     return sorted(p.name[:-5] for p in _post_dir().iterdir() if p.name.endswith(".toml"))
+
+
+def five_axis_posts() -> list[str]:
+    """The bundled posts with a 5-axis mode (tool-centre-point control), by name."""
+    return [name for name in known_posts() if load_post(name).five_axis]
 
 
 def parse_post(data: dict, name: str) -> Post:

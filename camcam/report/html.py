@@ -11,7 +11,7 @@ import html
 from dataclasses import dataclass
 from typing import Sequence, Union
 
-from camcam.forked import Pending, resolve
+from camcam.workers import Pending, resolve
 from camcam.verdict import Verdict
 
 __all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Code", "VerdictBlock", "Section", "render_html"]

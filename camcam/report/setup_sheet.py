@@ -14,25 +14,10 @@ import numpy as np
 
 from camcam.geometry.followers import follower_kind
 from camcam.nc.result import MachiningResult
-from camcam.nc.reach import flute_text
-from camcam.post.post import Post
+from camcam.verify.reach import flute_text
 from camcam.report.html import DataTable, KeyValues
 
-__all__ = ["setup_blocks", "length_offset_text"]
-
-
-def length_offset_text(post: Post, tool: int) -> str:
-    """How the program applies the tool length: ``H3 (G43)``, ``D1``, the tool call, or nothing (GRBL)."""
-    lines = post.header + ((post.tool_length_offset,) if post.tool_length_offset else ())
-    for line in lines:
-        if "G43" in line and "{tool" in line:
-            return f"H{line.split('H', 1)[1].format(tool=tool)} (G43 in the program)"
-    if post.dialect == "heidenhain":
-        return f"from the tool table (TOOL CALL {tool})"
-    for line in lines:
-        if "D1" in line:
-            return "D1 with the tool call (tool table)"
-    return "none: the controller has no tool table; set Z0 on the top face with this tool"
+__all__ = ["setup_blocks"]
 
 
 def _blank_and_zero(built, r: MachiningResult) -> list[tuple[str, str]]:
@@ -85,7 +70,7 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
         ("tool", f"T{tool}, Ø{r.tool_diameter_mm:g} mm flat end mill, "
                  + (flute_text(r.reach) if r.reach is not None
                     else f"flute length ≥ {depth:g} mm (deepest pass {depth:g} mm below the top)")),
-        ("tool length offset", length_offset_text(post, tool)),
+        ("tool length offset", post.length_offset_text(tool)),
         ("spindle", f"{spindle_rpm:g} rev/min clockwise"),
         ("coolant", f"{setup.coolant} ({post.coolant_word(setup.coolant)} on, {post.coolant_off} off)"),
         ("cycle time (estimate)", f"{r.program.cycle_time.describe()}; rapids at {post.rapid_mm_min:g} mm/min, "

@@ -35,7 +35,7 @@ from pathlib import Path
 from camcam.errors import InputError, SpecError
 from camcam.geometry.followers import follower_kind as follower_class
 from camcam.nc.settings import COOLANTS, WORK_OFFSETS, MachiningSpec, ProgramSetup
-from camcam.post.post import load_post
+from camcam.post.post import five_axis_posts, load_post
 from camcam.spec.reader import Table
 from camcam.toolpath.budget import DEFAULT_BUDGET
 
@@ -152,7 +152,7 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
                 f"so B would stay 0), got {axes}")
     if axes == 5:
         t.check("post", post.five_axis, f"post {post.name} has no 5-axis mode (tool-centre-point control); "
-                f"use a post with one (linuxcnc, fanuc, haas, sinumerik, heidenhain) or axes = 4")
+                f"use a post with one ({', '.join(five_axis_posts())}) or axes = 4")
     stepover = t.number("stepover", 0.4, minimum=0.0, maximum=1.0, inclusive=False)
     ramp = t.number("ramp_angle", 3.0, minimum=0.0, maximum=45.0, inclusive=False, unit="deg")
     bore = t.boolean("bore", False)

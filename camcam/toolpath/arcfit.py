@@ -33,7 +33,7 @@ from typing import Callable
 import numpy as np
 
 from camcam.errors import FitError, InputError
-from camcam.forked import parallel_map
+from camcam.workers import parallel_map
 from camcam.geometry.curve import PlanarCurve, curvature, speed
 from camcam.toolpath.arcspline import fit_arc_spline, g1_sections
 from camcam.toolpath.arcsweep import parts_within

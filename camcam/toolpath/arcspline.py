@@ -221,7 +221,7 @@ from dataclasses import replace
 import numpy as np
 
 from camcam.errors import FitError
-from camcam.forked import parallel_map
+from camcam.workers import parallel_map
 from camcam.toolpath.arcbatch import unit_rows
 from camcam.toolpath.arcclose import quiet_stretches
 from camcam.toolpath.arcpolish import fewer_arcs
@@ -289,7 +289,7 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
         The search's sizes, start shifts and goal.
     workers : int
         Processes the further starts of a closed section are marched in, that
-        many at a time (:func:`camcam.forked.parallel_map`); taken in the same
+        many at a time (:func:`camcam.workers.parallel_map`); taken in the same
         order as one by one, so the spline is the same for any count.
     lower_bound : float, optional
         N_lb of the section at ``tolerance_mm``, from the exact curve: the
@@ -363,7 +363,7 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
 
     # the first start (most contours meet the goal there); then its spline optimised with the goal's count of
     # arcs (camcam.toolpath.arcpolish: a few LP solves instead of the further starts' whole marches); then,
-    # only if that finds nothing, rounds of ``workers`` further starts at once (camcam.forked.parallel_map),
+    # only if that finds nothing, rounds of ``workers`` further starts at once (camcam.workers.parallel_map),
     # taken in the same order as one after the other: the same spline for any count of workers.  (Until
     # 2026-12-06 the second start was marched beside the first in a spare child of lower priority; with the
     # optimised chain it was never needed on the 40 cases of run_nc.py --arcs, and its CPU cost the run

@@ -14,7 +14,7 @@ fit                    what is left: the band the arc spline or chords may use
 =====================  ===========================================================
 
 One more share is not spent on the fit but on measuring it: ``polygon_share``.
-The material-removal check (:mod:`camcam.nc.removal`) holds the part, the
+The material-removal check (:mod:`camcam.verify.removal`) holds the part, the
 flanks, the blank and the bore as polygons (:func:`camcam.nc.stock.curve_polygon`),
 whose chords lie off the exact curves; every such measuring polygon chooses its
 vertices so that its chord error stays within ``polygon_share``·δ, whatever the

@@ -51,7 +51,7 @@ class CutContour:
     between the two.  ``offset_mm`` is the tool centre's distance from the
     surface the pass finishes (the tool radius; for a groove centre pass the
     roller radius from each flank).  A barrel cam's cut is measured in 3-D
-    by :mod:`camcam.nc.groove3d`, not here.
+    by :mod:`camcam.verify.groove3d`, not here.
     """
 
     label: str

@@ -9,7 +9,7 @@ itself rounded: 292.66865 lies just above the half-way point, yet
 
 Arcs print their centre as I/J (rounded centre) or as R (rounded radius; the
 controller rebuilds the centre from the rounded ends, short-arc side) or as
-Heidenhain's CC (rounded absolute centre): :meth:`Quantizer.printed_elements`
+an absolute centre, rounded (arc_format "cc_absolute"): :meth:`Quantizer.printed_elements`
 rebuilds the contour the controller will cut from those numbers.
 
 Examples

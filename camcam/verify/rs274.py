@@ -20,9 +20,13 @@ import subprocess
 from dataclasses import dataclass
 from pathlib import Path
 
-from camcam.toolpath.elements import Arc, Line
+import numpy as np
 
-__all__ = ["CanonMove", "rs274_available", "run_rs274", "feed_passes", "print_margin_mm", "tcp_readable"]
+from camcam.toolpath.elements import Arc, Line
+from camcam.toolpath.poses import ToolPoses
+
+__all__ = ["CanonMove", "rs274_available", "run_rs274", "feed_passes", "print_margin_mm", "tcp_readable",
+           "poses_from_canon"]
 
 _MOVE = re.compile(r"\b(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED|SELECT_PLANE|COMMENT)\((.*)\)\s*$")
 
@@ -159,3 +163,14 @@ def feed_passes(moves: list[CanonMove]) -> list[tuple[float, list]]:
     if cur:
         out.append((cur_z, cur))
     return out
+
+
+def poses_from_canon(moves, a_axis: str = "right-hand") -> ToolPoses:
+    """Tool poses from rs274's canonical moves (:func:`camcam.verify.rs274.run_rs274`)."""
+    rows = []
+    for m in moves:
+        if m.kind == "arc":
+            raise ValueError("arc move in an interpreted barrel-cam program")
+        rows.append((m.x, m.y, m.z, m.a, float(getattr(m, "b", 0.0))))
+    arr = np.array(rows)
+    return ToolPoses(arr[:, :3], arr[:, 3], arr[:, 4], a_axis)

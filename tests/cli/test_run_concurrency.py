@@ -36,7 +36,7 @@ def _loaded_after_run(spec: Path, out: Path) -> dict:
 def test_the_fitting_process_imports_no_plot_or_export_library(tmp_path):
     result = _loaded_after_run(SAMPLE, tmp_path / "out")
     # matplotlib is imported by the plot server, ezdxf, trimesh and scipy by the drawing's prepared child,
-    # which also makes the mesh and forks the material check (camcam.forked): the process that fits the
+    # which also makes the mesh and forks the material check (camcam.workers): the process that fits the
     # NC path measures its deviations with shapely's STRtree, and imports no scipy at all
     assert result == {"rc": 0, "loaded": []}
     assert {p.name for p in (tmp_path / "out").iterdir()} >= {
@@ -55,7 +55,7 @@ def test_a_barrel_job_with_the_rollers_tool_imports_no_scipy(tmp_path):
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork: every run is in process already")
 def test_children_give_the_in_process_bytes(tmp_path, monkeypatch, capsys):
     assert main(["run", str(SAMPLE), "-o", str(tmp_path / "forked")]) == 0
-    monkeypatch.delattr(os, "fork")  # camcam.forked then runs every job at once, in process
+    monkeypatch.delattr(os, "fork")  # camcam.workers then runs every job at once, in process
     assert main(["run", str(SAMPLE), "-o", str(tmp_path / "inline")]) == 0
     forked = {p.name: p.read_bytes() for p in (tmp_path / "forked").iterdir()}
     inline = {p.name: p.read_bytes() for p in (tmp_path / "inline").iterdir()}

@@ -11,7 +11,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from camcam.export.figures import clean, fixed
-from camcam.nc.rotary import groove_check
+from camcam.verify.groove_checks import groove_check
 from camcam.report.inspection import InspectionTable
 from tests.cli.test_exit_status import cli
 

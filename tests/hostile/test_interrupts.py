@@ -66,7 +66,7 @@ def test_interrupt_before_anything_is_written(tmp_path, monkeypatch):
 @pytest.mark.parametrize("command,module", [
     ("motion", "camcam.cli.motion"),   # the command's module, loaded while the parser is built
     ("motion", "camcam.spec.motion"),  # loaded inside the command
-    ("motion", "matplotlib.figure"),   # loaded by the child process that draws the plot (camcam.forked)
+    ("motion", "matplotlib.figure"),   # loaded by the child process that draws the plot (camcam.workers)
     ("run", "shapely"),                # loaded inside the command, by the NC stage
     ("run", "trimesh.path"),           # in the model child, swallowed by trimesh's own ``except BaseException``
 ])

@@ -10,7 +10,7 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
-from camcam.nc.job import machine
+from camcam.verify import checked
 from camcam.post.post import load_post
 from camcam.post.text import encode_comment
 from camcam.report.setup_sheet import setup_blocks
@@ -136,7 +136,7 @@ def test_cut_depth_and_flute_length_are_the_programs(sample):
 def test_a_deeper_stated_depth_warns_with_the_programs_depth():
     spec, built, _ = _job("cylindrical-translating")
     m = replace(spec.machining, depth_mm=11.0, stepdown_mm=5.5)
-    result = machine(built, m, "deeper")
+    result = checked(built, m, "deeper")
     check = {c.name: c for c in result.checks}["cut depth"]
     assert not check.ok and check.severity == "warn"
     assert check.value == pytest.approx(11.296, abs=1e-9)  # 11 mm + the 0.296 mm corner dip, as printed
@@ -195,7 +195,7 @@ def test_cycle_time_is_what_the_controller_does(canon, sample, tmp_path):
 def test_heidenhain_five_axis_time_is_the_tip_path_over_its_feed():
     # Klartext under M128: F is the tool tip's feed in mm/min along its path in the part (no inverse time)
     spec, built, _ = _job("cylindrical-oscillating")
-    result = machine(built, replace(spec.machining, post=load_post("heidenhain")), "hh")
+    result = checked(built, replace(spec.machining, post=load_post("heidenhain")), "hh")
     pos, minutes, path = dict(X=0.0, Y=0.0, Z=0.0, A=0.0, B=0.0), 0.0, 0.0
     for line in result.program.text.splitlines():
         words = line.split()

@@ -22,7 +22,7 @@ from hypothesis import strategies as st
 from camcam.errors import GeometryError, SpecError
 from camcam.geometry.build import build_cam
 from camcam.nc.fiveaxis import ToolPose, part_pose, tip_lengths
-from camcam.nc.job import machine
+from camcam.verify import checked
 from camcam.post.post import load_post
 from camcam.spec import load_spec
 from camcam.verify.rs274 import rs274_available, run_rs274, tcp_readable
@@ -42,7 +42,7 @@ def job(post: str = "linuxcnc", rotation: str = "ccw", a_axis: str = "right-hand
     cam_spec = replace(spec.cam, rotation=rotation)
     built = build_cam(cam_spec, spec.follower, spec.motion.program(spec.unit))
     m = replace(spec.machining, post=load_post(post), a_axis=a_axis, axes=axes)
-    return built, m, machine(built, m, spec.name)
+    return built, m, checked(built, m, spec.name)
 
 
 def groove_deviation(built, moves, a_axis="right-hand", n_theta=240, radii=3):
@@ -190,7 +190,7 @@ def test_axes_4_still_possible():
 def test_smaller_tool_refused_with_five_axes():
     built, m, _ = job()
     with pytest.raises(GeometryError, match="roller's diameter"):
-        machine(built, replace(m, tool_diameter_mm=20.0), "c")
+        checked(built, replace(m, tool_diameter_mm=20.0), "c")
 
 
 def test_axes_5_refused_for_translating_roller(tmp_path):
@@ -226,7 +226,7 @@ DATA = ROOT / "tests" / "nc" / "data"
 def spec_job(path: Path):
     spec = load_spec(path)
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
-    return built, spec.machining, machine(built, spec.machining, spec.name)
+    return built, spec.machining, checked(built, spec.machining, spec.name)
 
 
 def read_back(r, m, tmp_path) -> list:
@@ -258,7 +258,7 @@ def test_return_to_machine_home_is_no_cut_at_the_seam(key, tmp_path):
 
 @pytest.mark.parametrize("footer", ["G91 G28 Z0.", "G53 G00 Z0.", "G28 G91 Z0"])
 def test_pose_reader_leaves_the_work_frame_at_a_return_home(footer):
-    from camcam.nc.toolposes import poses_from_program
+    from camcam.post.readback import poses_from_program
     text = f"G90 G0 X5 Y0 Z90 A0 B0\nG1 Z60 F9\nG1 X8 A90 B-12\nG0 Z90\nG0 B0\nM5\n{footer}\nM30\n"
     p = poses_from_program(text)
     assert p.tip_mm[:, 2].min() == 60.0  # the retract goes up machine Z, never to work Z0

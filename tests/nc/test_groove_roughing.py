@@ -14,7 +14,7 @@ import pytest
 
 from camcam.geometry.build import build_cam
 from camcam.geometry.curve import FunctionCurve
-from camcam.nc.job import machine
+from camcam.verify import checked
 from camcam.nc.roughing import RING_STEP_FRACTION, band_width, groove_rings
 from camcam.report.setup_sheet import setup_blocks
 from camcam.spec import load_spec
@@ -29,7 +29,7 @@ def _built(spec):
 @pytest.fixture(scope="module")
 def case():
     spec = load_spec(SPEC)
-    return spec, machine(_built(spec), spec.machining, spec.name, spec.stock, workers=2)
+    return spec, checked(_built(spec), spec.machining, spec.name, spec.stock, workers=2)
 
 
 def test_campaign_case_140_holds_the_stepover(case):

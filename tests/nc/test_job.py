@@ -13,7 +13,7 @@ from camcam.geometry.build import build_cam
 from camcam.spec import load_spec
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Line
-from camcam.nc import machine
+from camcam.verify import checked
 from camcam.verify.rs274 import feed_passes, print_margin_mm, rs274_available, run_rs274
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -33,7 +33,7 @@ def _path(sample: str) -> Path:
 def built_and_result(sample: str):
     spec = load_spec(_path(sample))
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
-    return spec, built, machine(built, spec.machining, spec.name, spec.stock)
+    return spec, built, checked(built, spec.machining, spec.name, spec.stock)
 
 
 def _interpreted_disc(result, moves):
@@ -92,7 +92,7 @@ def test_sample_program_through_rs274(tmp_path, sample):
 @pytest.mark.parametrize("sample", ["disc-groove", "cylindrical-oscillating"])
 def test_same_spec_same_bytes(sample):
     spec, built, result = built_and_result(sample)
-    again = machine(built, spec.machining, spec.name)
+    again = checked(built, spec.machining, spec.name)
     assert nc_files(built, again) == nc_files(built, result)
 
 
@@ -127,19 +127,19 @@ def _with_tool(sample, diameter):
 def test_tool_wider_than_groove_fails():
     built, m = _with_tool("disc-groove", 22.0)
     with pytest.raises(GeometryError, match="wider than the groove"):
-        machine(built, m, "g")
+        checked(built, m, "g")
 
 
 def test_tool_wider_than_cylindrical_groove_fails():
     built, m = _with_tool("cylindrical-oscillating", 31.0)
     with pytest.raises(GeometryError, match="wider than the groove"):
-        machine(built, m, "c")
+        checked(built, m, "c")
 
 
 def test_tool_too_small_for_groove_fails():
     built, m = _with_tool("disc-groove", 6.0)
     with pytest.raises(GeometryError, match="below a third"):
-        machine(built, m, "g")
+        checked(built, m, "g")
 
 
 def test_tool_larger_than_concave_radius_fails():
@@ -157,7 +157,7 @@ def test_tool_larger_than_concave_radius_fails():
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
     assert built.analysis.profile.min_concave_radius is not None
     with pytest.raises(GeometryError, match="smallest concave radius is 82.661 mm"):
-        machine(built, spec.machining, "d")
+        checked(built, spec.machining, "d")
 
 
 def test_roughing_spiral_made_beside_the_fit_is_the_same_program():

@@ -9,9 +9,11 @@ import numpy as np
 import pytest
 
 from camcam.geometry.build import build_cam
-from camcam.nc.toolposes import CylinderTool, poses_from_canon, poses_from_program
-from camcam.nc.groove3d import measure_groove
-from camcam.nc.job import machine
+from camcam.post.readback import poses_from_program
+from camcam.toolpath.poses import CylinderTool
+from camcam.verify.rs274 import poses_from_canon
+from camcam.verify.groove3d import measure_groove
+from camcam.verify import checked
 from camcam.spec import load_spec
 from camcam.verify.rs274 import rs274_available, run_rs274
 
@@ -26,7 +28,7 @@ def job(sample: str, rotation: str = "ccw", a_axis: str = "right-hand", tool_mm:
     m = replace(spec.machining, a_axis=a_axis, axes=4)  # this module is the 4-axis job
     if tool_mm is not None:
         m = replace(m, tool_diameter_mm=tool_mm)
-    return built, m, machine(built, m, spec.name)
+    return built, m, checked(built, m, spec.name)
 
 
 def test_roller_sized_tool_is_exact_at_every_radius():
@@ -132,12 +134,12 @@ def test_fine_tolerance_samples_the_motion_finer():
     """At 0.002 mm the 0.1 mm pose step's sampling bound (0.1² / (8 · 8) = 1.6e-4 mm) would take 8 % of the
     tolerance; the step shrinks so that it takes at most 2 % (as the 2-D measurement's margin), and the figure
     held to the tolerance includes it."""
-    from camcam.nc.groove3d import SAMPLING_SHARE, pose_step_for
+    from camcam.verify.groove3d import SAMPLING_SHARE, pose_step_for
 
     spec = load_spec(ROOT / "samples" / "cylindrical-translating.toml")
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
     m = replace(spec.machining, axes=4, tolerance_mm=0.002)
-    g = machine(built, m, spec.name).groove
+    g = checked(built, m, spec.name).groove
     assert g.pose_step_mm == pose_step_for(0.002, 8.0) == pytest.approx(math.sqrt(8 * 8.0 * 0.02 * 0.002), rel=1e-12)
     assert g.sampling_bound_mm <= SAMPLING_SHARE * m.tolerance_mm * (1 + 1e-12)  # h²/(8 r) at that step
     assert g.max_deviation_mm == g.measured_mm + g.sampling_bound_mm
@@ -155,7 +157,7 @@ def test_a_barrel_at_r1000_is_cut_and_measured_to_its_groove_bottom():
     cam_spec = replace(spec.cam, base_radius=1000.0)
     built = build_cam(cam_spec, spec.follower, spec.motion.program(spec.unit))
     m = spec.machining
-    r = machine(built, m, spec.name)
+    r = checked(built, m, spec.name)
     g = r.groove
     assert g.uncut_points == 0
     assert g.max_deviation_mm <= m.tolerance_mm, g.where()

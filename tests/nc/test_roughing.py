@@ -10,11 +10,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from camcam.errors import SpecError
-from camcam.nc.job import machine
+from camcam.verify import checked
 from camcam.nc.roughing import ROUGH_FIT_MM, cut_cyclic, polyline_elements
 from camcam.spec.stock import StockSpec
 from camcam.toolpath.elements import Arc, element_distance
-from camcam.nc.removal import check_moves, design_keep
+from camcam.verify.removal import check_moves, design_keep
 from camcam.verify.rs274 import print_margin_mm, rs274_available, run_rs274
 
 from tests.nc.test_job import built_and_result
@@ -73,27 +73,27 @@ def _variant(sample, **machining):
 def test_blank_smaller_than_the_cam_is_refused():
     spec, built, m = _variant("disc-translating-roller")
     with pytest.raises(SpecError, match=r"^stock.diameter: 110 mm is smaller than the cam: its largest radius is 59.928"):
-        machine(built, m, "small", StockSpec("round", 110.0, None, 0.0, True))
+        checked(built, m, "small", StockSpec("round", 110.0, None, 0.0, True))
 
 
 def test_bore_larger_than_base_minus_roller_is_refused():
     spec, built, m = _variant("disc-translating-roller")
     big = replace(built, spec=replace(built.spec, bore=62.0))  # radius 31 > 40 − 10
     with pytest.raises(SpecError, match=r"^cam.bore: Ø62 mm is larger than the base circle minus the roller"):
-        machine(big, m, "bore", spec.stock)
+        checked(big, m, "bore", spec.stock)
 
 
 def test_helical_bore_tool_must_fit():
     spec, built, m = _variant("disc-translating-roller", bore=True)
     with pytest.raises(SpecError, match=r"^machining.bore: the tool Ø16 mm does not fit the bore Ø12 mm"):
-        machine(built, m, "bore", spec.stock)
+        checked(built, m, "bore", spec.stock)
 
 
 def test_offset_blank_face_stock_and_helical_bore():
     """A pre-profiled blank with face stock and a Ø30 bore cut by the Ø16 tool: all checks hold, the bore too."""
     spec, built, m = _variant("disc-translating-roller", bore=True)
     bored = replace(built, spec=replace(built.spec, bore=30.0))
-    r = machine(bored, m, "offset", StockSpec("offset", None, 6.0, 0.5, True))
+    r = checked(bored, m, "offset", StockSpec("offset", None, 6.0, 0.5, True))
     rem = r.removal
     assert [p.kind for p in r.passes] == ["rough", "rough", "finish", "spring", "bore"]
     assert rem.plunges == 0 and rem.rapid_touches == 0
@@ -133,7 +133,7 @@ def test_cut_cyclic_length(s0, run):
 def test_narrow_groove_tool_roughs_between_centre_and_flanks():
     """A Ø8 tool in the 20 mm groove: centre slot, rough offsets at 2 and 4 mm, flanks at 6 mm from the centre."""
     spec, built, m = _variant("disc-groove", tool_diameter_mm=8.0)
-    r = machine(built, m, "narrow", spec.stock)
+    r = checked(built, m, "narrow", spec.stock)
     assert [c.label for c in r.contours] == ["groove centre (rough)", "groove rough inner 1", "groove rough inner 2",
                                              "groove rough outer 1", "groove rough outer 2", "inner flank",
                                              "outer flank"]

@@ -10,11 +10,11 @@ import pytest
 import shapely
 
 from camcam.geometry.build import build_cam
-from camcam.nc.job import machine
-from camcam.nc.removal import RemovalReport
+from camcam.verify import checked
+from camcam.verify.removal import RemovalReport
 from camcam.nc.roughing import disc_spiral
 from camcam.nc.stock import blank_for
-from camcam.nc.sweep import Move, sweep_slabs
+from camcam.verify.swept import Move, sweep_slabs
 from camcam.report.setup_sheet import setup_blocks
 from camcam.spec import load_spec
 from camcam.toolpath.elements import Line
@@ -28,7 +28,7 @@ def _built(spec):
 
 def spiral_engagement(spec, stepover=None):
     """(largest engagement of the roughing spiral alone against the blank, the limit, turns): the check's sweep
-    (camcam.nc.sweep) over the spiral's own moves at one level."""
+    (camcam.verify.swept) over the spiral's own moves at one level."""
     m = spec.machining if stepover is None else replace(spec.machining, stepover=stepover)
     built = _built(spec)
     blank = blank_for(built, spec.stock, m.tool_diameter_mm, m.bore)
@@ -47,7 +47,7 @@ def spiral_engagement(spec, stepover=None):
 
 def test_concave_notch_program_holds_the_stepover():
     spec = load_spec(NOTCH)
-    result = machine(_built(spec), spec.machining, spec.name, spec.stock)
+    result = checked(_built(spec), spec.machining, spec.name, spec.stock)
     r = result.removal
     assert r.max_engagement_mm <= r.stepover_mm  # was 7.28 mm of 6.4 (exit 3)
     assert all(c.ok for c in result.checks)

@@ -138,13 +138,13 @@ def test_the_chain_finds_the_count_the_starts_needed_twelve_marches_for():
     from pathlib import Path
 
     from camcam.geometry.build import build_cam
-    from camcam.nc import machine
+    from camcam.verify import checked
     from camcam.spec import load_spec
 
     root = Path(__file__).resolve().parents[2]
     spec = load_spec(root / "samples" / "disc-oscillating-roller.toml")
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
-    r = machine(built, replace(spec.machining, tolerance_mm=0.001, mode="arcs"), "osc")
+    r = checked(built, replace(spec.machining, tolerance_mm=0.001, mode="arcs"), "osc")
     (c,) = r.contours
     assert c.fit.arc_blocks + c.fit.line_blocks == 34, (c.fit.arc_blocks, c.fit.line_blocks)
     assert c.fit.arc_blocks + c.fit.line_blocks <= 1.2 * c.lower_bound + 4  # issue 13's bound on the exact N_lb

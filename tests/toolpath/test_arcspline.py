@@ -186,7 +186,7 @@ def test_random_ellipses_bound_and_guarantee(a, b, tol):
 
 
 def test_default_sample_tool_centre_curve():
-    from camcam.nc.job import machine
+    from camcam.verify import checked
     from camcam.spec import load_spec
     from camcam.geometry.build import build_cam
     from dataclasses import replace
@@ -194,7 +194,7 @@ def test_default_sample_tool_centre_curve():
     spec = load_spec(ROOT / "samples" / "disc-translating-roller.toml")
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
     for tol in (0.01, 0.001):
-        r = machine(built, replace(spec.machining, tolerance_mm=tol, mode="arcs"), "t")
+        r = checked(built, replace(spec.machining, tolerance_mm=tol, mode="arcs"), "t")
         c = r.contours[0]
         n = c.fit.arc_blocks + c.fit.line_blocks
         # issue 13: 20 arcs at 0.01 and 40 at 0.001 before (N_lb 11.0 and 23.7); 16 and 33 with the beam march
@@ -295,13 +295,13 @@ def test_further_starts_in_two_processes_give_the_same_spline():
 
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="without fork the further starts are marched in process")
 def test_the_further_starts_in_two_processes_give_the_same_spline():
-    """With two workers the further starts are marched two at a time (camcam.forked.parallel_map): the same
+    """With two workers the further starts are marched two at a time (camcam.workers.parallel_map): the same
     spline as with one worker, for a goal the first start meets, one only the second meets, and one none
     meets; no child is left behind."""
     import dataclasses
 
     from camcam.toolpath.arcspline import SplineBudget
-    from tests.test_forked import _children
+    from tests.test_workers import _children
 
     curve = polar_cam()
     q = Quantizer(4)

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from camcam.geometry.build import build_cam
 from camcam.nc.stock import blank_for
 from camcam.spec import load_spec
-from camcam.nc.removal import check_moves, check_program
+from camcam.verify.removal import check_moves, check_program
 from camcam.verify.rs274 import CanonMove
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -116,18 +116,18 @@ def test_todays_program_plunges_into_the_blank():
 def test_skipping_far_moves_changes_no_figure(monkeypatch):
     """The check samples densely only the moves that come near the part; every figure must be what
     sampling every move densely gives (the default sample's program, where 88 of 156 moves are far)."""
-    import camcam.nc.removal as removal
-    from camcam.nc import machine
+    import camcam.verify.removal as removal
+    from camcam.verify import checked
 
     spec = load_spec(ROOT / "samples" / "disc-translating-roller.toml")
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
     m = spec.machining
-    result = machine(built, m, spec.name, spec.stock)
+    result = checked(built, m, spec.name, spec.stock)
     skipped = check_program(result.program.text, m.post, result.blank, m, built)
     far = removal._far_moves
     seen = []
     # the finished-surface figures, where the skip happens, run in-process here so the counter sees them
-    monkeypatch.setattr("camcam.forked.later", lambda fn, *a, **k: fn(*a, **k))
+    monkeypatch.setattr("camcam.workers.later", lambda fn, *a, **k: fn(*a, **k))
     monkeypatch.setattr(removal, "_far_moves", lambda moves, *a: seen.append(sum(far(moves, *a))) or
                         [False] * len(moves))
     dense = check_program(result.program.text, m.post, result.blank, m, built)
@@ -153,8 +153,8 @@ def test_roughing_that_never_comes_near_is_measured_exactly():
 def test_a_failing_removal_stops_the_finishing_child(monkeypatch):
     """The finished-surface figures run in a child beside the move-by-move removal; if the removal fails,
     that child is killed and reaped, not left running."""
-    import camcam.nc.removal as removal
-    from tests.test_forked import _children
+    import camcam.verify.removal as removal
+    from tests.test_workers import _children
 
     def broken(*args, **kw):
         raise ZeroDivisionError("a bug in the removal")
@@ -204,7 +204,7 @@ def test_groove_at_a_fine_tolerance_is_not_failed_by_polygon_slivers(tmp_path, m
     from dataclasses import replace
 
     from camcam.nc import machine_program
-    import camcam.nc.removal as removal
+    import camcam.verify.removal as removal
     from camcam.verify.rs274 import run_rs274
 
     spec = load_spec(ROOT / "samples" / "disc-groove.toml")
@@ -231,7 +231,7 @@ def test_groove_at_a_fine_tolerance_is_not_failed_by_polygon_slivers(tmp_path, m
 def _first_uncut_one_by_one(pieces, pts, owner, dist, left, centres, r_t):
     """The search as check_moves made it before 2026-12-06 (the oracle): the pieces farthest first, each
     probed on its own (its vertices, then a point inside), the first with an uncut probe counting."""
-    from camcam.nc.removal import _uncut
+    from camcam.verify.removal import _uncut
 
     top = np.full(len(pieces), -np.inf)
     np.maximum.at(top, owner, dist)
@@ -253,7 +253,7 @@ def _first_uncut_one_by_one(pieces, pts, owner, dist, left, centres, r_t):
 def test_first_uncut_piece_is_the_piece_by_piece_search(seed, n_pieces, n_centres, left):
     """A slab's leftover pieces (small polygons, some under tool discs, some not, ties in reach among them)
     give the same counting piece and vertex as probing them one by one."""
-    from camcam.nc.removal import _first_uncut, _tree
+    from camcam.verify.removal import _first_uncut, _tree
     from camcam.nc.roughing import polygon_distance
 
     rng = np.random.default_rng(seed)
@@ -276,7 +276,7 @@ def test_measuring_polygons_hold_their_share_at_5_m_radius(tmp_path):
     rise and return at R 3000 (6.9e-4 mm at R 5000).  The material check's polygons now keep their chords
     within the budget's share of δ whatever the cam's size; here at R 5000 mm, checked on the exact curve."""
     from camcam.geometry.curve import left_normal
-    from camcam.nc.removal import design_keep
+    from camcam.verify.removal import design_keep
     from camcam.nc.roughing import polygon_distance
     from camcam.toolpath.budget import DEFAULT_BUDGET
 

@@ -1,6 +1,6 @@
 """The 3-D groove measurement, checked three ways: brute-force point membership, the closed case, the issue's figures.
 
-Reference data: tests/nc/data/legacy-*.ngc are the 4-axis programs camcam printed for the two
+Reference data: tests/verify/data/legacy-*.ngc are the 4-axis programs camcam printed for the two
 cylindrical samples at commit 6187917 (before issue 11), with A = cam angle and no Y word.
 """
 
@@ -14,9 +14,10 @@ from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 from camcam.geometry.build import build_cam
-from camcam.nc.toolposes import CylinderTool, ToolPoses, poses_from_program
-from camcam.nc.groove3d import cut_walls, design_walls, measure_groove
-from camcam.nc.groove_motion import follower_poses
+from camcam.post.readback import poses_from_program
+from camcam.toolpath.poses import CylinderTool, ToolPoses
+from camcam.verify.groove3d import cut_walls, design_walls, measure_groove
+from camcam.verify.groove_motion import follower_poses
 from camcam.spec import load_spec
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -218,7 +219,7 @@ def test_legacy_translating_figures_of_the_issue():
        gamma=st.floats(-math.pi, math.pi))
 def test_section_interval_is_the_membership_of_the_line(X, Y, Z, a, B, r, L, rho, gamma):
     """The closed-form x-interval of a posed cylinder on r = ρ against 3-D point membership along that line."""
-    from camcam.nc.groove_motion import section_interval
+    from camcam.verify.groove_motion import section_interval
 
     # not the degenerate pose where the line lies in the tip plane or the end plane (an untilted tool with
     # ζ = ρ cos(γ + a) − Z at 0 or L): every point of the section is then on the boundary, and membership
@@ -273,7 +274,7 @@ def _section_interval_reference(X, Y, Z, a, B, r, L, rho, gamma):
 def test_section_interval_in_place_equals_the_plain_formula(seed, n, tilted, r, L, rho, scalar_gamma):
     """Bit for bit (the in-place arithmetic does the same operations in the same order), with and
     without a caller's sin/cos of B, on pairs inside and outside the β window."""
-    from camcam.nc.groove_motion import section_interval
+    from camcam.verify.groove_motion import section_interval
 
     rng = np.random.default_rng(seed)
     X, Y = rng.uniform(-50, 50, n), rng.uniform(-r, r, n)
@@ -301,7 +302,7 @@ def test_section_interval_from_angle_sums_is_the_plain_formula(seed, n, tilted, 
     q ≥ 1e-3 mm, the pairs compared) and 1/cos B (≤ 1.3 for |B| ≤ 0.7): ≤ 3e-9 in the worst product,
     1e-9 with the margins seen.  Pairs within 1e-9 mm of a decision (tangent, tip plane, end, empty
     interval) may fall either way and are not compared; every other pair hits or misses alike."""
-    from camcam.nc.groove_motion import section_interval, sincos_sum
+    from camcam.verify.groove_motion import section_interval, sincos_sum
 
     rng = np.random.default_rng(seed)
     X, Y = rng.uniform(-50, 50, n), rng.uniform(-r, r, n)

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from camcam.nc.toolposes import ToolPoses
+from camcam.toolpath.poses import ToolPoses
 from camcam.verdict import Check
 
 __all__ = ["ToolReach", "tool_reach", "flute_text"]
@@ -77,7 +77,7 @@ class ToolReach:
 
 def tool_reach(poses: ToolPoses, tool_radius_mm: float, top_radius_mm: float, bottom_radius_mm: float,
                needed_radius_mm: float, flute_length_mm: float, decimals: int, why: str = "") -> ToolReach:
-    """The reach of the printed ``poses`` (:func:`camcam.nc.toolposes.poses_from_program`)."""
+    """The reach of the printed ``poses`` (:func:`camcam.toolpath.poses.poses_from_program`)."""
     tip = np.asarray(poses.tip_mm, float)
     sin_b = np.abs(np.sin(np.radians(np.asarray(poses.b_deg, float))))
     cos_b = np.cos(np.radians(np.asarray(poses.b_deg, float)))

@@ -61,11 +61,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from camcam.forked import parallel_map
+from camcam.workers import parallel_map
 from camcam.geometry.cylindrical import CylindricalCam
-from camcam.nc.groove_motion import (Motion, ProgramMotion, RollerMotion, follower_poses, section_interval, side_extent,
+from camcam.verify.groove_motion import (Motion, ProgramMotion, RollerMotion, follower_poses, section_interval, side_extent,
                                      sincos_sum, wall_extents)
-from camcam.nc.toolposes import CylinderTool, ToolPoses, frozen_array
+from camcam.toolpath.poses import CylinderTool, ToolPoses, frozen_array
 
 __all__ = ["WallExtreme", "WallDeviation", "GrooveMeasurement", "measure_groove", "pose_step_for", "WALL_LABELS",
            "design_walls", "cut_walls"]
@@ -489,7 +489,7 @@ def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *,
         Largest step of a tool section between motion samples before refinement.
     workers : int
         Processes that share the map's radii and the four refinements
-        (:func:`camcam.forked.parallel_map`; the same figures for any count).
+        (:func:`camcam.workers.parallel_map`; the same figures for any count).
 
     Returns
     -------

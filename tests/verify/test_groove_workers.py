@@ -5,9 +5,9 @@ import numpy as np
 from camcam.geometry.cylindrical import BarrelTranslatingRoller, CylindricalCam
 from camcam.motion.catalog import make_law
 from camcam.motion.program import MotionProgram, Segment
-from camcam.nc.groove3d import measure_groove
-from camcam.nc.groove_motion import follower_poses
-from camcam.nc.toolposes import CylinderTool, ToolPoses
+from camcam.verify.groove3d import measure_groove
+from camcam.verify.groove_motion import follower_poses
+from camcam.toolpath.poses import CylinderTool, ToolPoses
 
 
 def test_two_workers_same_measurement():

@@ -1,4 +1,4 @@
-"""The slabs swept one per process (camcam.nc.sweep) give the figures of one pass over moves and slabs together."""
+"""The slabs swept one per process (camcam.verify.swept) give the figures of one pass over moves and slabs together."""
 
 import numpy as np
 import shapely
@@ -6,7 +6,7 @@ from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, Point
 
-from camcam.nc.sweep import (CUT_QUAD_SEGS, PROBE_INSET_MM, SAMPLE_MM, TOUCH_MM, cut_below, front_extent, moves_of,
+from camcam.verify.swept import (CUT_QUAD_SEGS, PROBE_INSET_MM, SAMPLE_MM, TOUCH_MM, cut_below, front_extent, moves_of,
                              sweep_slabs, where)
 from camcam.verify.rs274 import CanonMove
 
@@ -18,7 +18,7 @@ _SHORTFALL = R_T * (1.0 - np.cos(np.pi / (4 * CUT_QUAD_SEGS)))
 
 
 def _one_pass(moves, slabs, bounds, r_t, slope, rounding, slot_kinds):
-    """The sweep as it was before the slabs were split (camcam.nc.removal._remove at a161acf): every move in
+    """The sweep as it was before the slabs were split (camcam.verify.removal._remove at a161acf): every move in
     program order against every slab in turn, each plunge and rapid counted once (the first slab that
     meets it), the largest engagement the first met.  Kept here as the oracle."""
     slabs = list(slabs)
@@ -152,7 +152,7 @@ def test_a_path_cut_again_one_level_deeper_is_not_swept_again_in_the_slab_above(
     """The finishing contour at Z-2 passes through the slab above along the path the Z-1 pass has cleared: that
     slab skips it (nothing lies in front of it, nothing is left to cut), with the figures of the one-pass sweep
     that probes and cuts it, and the same regions left (not re-noded by a difference that removes nothing)."""
-    import camcam.nc.sweep as sweep_module
+    import camcam.verify.swept as sweep_module
 
     events = ["pass 1/2: finish, Z-1"]
     for z in (-1.0, -2.0):
@@ -249,7 +249,7 @@ def _spiral_program(turns: float, drop: float, seg_mm: float, start_deg: float, 
 @example(1.5, 4.0, 0.3, 0.0, 2, 0)
 @example(2.0, 7.0, 1.0, 0.0, 1, 0)  # regions whose difference is slivers up to 0.013 mm from the other's outline
 def test_batched_moves_give_the_move_by_move_figures(turns, drop, seg_mm, start_deg, levels, arcs_every):
-    """Runs of feed moves probed and cut in batches (camcam.nc.sweep._batch_step): the figures of the one-pass
+    """Runs of feed moves probed and cut in batches (camcam.verify.swept._batch_step): the figures of the one-pass
     sweep to the bit, where its engagement grows move after move (a spiral inwards) and where it does not (the
     finishing ring), and the regions the same up to the swept polygons' shortfall from their circles."""
     moves = moves_of(_spiral_program(turns, drop, seg_mm, start_deg, levels, arcs_every))
@@ -274,7 +274,7 @@ def test_batched_moves_give_the_move_by_move_figures(turns, drop, seg_mm, start_
 def test_a_contour_of_short_lines_is_probed_in_batches(monkeypatch):
     """The finishing ring of 180 lines (one sample each side of every joint) takes far fewer probes than moves,
     with the one-pass sweep's figures; without batches (BATCH_SAMPLES = 0) one probe a move."""
-    import camcam.nc.sweep as sweep_module
+    import camcam.verify.swept as sweep_module
 
     moves = moves_of(_spiral_program(1.0, 4.0, 2.0, 0.0, 1, 0))
     bounds = [0.0, -1.0]

@@ -1,6 +1,6 @@
 """The material-removal check: the interpreted program against the blank, 2.5-D, at every Z level.
 
-The moves come from the printed numbers (:func:`camcam.nc.readback.read_program`
+The moves come from the printed numbers (:func:`camcam.post.readback.read_program`
 in process, or rs274's canonical output in the tests).  The material is kept
 as one shapely region per slab between consecutive cutting levels (the
 constant-Z feed heights, from the blank's top down); a flat end mill whose tip
@@ -37,12 +37,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 import shapely
 
-from camcam.forked import ChildGroup, resolve
+from camcam.workers import ChildGroup, resolve
 from camcam.nc.passes import SLOT_KINDS
-from camcam.nc.readback import read_program
+from camcam.post.readback import read_program
 from camcam.nc.roughing import polygon_distance
 from camcam.nc.stock import measuring_circle, measuring_polygon
-from camcam.nc.sweep import PROBE_INSET_MM, SAMPLE_MM, TOUCH_MM, moves_of, parse_marker, sweep_slabs, where
+from camcam.verify.swept import PROBE_INSET_MM, SAMPLE_MM, TOUCH_MM, moves_of, parse_marker, sweep_slabs, where
 from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.verdict import Check
 
@@ -146,7 +146,7 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
     ``keep`` is the material that must remain at the final depth (shapely),
     ``boundary`` dense points (n, 2) on the parts of its outline the program
     machines (from the exact curves); the slabs are swept by ``workers``
-    processes (:func:`~camcam.nc.sweep.sweep_slabs`: the same figures for any count).
+    processes (:func:`~camcam.verify.swept.sweep_slabs`: the same figures for any count).
     """
     r_t = tool_radius_mm
     keep = shapely.Polygon(keep) if keep.geom_type == "Polygon" else shapely.MultiPolygon(keep)

@@ -1,4 +1,4 @@
-"""camcam.forked: jobs in forked children give the in-process results, in order, without deadlock."""
+"""camcam.workers: jobs in forked children give the in-process results, in order, without deadlock."""
 
 import gc
 import os
@@ -10,8 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from camcam.forked import ChildError, call_target, freeze_start_up, later, preload, resolve
-from camcam.servers import Gate, Server
+from camcam.workers import ChildError, call_target, freeze_start_up, later, preload, resolve
+from camcam.workers import Gate, Server
 
 needs_fork = pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork on this platform: jobs run in process")
 
@@ -180,7 +180,7 @@ def test_without_fork_everything_runs_in_process(monkeypatch):
 
 @needs_fork
 def test_parallel_map_keeps_order_and_values():
-    from camcam.forked import parallel_map
+    from camcam.workers import parallel_map
 
     seen_pid = os.getpid()
     gates = [os.pipe(), os.pipe()]
@@ -208,7 +208,7 @@ def test_parallel_map_keeps_order_and_values():
 
 @needs_fork
 def test_parallel_map_raises_a_child_error_in_the_parent():
-    from camcam.forked import parallel_map
+    from camcam.workers import parallel_map
 
     def f(x):
         if x == 3:
@@ -277,7 +277,7 @@ def _forks_and_adds(a, b):
 
 @needs_fork
 def test_prepared_first_jobs_then_the_job_which_may_fork():
-    from camcam.servers import Prepared
+    from camcam.workers import Prepared
 
     p = Prepared(["fractions"], first=[(np.arange, (4,), {}), (os.getpid, (), {})])
     job = p.submit(f"{__name__}:_forks_and_adds", np.ones(3), 2.0)
@@ -291,7 +291,7 @@ def test_prepared_first_jobs_then_the_job_which_may_fork():
 def test_prepared_takes_a_big_job_while_it_imports_and_the_parent_goes_on():
     # the job's arguments (a pickled cam and program, up to about a megabyte) are far larger than a pipe;
     # the child's first job holds it at a gate, so only its reader thread can take them: submit returns
-    from camcam.servers import Prepared
+    from camcam.workers import Prepared
 
     gate_r, gate_w = os.pipe()
     try:
@@ -306,7 +306,7 @@ def test_prepared_takes_a_big_job_while_it_imports_and_the_parent_goes_on():
 
 @needs_fork
 def test_prepared_failures_are_reported_on_their_jobs():
-    from camcam.servers import Prepared
+    from camcam.workers import Prepared
 
     p = Prepared(first=[(_boom, ("first",), {})])
     job = p.submit(f"{__name__}:_boom", "the job")
@@ -325,7 +325,7 @@ def test_prepared_failures_are_reported_on_their_jobs():
 
 @needs_fork
 def test_prepared_closed_without_a_job_gives_its_first_results():
-    from camcam.servers import Prepared
+    from camcam.workers import Prepared
 
     p = Prepared(first=[(sum, ([1, 2],), {})])
     with pytest.raises(ChildError, match="after its job was submitted"):
@@ -351,7 +351,7 @@ def _report_and_sleep(fd):
 @needs_fork
 @needs_proc
 def test_prepared_kill_ends_the_children_its_job_started():
-    from camcam.servers import Prepared
+    from camcam.workers import Prepared
 
     before = _children()
     pid_r, pid_w = os.pipe()
@@ -383,7 +383,7 @@ def test_prepared_kill_ends_the_children_its_job_started():
 
 
 def test_prepared_without_fork_runs_in_process(monkeypatch):
-    from camcam.servers import Prepared
+    from camcam.workers import Prepared
 
     monkeypatch.delattr(os, "fork")
     p = Prepared(["fractions"], first=[(sum, ([1, 2],), {})])
@@ -400,7 +400,7 @@ def test_prepared_without_fork_runs_in_process(monkeypatch):
 def test_a_cancelled_job_leaves_no_child():
     """Pending.cancel kills and reaps the child (a run that fails drops its children so): asking for the result
     afterwards says it was cancelled, and no child is left behind."""
-    from camcam.forked import later
+    from camcam.workers import later
 
     before = _children()
     gate_r, gate_w = os.pipe()
@@ -453,7 +453,7 @@ def test_start_up_is_frozen_once():
 
     code = (
         "import gc\n"
-        "from camcam.forked import freeze_start_up\n"
+        "from camcam.workers import freeze_start_up\n"
         "def walked(obj): return any(o is obj for o in gc.get_objects())\n"
         "first = [object()]\n"
         "freeze_start_up()\n"
@@ -511,7 +511,7 @@ def test_a_run_gates_its_plots_only_on_two_cores_or_fewer(monkeypatch):
     from camcam import flow as run_module
 
     seen = []
-    monkeypatch.setattr("camcam.servers.Server", lambda first, gate=None: seen.append(gate) or "server")
+    monkeypatch.setattr("camcam.workers.Server", lambda first, gate=None: seen.append(gate) or "server")
     for cores, gated in ((2, True), (1, True), (3, False), (8, False)):
         monkeypatch.setattr(run_module, "_cores", lambda n=cores: n)
         seen.clear()

@@ -1,7 +1,7 @@
 """Posed cylinders and how they move: the section of a cylinder on r = ρ, the program's tool and the roller.
 
 A cylinder (radius r, length L from its tip) posed at (X, Y, Z, a, B) in the
-barrel-cam machine frame (:mod:`camcam.nc.groove3d` gives the frame and the
+barrel-cam machine frame (:mod:`camcam.verify.groove3d` gives the frame and the
 closed form) cuts the cylinder r = ρ of the part in an x-interval at each
 part angle γ (:func:`section_interval`).  A :class:`Motion` is a continuous
 family of such poses: the program's tool moving linearly between its printed
@@ -17,7 +17,7 @@ from abc import ABC, abstractmethod
 import numpy as np
 
 from camcam.geometry.cylindrical import CylindricalCam
-from camcam.nc.toolposes import A_AXIS_SENSE, CylinderTool, ToolPoses
+from camcam.toolpath.poses import A_AXIS_SENSE, CylinderTool, ToolPoses
 
 __all__ = ["section_interval", "sincos_sum", "wall_extents", "side_extent", "Motion", "ProgramMotion", "RollerMotion",
            "follower_poses"]

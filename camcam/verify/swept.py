@@ -1,4 +1,4 @@
-"""The tool's sweep through the slabs, move by move: engagement, plunges, rapids (:mod:`camcam.nc.removal`).
+"""The tool's sweep through the slabs, move by move: engagement, plunges, rapids (:mod:`camcam.verify.removal`).
 
 The material is one shapely region per slab between consecutive cutting
 levels; each feed move, in program order, is measured against the material
@@ -19,7 +19,7 @@ import numpy as np
 import shapely
 from shapely.geometry import LineString, Point
 
-from camcam.forked import parallel_map
+from camcam.workers import parallel_map
 from camcam.nc.passes import SLOT_KINDS
 
 __all__ = ["Move", "moves_of", "parse_marker", "where", "front_extent", "cut_below", "sweep_slabs", "Sweep",
