@@ -177,9 +177,15 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
 
         with progress.step("cam geometry and analysis"):
             built = build_cam(spec.cam, spec.follower, program)
+        dynamics = None
+        if spec.dynamics is not None:  # forces, torque, contact stress, jump speed (issue 45): bad input stops here
+            from camcam.dynamics.cycle import analyse_dynamics
+
+            with progress.step("dynamics"):
+                dynamics = analyse_dynamics(built, program.rpm, spec.dynamics)
         profile_png = plots.submit(CAM_PLOT, built, f"{spec.name}: {spec.cam.kind} cam, {built.cam.kind} follower")
         with progress.step("motion table and plot"):
-            motion_outputs(out, spec.name, program, 0.5, svaj)
+            motion_outputs(out, spec.name, program, 0.5, svaj, dynamics)
         summary = {"name": spec.name, "motion": motion_summary(program)}
         if spec.machining is not None:
             # the drawing's child starts now, imports ezdxf and scipy (about a second) and makes the mesh and
@@ -190,6 +196,8 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
         else:
             model_files = children.later(model, built, spec.name)  # the mesh and STL need no NC: made beside it
         report = cam_report(built, mesh=False)  # its "mesh" comes with the STL
+        if dynamics is not None:
+            report["dynamics"] = dynamics.figures()
         machining = drawn = None
         if spec.machining is not None:
             with progress.step("NC second fitting and program"):
@@ -200,6 +208,10 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
             from camcam.report.job_report import job_report, report_analysis
 
             analysis = report_analysis(spec.name, built, machining, spec.report.inspection_step_deg, plots.submit)
+            if dynamics is not None:
+                from camcam.report.dynamics_section import with_dynamics
+
+                analysis = with_dynamics(analysis, spec.name, dynamics, plots.submit)
         with progress.step("drawing, model and material check"):
             files, report["mesh"] = resolve(model_files)
             if machining is not None:
@@ -215,6 +227,10 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
         verdict = Verdict(verdict.checks + design_and_drawing_checks(
             built, machining, spec.machining, spec.report.strict,
             report.get("machining", {}).get("dxf_part_deviation_mm")), verdict.accepted)
+        if dynamics is not None:
+            from camcam.dynamics.checks import dynamics_checks
+
+            verdict = Verdict(verdict.checks + dynamics_checks(dynamics, built.spec, spec.report.strict), verdict.accepted)
         report["verdict"] = verdict.as_dict()
         with progress.step("report"):
             out.add(f"{spec.name}.stl", files.pop(f"{spec.name}.stl"))

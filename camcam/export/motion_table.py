@@ -10,7 +10,7 @@ import numpy as np
 
 from camcam.motion.program import MotionProgram
 
-__all__ = ["sample_angles_deg", "motion_csv", "motion_summary", "motion_outputs", "SVAJ_PLOT", "svaj_title"]
+__all__ = ["sample_angles_deg", "motion_csv", "dynamics_columns", "motion_summary", "motion_outputs", "SVAJ_PLOT", "svaj_title"]
 
 
 def sample_angles_deg(step_deg: float) -> np.ndarray:
@@ -22,11 +22,13 @@ def sample_angles_deg(step_deg: float) -> np.ndarray:
     return angles
 
 
-def motion_csv(program: MotionProgram, step_deg: float = 0.5) -> str:
+def motion_csv(program: MotionProgram, step_deg: float = 0.5, dynamics=None) -> str:
     """CSV text: ``cam_angle_deg`` and the displacement and its time derivatives.
 
     The column names carry the units (see :data:`camcam.motion.program.PHYSICAL_UNITS`).
-    At a join with a jump the row shows the value of the segment that starts there.
+    At a join with a jump the row shows the value of the segment that starts there.  With ``dynamics`` (a
+    :class:`~camcam.dynamics.cycle.Dynamics` on the same angles) the forces, torque and contact stress follow:
+    :func:`dynamics_columns`.
     """
     angles = sample_angles_deg(step_deg)
     theta = np.radians(angles)
@@ -34,11 +36,34 @@ def motion_csv(program: MotionProgram, step_deg: float = 0.5) -> str:
     unit = program.units
     names = ["lift", "velocity", "acceleration", "jerk"]
     header = ["cam_angle_deg"] + [f"{n}_{u.replace('/', '_per_').replace('²', '2').replace('³', '3')}" for n, u in zip(names, unit)]
+    if dynamics is not None:
+        more = dynamics_columns(dynamics, angles)
+        header += list(more)
+        cols += list(more.values())
     buf = io.StringIO()
     buf.write(",".join(header) + "\n")
     for row in zip(angles, *cols):
         buf.write(",".join(f"{v:.10g}" for v in row) + "\n")
     return buf.getvalue()
+
+
+def dynamics_columns(dynamics, angles_deg: np.ndarray) -> dict[str, np.ndarray]:
+    """The motion table's dynamics columns at ``angles_deg`` (the dynamics' own angles): the follower force
+    (N along a translating follower, N·m about an oscillating one's pivot), the contact force (a grooved cam's on
+    each flank), the camshaft torque and the Hertz contact stress."""
+    if len(angles_deg) != len(dynamics.cam_angle_deg) or not np.allclose(angles_deg, dynamics.cam_angle_deg, rtol=0,
+                                                                         atol=1e-9):
+        raise ValueError("the motion table and the dynamics must share their cam angles")
+    follower = "follower_moment_nm" if dynamics.follower_force_unit == "N·m" else "follower_force_n"
+    out = {follower: dynamics.follower_force}
+    if dynamics.positive_drive:
+        out["lift_flank_force_n"] = dynamics.lift_flank_force_n
+        out["return_flank_force_n"] = dynamics.return_flank_force_n
+    else:
+        out["contact_force_n"] = dynamics.contact_force_n
+    out["camshaft_torque_nm"] = dynamics.torque_nm
+    out["contact_stress_mpa"] = dynamics.contact_stress_mpa
+    return out
 
 
 def motion_summary(program: MotionProgram) -> dict:
@@ -60,16 +85,17 @@ def motion_summary(program: MotionProgram) -> dict:
     return out
 
 
-def motion_outputs(out, name: str, program: MotionProgram, step_deg: float, svaj=None):
+def motion_outputs(out, name: str, program: MotionProgram, step_deg: float, svaj=None, dynamics=None):
     """Add the motion table and the SVAJ plot to ``out``; returns the plot (the report shows it too),
     a :class:`~camcam.workers.Pending` while it is drawn in a child process.
 
     ``svaj`` is the plot when a caller already has it being drawn (`camcam run`'s plot server);
-    otherwise it is drawn in a forked child that imports matplotlib itself.
+    otherwise it is drawn in a forked child that imports matplotlib itself.  ``dynamics``: the table gains its
+    columns (:func:`motion_csv`).
     """
     from camcam.workers import call_target, later
 
-    out.add(f"{name}-motion.csv", motion_csv(program, step_deg))
+    out.add(f"{name}-motion.csv", motion_csv(program, step_deg, dynamics))
     if svaj is None:
         svaj = later(call_target, SVAJ_PLOT, program, title=svaj_title(name, program))
     out.add(f"{name}-svaj.png", svaj)
