@@ -46,12 +46,13 @@ import signal
 import struct
 import sys
 import traceback
+from dataclasses import dataclass
 from typing import Any, Callable
 
 from camcam.interrupts import SIGNALS, Interrupted
 
 __all__ = ["ChildError", "Pending", "later", "resolve", "ChildGroup", "parallel_map", "call_target", "preload",
-           "freeze_start_up", "Server", "Prepared", "Gate"]
+           "freeze_start_up", "ProcessMap", "Server", "Prepared", "Gate"]
 
 PAYLOAD_OK, PAYLOAD_FAILED = b"K", b"E"
 
@@ -320,6 +321,23 @@ def parallel_map(fn: Callable, items, workers: int = 1) -> list:
         if write_fd is not None:
             os.close(write_fd)
     return [done[i] for i in range(len(items))]
+
+
+@dataclass(frozen=True)
+class ProcessMap:
+    """:func:`parallel_map` as a mapper (:class:`camcam.toolpath.mapper.Mapper`): ``width`` processes, the
+    calling one among them, share the items; what the NC stage hands the fitter.
+
+    Examples
+    --------
+    >>> ProcessMap(2)(lambda x: x + 1, [1, 2, 3])
+    [2, 3, 4]
+    """
+
+    width: int = 1
+
+    def __call__(self, fn: Callable, items) -> list:
+        return parallel_map(fn, items, self.width)
 
 
 def write_all(fd: int, data: bytes) -> None:

@@ -222,3 +222,20 @@ def test_no_dialect_names_outside_post():
            for no, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
            if "heidenhain" in line.lower() or "klartext" in line.lower()]
     assert not bad, "\n".join(bad)
+
+def test_worker_processes_reach_no_stage_below_nc():
+    """Issue 44: process plumbing is behind the NC stage.  Stages before ``nc`` neither import
+    ``camcam.workers`` nor take a ``workers`` count; the fitter is handed a map-like callable
+    (``camcam.toolpath.mapper.Mapper``) instead."""
+    bad = []
+    for name, (path, imports) in MODULES.items():
+        if RANK[_top(name)] >= RANK["nc"] or _top(name) in ("__init__", "workers"):
+            continue
+        bad += [f"{path.relative_to(PACKAGE.parent)}:{line} imports {target}"
+                for target, _, line in imports if target.startswith("camcam.workers")]
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                params = node.args.posonlyargs + node.args.args + node.args.kwonlyargs
+                bad += [f"{path.relative_to(PACKAGE.parent)}:{node.lineno} {node.name}() takes workers"
+                        for a in params if a.arg == "workers"]
+    assert not bad, "\n".join(bad)

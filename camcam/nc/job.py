@@ -29,7 +29,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from camcam.workers import ChildGroup, resolve
+from camcam.workers import ChildGroup, ProcessMap, resolve
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
 from camcam.nc.bore import bore_circle_radius, bore_curve, bore_passes
@@ -151,7 +151,7 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
         for k, (label, curve, offset, free, kind, note) in enumerate(plan):
             fit, printed, dev, segs = fit_printed(curve, m.tolerance_mm, m.mode, post.quantizer,
                                                   post.max_arc_sweep_deg, post.quantizer.printed_elements,
-                                                  f"{name} {label}", workers=workers)
+                                                  f"{name} {label}", mapper=ProcessMap(workers))
             side = sides[k]
             cs = replace(m.cut_settings(side if free is not None else "right"), clearance_z_mm=z_clear,
                          safe_z_mm=max(m.safe_z_mm, z_clear))

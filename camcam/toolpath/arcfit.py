@@ -33,7 +33,7 @@ from typing import Callable
 import numpy as np
 
 from camcam.errors import FitError, InputError
-from camcam.workers import parallel_map
+from camcam.toolpath.mapper import IN_PROCESS, Mapper
 from camcam.geometry.curve import PlanarCurve, curvature, speed
 from camcam.toolpath.arcspline import fit_arc_spline, g1_sections
 from camcam.toolpath.arcsweep import parts_within
@@ -98,7 +98,7 @@ def _fit_lines_piece(piece, tol):
     return [Line(tuple(p), tuple(q)) for p, q in zip(pts[:-1], pts[1:])]
 
 
-def _fit_arcs(curve, tolerance_mm, band, quantizer, max_sweep, a, b, exact, printed, budget, workers) -> FitResult:
+def _fit_arcs(curve, tolerance_mm, band, quantizer, max_sweep, a, b, exact, printed, budget, mapper) -> FitResult:
     """Arcs: one near-minimal printed G1 arc spline per G1 section (:mod:`camcam.toolpath.arcspline`).
 
     The march measures its candidates as printed, so its band leaves no
@@ -123,7 +123,7 @@ def _fit_arcs(curve, tolerance_mm, band, quantizer, max_sweep, a, b, exact, prin
         for target in targets:
             try:
                 spline = fit_arc_spline(curve, lo, hi, target, quantizer=quantizer, max_sweep=max_sweep, sag=sag,
-                                        closed=whole, workers=workers, lower_bound=band_lb)
+                                        closed=whole, mapper=mapper, lower_bound=band_lb)
             except FitError as err:
                 # no march closed (every start of a closed section, the one of an open one): a tighter band
                 # would march the same way, so the section is fitted with lines (below)
@@ -189,7 +189,7 @@ def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",
                 quantizer: Quantizer = Quantizer(4), max_sweep_deg: float = 90.0,
                 a: float | None = None, b: float | None = None, exact: PlanarCurve | None = None,
                 printed: Callable[[tuple], tuple] | None = None, budget: FitBudget = DEFAULT_BUDGET,
-                workers: int = 1) -> FitResult:
+                mapper: Mapper = IN_PROCESS) -> FitResult:
     """Fit lines/arcs to ``curve`` with a guaranteed two-sided deviation ≤ ``tolerance_mm`` as printed.
 
     Each analytic piece is fitted, put on the printed grid, rebuilt as the
@@ -255,7 +255,7 @@ def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",
                          f"{budget.floor_mm(quantizer):.2g} mm or more decimals")
     if mode == "arcs":
         return _fit_arcs(curve, tolerance_mm, band, quantizer, math.radians(max_sweep_deg), a, b, exact, printed,
-                         budget, workers)
+                         budget, mapper)
     targets = tuple(budget.targets(band, quantizer))  # lines: the sag and sweep limits concern arcs only
     margin = budget.margin_mm(tolerance_mm)
     edges = pieces(curve, a, b)
@@ -273,11 +273,11 @@ def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",
         return FitError(f"cannot fit the curve on t ∈ [{lo:g}, {hi:g}] within {tolerance_mm:g} mm: the printed "
                         f"path stays {dev.max_deviation_mm:.4g} mm off after {budget.attempts} attempts")
 
-    # the pieces are independent: shared by ``workers`` processes, the dearest (most lines estimated) first
+    # the pieces are independent: shared out by ``mapper`` (camcam.toolpath.mapper), the dearest (most lines estimated) first
     # so that they end together (disc-oscillating-flat at 0.001 mm: 229, 192, 113 and 98 lines); each is the
     # same call as in a plain loop, so the same lines
     order = sorted(range(len(edges)), key=lambda k: -lbs[k])
-    fitted = dict(zip(order, parallel_map(fit_piece, order, workers)))
+    fitted = dict(zip(order, mapper(fit_piece, order)))
     all_elems, blocks = [], []
     worst = None
     for k in range(len(edges)):

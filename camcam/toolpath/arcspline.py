@@ -221,7 +221,7 @@ from dataclasses import replace
 import numpy as np
 
 from camcam.errors import FitError
-from camcam.workers import parallel_map
+from camcam.toolpath.mapper import IN_PROCESS, Mapper
 from camcam.toolpath.arcbatch import unit_rows
 from camcam.toolpath.arcclose import quiet_stretches
 from camcam.toolpath.arcpolish import fewer_arcs
@@ -266,7 +266,7 @@ def starting_near(spline: ArcSpline, t: float, a: float, b: float) -> ArcSpline:
 
 def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer: Quantizer, max_sweep: float,
                    sag: float, closed: bool = False, budget: SplineBudget = SplineBudget(),
-                   workers: int = 1, lower_bound: float | None = None) -> ArcSpline:
+                   mapper: Mapper = IN_PROCESS, lower_bound: float | None = None) -> ArcSpline:
     """A near-minimal printed G1 arc spline over [a, b] within ``tolerance_mm`` (sampled).
 
     Parameters
@@ -287,10 +287,11 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
         starts and ends on the curve with the curve's exact tangents.
     budget : SplineBudget
         The search's sizes, start shifts and goal.
-    workers : int
-        Processes the further starts of a closed section are marched in, that
-        many at a time (:func:`camcam.workers.parallel_map`); taken in the same
-        order as one by one, so the spline is the same for any count.
+    mapper : Mapper
+        How the further starts of a closed section are marched: ``mapper.width``
+        at a time (:mod:`camcam.toolpath.mapper`; the NC stage hands in
+        :class:`camcam.workers.ProcessMap`); taken in the same order as one by
+        one, so the spline is the same for any mapper.
     lower_bound : float, optional
         N_lb of the section at ``tolerance_mm``, from the exact curve: the
         goal of a closed section is ``budget.goal`` on it.  Without it, N_lb
@@ -363,7 +364,7 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
 
     # the first start (most contours meet the goal there); then its spline optimised with the goal's count of
     # arcs (camcam.toolpath.arcpolish: a few LP solves instead of the further starts' whole marches); then,
-    # only if that finds nothing, rounds of ``workers`` further starts at once (camcam.workers.parallel_map),
+    # only if that finds nothing, rounds of ``mapper.width`` further starts at once (camcam.toolpath.mapper),
     # taken in the same order as one after the other: the same spline for any count of workers.  (Until
     # 2026-12-06 the second start was marched beside the first in a spare child of lower priority; with the
     # optimised chain it was never needed on the 40 cases of run_nc.py --arcs, and its CPU cost the run
@@ -374,9 +375,9 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
         for spline in fewer_arcs(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, best, math.floor(goal)):
             if met(spline):
                 return best
-    k, n = 1, max(1, workers)
+    k, n = 1, max(1, mapper.width)
     while k < len(jobs):
-        for spline in parallel_map(march_from, jobs[k:k + n], n):
+        for spline in mapper(march_from, jobs[k:k + n]):
             if met(spline):
                 return best
         k += n
@@ -386,7 +387,7 @@ def fit_arc_spline(curve, a: float, b: float, tolerance_mm: float, *, quantizer:
     # start has closed yet is marched from them too, until one closes
     if best is None or len(best.elements) <= goal + budget.near_miss:
         for k in range(0, len(more), n):
-            for spline in parallel_map(march_from, [(start, budget) for start in more[k:k + n]], n):
+            for spline in mapper(march_from, [(start, budget) for start in more[k:k + n]]):
                 if met(spline) or (spline is not None and len(best.elements) > goal + budget.near_miss):
                     return best
     if best is None:

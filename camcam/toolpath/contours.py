@@ -20,6 +20,7 @@ from camcam.toolpath.arcfit import FitResult, fit_contour
 from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.toolpath.deviation import Deviation, measure_deviation
 from camcam.toolpath.fitcore import pieces
+from camcam.toolpath.mapper import IN_PROCESS, Mapper
 from camcam.toolpath.quantizer import Quantizer
 from camcam.toolpath.surrogate import chebyshev_curve
 
@@ -70,7 +71,7 @@ class CutContour:
 
 
 def fit_printed(curve, tolerance_mm: float, mode: str, quantizer: Quantizer, max_sweep_deg: float,
-                printed: Callable[[tuple], tuple], label: str, budget: FitBudget = DEFAULT_BUDGET, workers: int = 1):
+                printed: Callable[[tuple], tuple], label: str, budget: FitBudget = DEFAULT_BUDGET, mapper: Mapper = IN_PROCESS):
     """Fit ``curve``; return (fit, printed elements, deviation on the printed path, segments).
 
     ``printed(elements)`` rebuilds the path the program prints from the fitted
@@ -87,7 +88,7 @@ def fit_printed(curve, tolerance_mm: float, mode: str, quantizer: Quantizer, max
     fast = chebyshev_curve(curve)
     try:
         fit = fit_contour(fast, tolerance_mm, mode=mode, quantizer=quantizer, max_sweep_deg=max_sweep_deg,
-                          exact=curve, printed=printed, budget=budget, workers=workers)
+                          exact=curve, printed=printed, budget=budget, mapper=mapper)
     except FitError as err:
         raise FitError(f"{label}: {err}") from None
     except InputError as err:

@@ -12,6 +12,7 @@ from camcam.toolpath.arcfit import fit_contour, line_estimate_blocks, lower_boun
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.elements import Arc, Line
 from camcam.toolpath.elements import element_tangent
+from camcam.workers import ProcessMap
 from tests.nc_curves import ellipse, polar_cam, wavy
 
 CASES = {
@@ -126,7 +127,7 @@ def test_lines_pieces_shared_by_two_processes_fit_the_same():
     # deviation as one after the other (each piece is the same call)
     E = ellipse()
     one = fit_contour(E, 0.002, mode="lines")
-    two = fit_contour(E, 0.002, mode="lines", workers=2)
+    two = fit_contour(E, 0.002, mode="lines", mapper=ProcessMap(2))
     assert len(one.piece_blocks) == 4
     assert (two.elements, two.piece_blocks, two.deviation) == (one.elements, one.piece_blocks, one.deviation)
 
@@ -146,7 +147,7 @@ def test_lines_failure_names_the_first_piece_in_order(monkeypatch):
     W = wavy()  # two pieces, the second dearer (65.0 and 73.7 lines estimated at 0.002 mm): taken first
     for workers in (1, 2):
         with pytest.raises(FitError, match=r"t ∈ \[0, 60\]"):
-            fit_contour(W, 0.002, mode="lines", workers=workers)
+            fit_contour(W, 0.002, mode="lines", mapper=ProcessMap(workers))
 
 
 def test_arcs_beat_lines_at_a_micron():

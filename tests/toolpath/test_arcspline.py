@@ -18,6 +18,7 @@ from camcam.toolpath.arcbatch import touch
 from camcam.toolpath.arcspline import SplineBudget, fit_arc_spline, g1_sections
 from camcam.toolpath.deviation import closest_params
 from camcam.toolpath.elements import Arc, element_distance, element_points, element_tangent
+from camcam.workers import ProcessMap
 from camcam.toolpath.quantizer import Quantizer
 from tests.nc_curves import ellipse, polar_cam
 
@@ -286,9 +287,9 @@ def test_further_starts_in_two_processes_give_the_same_spline():
     budget = dataclasses.replace(SplineBudget(), goal=(0.0, 0.0), tries=4, fewer=False)
     q = Quantizer(4)
     one = fit_arc_spline(curve, curve.t_start, curve.t_end, 0.0095, quantizer=q, max_sweep=math.pi / 2, sag=1e-4,
-                         closed=True, budget=budget, workers=1)
+                         closed=True, budget=budget, mapper=ProcessMap(1))
     two = fit_arc_spline(curve, curve.t_start, curve.t_end, 0.0095, quantizer=q, max_sweep=math.pi / 2, sag=1e-4,
-                         closed=True, budget=budget, workers=2)
+                         closed=True, budget=budget, mapper=ProcessMap(2))
     # the same marches in the same order of choice: the very same elements (no tolerance)
     assert one.elements == two.elements
 
@@ -314,8 +315,8 @@ def test_the_further_starts_in_two_processes_give_the_same_spline():
     before = _children()
     for goal in (alone[0], alone[1], 0):  # met by the first start; by the second only; by none
         budget = dataclasses.replace(base, goal=(0.0, float(goal)))
-        one = fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=budget, lower_bound=1.0, workers=1, **kw)
-        two = fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=budget, lower_bound=1.0, workers=2, **kw)
+        one = fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=budget, lower_bound=1.0, mapper=ProcessMap(1), **kw)
+        two = fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=budget, lower_bound=1.0, mapper=ProcessMap(2), **kw)
         assert one.elements == two.elements, goal  # no tolerance: the same marches chosen in the same order
     assert _children() <= before
 
@@ -332,7 +333,7 @@ def test_a_near_miss_gets_the_further_starts_a_far_one_does_not():
                         fewer=False)
 
     def fit(workers=1, **b):
-        return fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=replace(base, **b), workers=workers, **kw)
+        return fit_arc_spline(curve, 0.0, 2 * np.pi, 0.0095, budget=replace(base, **b), mapper=ProcessMap(workers), **kw)
 
     alone = [len(fit(start_shifts=(s,), more_tries=0).elements) for s in shifts]
     assert alone[0] > min(alone[1:]), alone  # else a further start could not be told from none
