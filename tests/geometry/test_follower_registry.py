@@ -197,3 +197,29 @@ def test_a_registered_kind_runs_through_every_stage(toy, tmp_path):
     angles = np.arange(360.0)
     assert res.follower_kind == "toy-roller"
     assert np.abs(res.motion(angles, 0) - design_motion(prog, "disc", angles, 0)).max() < 1e-4
+
+
+def test_a_kind_missing_a_declaration_cannot_be_made():
+    """FollowerKind's required methods are abstract: a kind that leaves out its inverse kinematics fails when
+    made, naming the method, instead of raising NotImplementedError in the middle of a reverse design."""
+    import dataclasses
+
+    from camcam.geometry.followers.base import FollowerKind
+
+    @dataclasses.dataclass(frozen=True)
+    class Half(FollowerKind):
+        kind = "half"
+
+        @classmethod
+        def from_spec(cls, f):
+            return cls()
+
+        def element(self, s, base_radius, sigma):
+            raise AssertionError("not called")
+
+        @classmethod
+        def datum_note(cls, offset):
+            return ""
+
+    with pytest.raises(TypeError, match="invert"):
+        Half()

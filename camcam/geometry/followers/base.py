@@ -47,7 +47,8 @@ profile tangent Q′ − σJQ (J = +90° turn) is parallel to the face.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from abc import ABC, abstractmethod
+from dataclasses import KW_ONLY, dataclass
 from typing import TYPE_CHECKING, ClassVar
 
 import numpy as np
@@ -69,13 +70,18 @@ class Element:
     y: Jet
     ux: Jet | None = None  # roller: direction of motion for increasing lift
     uy: Jet | None = None
+    _: KW_ONLY
     nx: Jet | None = None  # flat face: unit normal away from the cam
     ny: Jet | None = None
     along: Jet | None = None  # flat face: contact position along the face, mm
 
 
-class FollowerKind:
-    """The declarations every follower kind makes (module notes); subclasses are frozen dataclasses."""
+class FollowerKind(ABC):
+    """The declarations every follower kind makes (module notes); subclasses are frozen dataclasses.
+
+    A kind must give :meth:`from_spec`, :meth:`element`, :meth:`invert` and :meth:`datum_note` (abstract: a
+    class without one cannot be made); sizing (:meth:`size_figures`, :meth:`from_params`) and the barrel
+    frame (:meth:`barrel_from_spec`) are optional and refuse with one line where a kind has none."""
 
     kind: ClassVar[str]
     unit: ClassVar[str]
@@ -94,9 +100,13 @@ class FollowerKind:
     size_axes: ClassVar[tuple[str, ...] | None] = None
 
     @classmethod
+    @abstractmethod
     def from_spec(cls, f: "FollowerSpec") -> "FollowerKind":
         """The disc follower of a validated ``[follower]`` table."""
-        raise NotImplementedError
+
+    @abstractmethod
+    def element(self, s: Jet, base_radius: float, sigma: int) -> Element:
+        """The fixed-frame jets of the cam-touching element for the lift jet ``s`` (module notes)."""
 
     @classmethod
     def barrel_from_spec(cls, f: "FollowerSpec"):
@@ -110,8 +120,9 @@ class FollowerKind:
 
     @staticmethod
     def size_figures(ps, sigma: int, params: dict) -> dict:
-        """Closed-form figures of a block of designs (:mod:`camcam.sizing.kernels`)."""
-        raise NotImplementedError
+        """Closed-form figures of a block of designs (:mod:`camcam.sizing.kernels`); a kind without
+        :attr:`size_axes` is never sized, and refuses."""
+        raise ValueError("no closed-form sizing kernel for this follower kind")
 
     def check(self, base_radius: float) -> None:
         """Raise :class:`GeometryError` when the follower cannot touch a base circle of ``base_radius``."""
@@ -119,14 +130,14 @@ class FollowerKind:
     def check_cam(self, cam) -> None:
         """Raise :class:`GeometryError` when the follower loses the built disc ``cam`` (default: never)."""
 
+    @abstractmethod
     def invert(self, P: np.ndarray, n: np.ndarray, base_radius: float, sg: int) -> tuple[np.ndarray, np.ndarray]:
         """Cam angle θ (rad, not reduced) and lift (mm or rad) of cam-frame profile points ``P`` with outward normals ``n``."""
-        raise NotImplementedError
 
     @classmethod
+    @abstractmethod
     def datum_note(cls, offset: float) -> str:
         """Where the follower sits at cam angle 0, for the setup sheet (``offset``: the stem's, mm)."""
-        raise NotImplementedError
 
 
 def reject(mask, points, what: str) -> None:
