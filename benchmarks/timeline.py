@@ -61,8 +61,8 @@ def leave(status):
 
 os._exit = leave
 
-import camcam.workers as forked
-import camcam.workers as servers
+import camcam.workers.children as forked
+import camcam.workers.servers as servers
 from camcam.cli import progress
 
 def named(fn):

@@ -205,7 +205,7 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
             gate.open()  # if the drawing's child has not
             drawn = drawings.submit(DRAWING, built, machining, spec.machining)
         with progress.step("report analysis"):
-            from camcam.report.job_report import job_report, report_analysis
+            from camcam.report.job_page import job_report, report_analysis
 
             analysis = report_analysis(spec.name, built, machining, spec.report.inspection_step_deg, plots.submit)
             if dynamics is not None:

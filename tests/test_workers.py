@@ -259,7 +259,7 @@ def test_a_failed_run_leaves_no_child_behind(tmp_path, monkeypatch):
         raise ZeroDivisionError("a bug after the children started")
 
     # the report analysis runs after the plot server, the model child and the NC children started
-    monkeypatch.setattr("camcam.report.job_report.report_analysis", broken)
+    monkeypatch.setattr("camcam.report.job_page.report_analysis", broken)
     before = _children()
     code = main(["run", "samples/disc-translating-roller.toml", "-o", str(tmp_path / "out")])
     assert code == 1

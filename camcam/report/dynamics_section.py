@@ -57,7 +57,7 @@ def dynamics_section(dyn, png) -> Section:
 
 
 def with_dynamics(analysis, name: str, dyn, render):
-    """The report analysis (:func:`camcam.report.job_report.report_analysis`'s value) with the dynamics section
+    """The report analysis (:func:`camcam.report.job_page.report_analysis`'s value) with the dynamics section
     and its plot ``<name>-dynamics.png``, before the inspection table."""
     title = f"{name}: forces at {dyn.rpm:g} rpm"
     png = render(DYNAMICS_PLOT, dyn.cam_angle_deg, dyn.contact_force_n, dyn.torque_nm, dyn.contact_stress_mpa, title,

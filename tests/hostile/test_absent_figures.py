@@ -1,7 +1,7 @@
 """Figures that can be absent print honestly (issue 50 item 4).
 
 A dwell-only barrel cam has straight developed flanks: no smallest finite radius of curvature and
-no cam angle where it occurs.  The report crashed formatting None (`report/job_report.py`, TypeError,
+no cam angle where it occurs.  The report crashed formatting None (`report/job_page.py`, TypeError,
 exit 1); now the radius is infinite everywhere it is shown: console, report HTML, report JSON
 (``"inf"``, as an infinite jerk is), `camcam batch`'s rows.
 """

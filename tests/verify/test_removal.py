@@ -127,7 +127,7 @@ def test_skipping_far_moves_changes_no_figure(monkeypatch):
     far = removal._far_moves
     seen = []
     # the finished-surface figures, where the skip happens, run in-process here so the counter sees them
-    monkeypatch.setattr("camcam.workers.later", lambda fn, *a, **k: fn(*a, **k))
+    monkeypatch.setattr("camcam.workers.children.later", lambda fn, *a, **k: fn(*a, **k))
     monkeypatch.setattr(removal, "_far_moves", lambda moves, *a: seen.append(sum(far(moves, *a))) or
                         [False] * len(moves))
     dense = check_program(result.program.text, m.post, result.blank, m, built)
