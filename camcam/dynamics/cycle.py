@@ -42,7 +42,7 @@ def jump_speed(built, d: DynamicsSpec, grid_coefficients=None) -> tuple[float, f
     pieces = cam_pieces(built)
 
     def w(t, i):
-        k = coefficients(built, d, t, i)
+        k = coefficients(built, d, t, i, radii=False)
         return first_root(k.inertia, k.damping, k.static)
 
     sampled = None
@@ -151,7 +151,7 @@ def _check_at_rest(built, d: DynamicsSpec, pieces, grid_coefficients) -> None:
     if is_grooved(built):
         return
     sampled = Sampled([k.theta for k in grid_coefficients], [k.static / k.lever_m for k in grid_coefficients])
-    least, t, i = piece_minimum(lambda ts, j: (lambda k: k.static / k.lever_m)(coefficients(built, d, ts, j)), pieces,
+    least, t, i = piece_minimum(lambda ts, j: (lambda k: k.static / k.lever_m)(coefficients(built, d, ts, j, False)), pieces,
                                 sampled)
     scale = max(1.0, abs(d.preload_n), abs(d.external_load_n))
     if least < -1e-9 * scale:

@@ -21,7 +21,7 @@ BRACKET_CELLS = 64
 BRACKET_DEG = 0.25
 
 #: Points per sectioning round (the bracket shrinks by PARTS/2 a round) and the bracket it stops at, rad.
-PARTS = 16
+PARTS = 64
 XTOL = 1e-12
 
 #: Gauss–Legendre nodes per grid cell.
@@ -81,8 +81,13 @@ def piece_minimum(f, pieces, sampled: Sampled | None = None) -> tuple[float, flo
     for value, j, i in bests:
         if value > top + TIE * spread:
             continue
-        ts = s.grids[i]
+        ts, v = s.grids[i], s.values[i]
         cand = (value, float(ts[j]))
+        near = v[max(j - 1, 0):j + 2]
+        if np.all(near == value):  # flat around the best sample (a dwell): nothing to refine
+            if cand[0] < out[0]:
+                out = (cand[0], cand[1], i)
+            continue
         got = refine_min(f, ts[max(j - 1, 0)], ts[min(j + 1, len(ts) - 1)], i)
         if got[0] < cand[0]:
             cand = got

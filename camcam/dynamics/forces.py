@@ -161,8 +161,9 @@ class Coefficients:
         return self.inertia * omega * omega + self.damping * omega + self.static
 
 
-def coefficients(built, d: DynamicsSpec, theta, piece: int | None = None) -> Coefficients:
-    """The :class:`Coefficients` at cam angles θ (rad); ``piece`` evaluates one motion segment one-sided."""
+def coefficients(built, d: DynamicsSpec, theta, piece: int | None = None, radii: bool = True) -> Coefficients:
+    """The :class:`Coefficients` at cam angles θ (rad); ``piece`` evaluates one motion segment one-sided;
+    ``radii=False`` leaves R′ out (NaN: the spring sizing needs no curvature)."""
     theta = np.atleast_1d(np.asarray(theta, float))
     cam = built.cam
     osc = _oscillating(built)
@@ -200,7 +201,7 @@ def coefficients(built, d: DynamicsSpec, theta, piece: int | None = None) -> Coe
         gain_lift = 1.0 / (arm * (c - mu * direction * np.abs(s)))
         gain_return = 1.0 / (arm * (c + mu * direction * np.abs(s)))
         torque_arm = sg * s * R_mm / 1000.0
-        kc = convex_curvature(cam.developed_centre(rho), 1, theta, piece)[0]
+        kc = convex_curvature(cam.developed_centre(rho), 1, theta, piece)[0] if radii else nan
         # flank 1 lies on the side of the developed centre line's centre of curvature where κc < 0
         r1, r0 = r * (1.0 + r * kc), r * (1.0 - r * kc)
         up = lift_flank(built)
@@ -221,7 +222,7 @@ def coefficients(built, d: DynamicsSpec, theta, piece: int | None = None) -> Coe
         fr = 0.0 if osc else mu
         gain_lift = 1.0 / (arm * (c - fr * direction * np.abs(s)))
         gain_return = 1.0 / (arm * (c + fr * direction * np.abs(s)))
-        kc = convex_curvature(disc.pitch, sg, theta, piece)[0]
+        kc = convex_curvature(disc.pitch, sg, theta, piece)[0] if radii else nan
         radius_lift = r * (1.0 - r * kc)
         radius_return = r * (1.0 + r * kc) if is_grooved(built) else nan
     else:
@@ -230,7 +231,7 @@ def coefficients(built, d: DynamicsSpec, theta, piece: int | None = None) -> Coe
         c, s = np.ones(theta.shape), np.zeros(theta.shape)
         gain_lift = 1.0 / (e.along.value / 1000.0) if osc else np.ones(theta.shape)
         gain_return = gain_lift
-        radius_lift = flat_radius(disc, theta, piece)[0]
+        radius_lift = flat_radius(disc, theta, piece)[0] if radii else nan
         radius_return = nan
     torque_arm = sg * (px * ny - py * nx) / 1000.0
     return Coefficients(theta, inertia, damping, static, w, x, ext, q.d[1], gain_lift, gain_return, torque_arm,

@@ -43,7 +43,7 @@ MAX_CUTS = 30
 def required_spring_force(built, d: DynamicsSpec, rpm: float, theta, piece=None) -> tuple[np.ndarray, np.ndarray]:
     """(x, r): the spring's deflection (mm) and the least spring force P + k·x (N) each cam angle needs."""
     bare = d.with_spring(0.0, 0.0)
-    k = coefficients(built, bare, theta, piece)
+    k = coefficients(built, bare, theta, piece, radii=False)
     w_o = 2.0 * math.pi * rpm * d.overspeed / 60.0
     a, b = k.inertia, k.damping
     worst = np.minimum(0.0, a * w_o * w_o + b * w_o)
