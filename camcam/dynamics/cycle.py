@@ -151,6 +151,9 @@ def _check_at_rest(built, d: DynamicsSpec, pieces, grid_coefficients) -> None:
     if is_grooved(built):
         return
     sampled = Sampled([k.theta for k in grid_coefficients], [k.static / k.lever_m for k in grid_coefficients])
+    scale = max(1.0, abs(d.preload_n), abs(d.external_load_n))
+    if min(float(v.min()) for v in sampled.values) > 1e-3 * scale:  # clearly held everywhere: no need to refine
+        return
     least, t, i = piece_minimum(lambda ts, j: (lambda k: k.static / k.lever_m)(coefficients(built, d, ts, j, False)), pieces,
                                 sampled)
     scale = max(1.0, abs(d.preload_n), abs(d.external_load_n))
@@ -191,7 +194,9 @@ def analyse_dynamics(built, rpm: float, d: DynamicsSpec) -> Dynamics:
 
     def extreme(name: str, sign: float):
         sampled = Sampled(grids, [sign * getattr(fg, name) for fg in on_grid])
-        value, t, _ = piece_minimum(lambda ts, i: sign * getattr(forces(built, d, rpm, ts, i), name), pieces, sampled)
+        radii = name == "contact_stress_mpa"  # only the stress needs the curvature
+        value, t, _ = piece_minimum(lambda ts, i: sign * getattr(forces(built, d, rpm, ts, i, radii), name), pieces,
+                                    sampled)
         return sign * value, t
 
     hi, hi_t = extreme("contact_force_n", -1.0)
@@ -231,7 +236,7 @@ def _torque_integrals(built, d, rpm, pieces, grids, on_grid) -> tuple[float, flo
     cells, squares = [], []
     for i, ts in enumerate(grids):
         nodes, weights = gauss_span(ts[:-1], ts[1:])
-        T = forces(built, d, rpm, nodes.ravel(), i).torque_nm.reshape(nodes.shape)
+        T = forces(built, d, rpm, nodes.ravel(), i, radii=False).torque_nm.reshape(nodes.shape)
         cells.append(np.sum(weights * T, axis=1))
         squares.append(np.sum(weights * T * T, axis=1))
     mean = float(sum(c.sum() for c in cells)) / (2 * math.pi)
@@ -243,7 +248,7 @@ def _torque_integrals(built, d, rpm, pieces, grids, on_grid) -> tuple[float, flo
         start = E[-1]
 
     def g(t, i):
-        return forces(built, d, rpm, t, i).torque_nm - mean
+        return forces(built, d, rpm, t, i, radii=False).torque_nm - mean
 
     def extreme_energy(sign: float) -> float:
         i, j = max(((i, int(np.argmax(sign * E))) for i, E in enumerate(energies)),

@@ -3,7 +3,9 @@
 numpy only (a run's own process does not import scipy).  Extremes: a grid of every piece finds the best
 sample; the pieces whose best sample ties with it (to :data:`TIE`) are refined by sectioning: the two cells
 around the best of :data:`PARTS` + 1 points are kept, one call of the function per round, until the bracket
-is below 1e-12 rad.  Roots: a sign change is sectioned the same way.  Integrals: Gauss–Legendre with
+is below :data:`XTOL_EXTREME` (1e-9 rad: at a smooth extreme the value is then exact to ~1e-18 of its
+curvature; at a piece end the best sample is the end itself).  Roots: a sign change is sectioned the same way,
+to :data:`XTOL` (1e-12 rad).  Integrals: Gauss–Legendre with
 :data:`GAUSS_NODES` nodes per grid cell (a quarter degree), exact to rounding on the smooth pieces.
 """
 
@@ -23,6 +25,7 @@ BRACKET_DEG = 0.25
 #: Points per sectioning round (the bracket shrinks by PARTS/2 a round) and the bracket it stops at, rad.
 PARTS = 64
 XTOL = 1e-12
+XTOL_EXTREME = 1e-9
 
 #: Gauss–Legendre nodes per grid cell.
 GAUSS_NODES = 6
@@ -52,7 +55,7 @@ def sample(f, pieces) -> Sampled:
 def refine_min(f, lo: float, hi: float, i: int) -> tuple[float, float]:
     """(least value, θ) of ``f(θ, i)`` on [lo, hi] by sectioning (module notes)."""
     best = (math.inf, math.nan)
-    rounds = max(1, int(math.ceil(math.log(max(hi - lo, XTOL) / XTOL, PARTS / 2.0))) + 1)
+    rounds = max(1, int(math.ceil(math.log(max(hi - lo, XTOL_EXTREME) / XTOL_EXTREME, PARTS / 2.0))) + 1)
     for _ in range(rounds):
         ts = np.linspace(lo, hi, PARTS + 1)
         v = np.asarray(f(ts, i), float)

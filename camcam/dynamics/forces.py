@@ -277,10 +277,10 @@ class Forces:
     return_flank_force_n: np.ndarray
 
 
-def forces(built, d: DynamicsSpec, rpm: float, theta, piece: int | None = None) -> Forces:
+def forces(built, d: DynamicsSpec, rpm: float, theta, piece: int | None = None, radii: bool = True) -> Forces:
     """Every figure along the cam angles θ (rad) at ``rpm``; open cams' contact force is negative past a jump
-    (the pull the cam would need), with no stress there."""
-    return forces_of(built, d, rpm, coefficients(built, d, theta, piece))
+    (the pull the cam would need), with no stress there.  ``radii=False``: no curvature, stress NaN (faster)."""
+    return forces_of(built, d, rpm, coefficients(built, d, theta, piece, radii))
 
 
 def forces_of(built, d: DynamicsSpec, rpm: float, k: Coefficients) -> Forces:
