@@ -12,6 +12,7 @@ from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
 from camcam.nc.bore import bore_curve
 from camcam.nc.result import MachiningResult
+from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.toolpath.deviation import measure_deviation
 from camcam.toolpath.outline import part_outline
 
@@ -72,12 +73,14 @@ def _surfaces(built: BuiltCam, r: MachiningResult) -> list:
     return out
 
 
-def part_of(built: BuiltCam, r: MachiningResult) -> PartOutline:
+def part_of(built: BuiltCam, r: MachiningResult, budget: FitBudget = DEFAULT_BUDGET) -> PartOutline:
     """The part outline of a disc or face-groove cam's finishing contours (see :class:`PartOutline`).
 
     Each contour is offset by the tool radius only to the side where it finishes a surface of the design
     (:func:`_finished_side`), and that outline is measured against that surface: a face groove's walls are
-    its two flanks, each from the pass that cuts it (or both from a centre pass as wide as the groove).
+    its two flanks, each from the pass that cuts it (or both from a centre pass as wide as the groove); with
+    ``budget``'s sampling margin (:meth:`FitBudget.margin_mm <camcam.toolpath.budget.FitBudget.margin_mm>`), as
+    the fit's own measurement.
     """
     if r.rotary:
         return PartOutline((), None)
@@ -91,7 +94,8 @@ def part_of(built: BuiltCam, r: MachiningResult) -> PartOutline:
                 continue
             out = part_outline(c.fit.elements, d)
             outlines.append(out)
-            worst = max(worst, measure_deviation(surface, out, margin_mm=0.02 * r.tolerance_mm).max_deviation_mm)
+            worst = max(worst, measure_deviation(surface, out,
+                                                 margin_mm=budget.margin_mm(r.tolerance_mm)).max_deviation_mm)
     return PartOutline(tuple(outlines), worst)
 
 

@@ -34,7 +34,8 @@ by cos α·(n·ΔT − ℓ′·ΔB) at the distance ℓ′ from the tip (ΔT: ti
 tilt error in radians): linear in ℓ′, so the largest value over the cut
 length [0, L] is at the tip or at L.  The fit places nodes on the printed
 A grid and holds max(|n·ΔT|, |n·ΔT − L·ΔB|) — cos α ≤ 1 dropped — within
-``TARGET`` × tolerance on the printed numbers; the result reports the same
+:attr:`FiveAxisBudget.fit_share <camcam.toolpath.budget.FiveAxisBudget.fit_share>` × tolerance on the
+printed numbers; the result reports the same
 figure on a denser sampling.  Feeds are inverse time (G93) with the tool
 tip's path length in the part frame.
 """
@@ -53,6 +54,7 @@ from camcam.nc.result import GroovePlan, MachiningResult
 from camcam.nc.settings import MachiningSpec
 from camcam.nc.tools import SAME_TOOL_MM, job_title
 from camcam.toolpath.arcfit import FitResult
+from camcam.toolpath.budget import DEFAULT_FIVE_AXIS_BUDGET, FiveAxisBudget
 from camcam.toolpath.contours import CutContour, SegmentBlocks
 from camcam.toolpath.deviation import Deviation
 from camcam.toolpath.elements import Line
@@ -61,8 +63,6 @@ from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["ToolPose", "FivePath", "fit_five_axis", "machine_five_axis", "frame_comments", "tool_axis", "part_pose"]
 
-#: The fit holds its error model within this share of the tolerance (the rest: sampling, second-order terms).
-TARGET = 0.8
 #: Samples per block while fitting / when reporting the fitted figure.
 FIT_SAMPLES, REPORT_SAMPLES = 24, 96
 #: Smoothing of |sin θf| in the tip depth (rad).
@@ -183,14 +183,16 @@ def _node(pose: ToolPose, a_deg: np.ndarray, quantizer: Quantizer) -> np.ndarray
     return np.column_stack([xzb[:, 0], xzb[:, 1], a, xzb[:, 2]])
 
 
-def fit_five_axis(pose: ToolPose, tolerance_mm: float, quantizer: Quantizer, cut_length: float) -> np.ndarray:
-    """Printed nodes (n, 4: X, Z, A°, B°) over one revolution, every block within ``TARGET``·tolerance.
+def fit_five_axis(pose: ToolPose, tolerance_mm: float, quantizer: Quantizer, cut_length: float,
+                  budget: FiveAxisBudget = DEFAULT_FIVE_AXIS_BUDGET) -> np.ndarray:
+    """Printed nodes (n, 4: X, Z, A°, B°) over one revolution, every block within ``budget``'s share of the
+    tolerance (:meth:`FiveAxisBudget.target_mm`).
 
     A march over the cam angle q (A = s·q): from each node, candidate ends at 0.3…2.5 × the last step
     (and the next motion-segment end, a node of its own) are tested together; the farthest end before
     the first one over the target is taken.
     """
-    target = TARGET * tolerance_mm
+    target = budget.target_mm(tolerance_mm)
     grid = np.linspace(0.3, 2.5, 23)
     nodes = [_node(pose, np.array([0.0]), quantizer)[0]]
     step = 1.0  # degrees of cam angle
@@ -278,10 +280,11 @@ def _lower_bound(pose: ToolPose, tolerance_mm: float, cut_length: float, lo: flo
     return float(np.trapezoid(np.sqrt(k / (8 * tolerance_mm)), th))
 
 
-def five_axis_path(pose: ToolPose, tolerance_mm: float, quantizer: Quantizer) -> FivePath:
-    """Fit one revolution and measure it on the printed numbers."""
+def five_axis_path(pose: ToolPose, tolerance_mm: float, quantizer: Quantizer,
+                   budget: FiveAxisBudget = DEFAULT_FIVE_AXIS_BUDGET) -> FivePath:
+    """Fit one revolution (within ``budget``'s share of the tolerance) and measure it on the printed numbers."""
     cut = pose.cut_length()
-    nodes = fit_five_axis(pose, tolerance_mm, quantizer, cut)
+    nodes = fit_five_axis(pose, tolerance_mm, quantizer, cut, budget)
     err = block_errors(pose, nodes[:-1], nodes[1:], cut, REPORT_SAMPLES)
     worst = int(np.argmax(err.max(axis=1)))
     return FivePath(nodes, cut, pose.floor_radius(), float(err[:, 0].max()), float(err[:, 1].max()),

@@ -48,23 +48,14 @@ from camcam.nc.passes import with_markers
 from camcam.nc.result import GroovePlan, MachiningResult, deviation_checks
 from camcam.nc.settings import MachiningSpec
 from camcam.nc.tools import SAME_TOOL_MM, groove_passes
+from camcam.toolpath.budget import DEFAULT_BUDGET, DEFAULT_GROOVE_BUDGET, FitBudget, GrooveBudget
 from camcam.toolpath.contours import CutContour, OffsetCurve, fit_printed
 from camcam.toolpath.elements import Line
 from camcam.toolpath.path import join_toolpaths, rotary_toolpath
 from camcam.toolpath.poses import A_AXIS_SENSE
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["machine_cylindrical", "developed_printed", "printed_axes", "machine_frame_lines", "TILT_FIT_SHARE"]
-
-#: A tilting roller axis on 4 axes (an oscillating roller): the radial tool's error e is the machine's, not the
-#: fit's, so the fit is held to this share of the tolerance.  Then a plan at tolerance T measures at most
-#: e + TILT_FIT_SHARE·T (a fit held in the developed plane at the outer radius moves the cut at most that much at
-#: every depth), and e is at most the measured D + TILT_FIT_SHARE·T: the tolerance the advice names,
-#: (D + share·T) / (1 − share − SAMPLING_SHARE), holds when accepted (issue 43: it named D itself, and a plan
-#: fitted to the wider tolerance measured more again: 0.0623 → 0.1103 → 0.1559 mm on campaign case 43:426).
-TILT_FIT_SHARE = 0.25
-#: The share of the tolerance the 3-D measurement's motion-sampling bound may take (pose_step_for: 2 %).
-SAMPLING_SHARE = 0.02
+__all__ = ["machine_cylindrical", "developed_printed", "printed_axes", "machine_frame_lines"]
 
 
 def printed_axes(elements, quantizer: Quantizer, radius_mm: float, turn: int = 1) -> np.ndarray:
@@ -107,19 +98,19 @@ def _plan(cam, r_t: float, rho_d: float):
 
 
 def _check_fit_floor(cam, m: MachiningSpec, quantizer: Quantizer, least_mm: float, flank_err: float,
-                     flanks: bool) -> None:
+                     flanks: bool, groove: GrooveBudget = DEFAULT_GROOVE_BUDGET,
+                     budget: FitBudget = DEFAULT_BUDGET) -> None:
     """Refuse, naming ``machining.tolerance`` and a value that works, a tolerance whose share for the passes'
     fits is below what the post's decimals allow (:meth:`FitBudget.floor_mm`).  The spec's own check holds the
-    whole tolerance to that floor; a barrel's flank passes fit within max(δ − e, δ/2) (e: the flank plan's
-    error), times :data:`TILT_FIT_SHARE` where the roller's axis tilts, so the least δ that holds is
-    min(F/k + e, 2F/k) with flanks, F/k without (issue 43: it said "use at least 0.0018 mm" to a user at 0.0023)."""
-    from camcam.toolpath.budget import DEFAULT_BUDGET
-
-    k = TILT_FIT_SHARE if cam.follower.roller_axis_tilts else 1.0
-    floor = DEFAULT_BUDGET.floor_mm(quantizer)
+    whole tolerance to that floor; a barrel's flank passes fit within max(δ − e, s·δ) (e: the flank plan's
+    error, s: :attr:`GrooveBudget.flank_fit_share`), times k = :attr:`GrooveBudget.tilt_fit_share` where the
+    roller's axis tilts, so the least δ that holds is min(F/k + e, F/(s·k)) with flanks, F/k without (issue 43:
+    it said "use at least 0.0018 mm" to a user at 0.0023)."""
+    k = groove.fit_factor(cam.follower.roller_axis_tilts)
+    floor = budget.floor_mm(quantizer)
     if least_mm * k >= floor:
         return
-    need = min(floor / k + flank_err, 2 * floor / k) if flanks else floor / k
+    need = min(floor / k + flank_err, floor / k / groove.flank_fit_share) if flanks else floor / k
     need = math.ceil(need * 1e4 + 1e-9) / 1e4  # up to 0.0001 mm: the least tolerance that holds, as typed
     raise SpecError("machining.tolerance", f"{m.tolerance_mm:g} mm leaves the groove passes' fits "
                                            f"{least_mm * k:.2g} mm, below the {floor:.2g} mm the post's "
@@ -154,8 +145,10 @@ def _corner_depth_mm(cam, r_t: float, quantizer, depth_mm: float) -> float:
     return top - quantizer.value(k)
 
 
-def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: int = 1) -> MachiningResult:
-    """The 4-axis program of a cylindrical cam and its 3-D measurement (see the module notes)."""
+def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: int = 1,
+                        groove: GrooveBudget = DEFAULT_GROOVE_BUDGET) -> MachiningResult:
+    """The 4-axis program of a cylindrical cam and its 3-D measurement (see the module notes); ``groove``: how
+    the tolerance is shared between the flank plan and the passes' fits (:class:`GrooveBudget`)."""
     cam, post = built.cam, m.post
     if not post.inverse_time:
         raise GeometryError(f"post {post.name}: has no inverse-time feed (G93) for a cylindrical cam's 4-axis program")
@@ -170,20 +163,22 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     scale = (m.depth_mm + corner) / m.depth_mm
     cs = dataclasses.replace(cs0, depth_mm=m.depth_mm + corner, stepdown_mm=m.stepdown_mm * scale)
     plan, flank_err = _plan(cam, r_t, rho_d)
-    fit_tol = m.tolerance_mm - flank_err if flank_err < 0.5 * m.tolerance_mm else m.tolerance_mm / 2
-    _check_fit_floor(cam, m, post.quantizer, fit_tol if len(plan) > 1 else m.tolerance_mm, flank_err, len(plan) > 1)
+    fit_tol = groove.flank_fit_mm(m.tolerance_mm, flank_err)
+    _check_fit_floor(cam, m, post.quantizer, fit_tol if len(plan) > 1 else m.tolerance_mm, flank_err, len(plan) > 1,
+                     groove)
 
     def printed(elements):
         return developed_printed(printed_axes(elements, post.quantizer, rho_d, turn), rho_d, turn)
 
     def job(item):
-        """A pass's fit as printed, or (the last item) the smallest tool that holds half the tolerance."""
+        """A pass's fit as printed, or (the last item) the smallest tool whose flank error holds
+        :attr:`GrooveBudget.flank_share` of the tolerance."""
         if item is None:
-            return 2 * smallest_tool_radius(cam, 0.5 * m.tolerance_mm, rho_d)
+            return 2 * smallest_tool_radius(cam, groove.flank_tool_mm(m.tolerance_mm), rho_d)
         label, curve = item[0], item[1]
         tol = fit_tol if label.startswith("flank") else m.tolerance_mm
         if cam.follower.roller_axis_tilts:
-            tol *= TILT_FIT_SHARE
+            tol *= groove.tilt_fit_share
         return fit_printed(curve, tol, "lines", post.quantizer, post.max_arc_sweep_deg, printed, f"{name} {label}")
 
     # the passes' fits and the smallest-tool search are independent: they share the workers (the same

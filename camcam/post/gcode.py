@@ -171,7 +171,7 @@ class _Writer:
         elif self.post.arc_format == "ij_absolute":
             w += [f"I{self.n(cx)}", f"J{self.n(cy)}"]
         else:
-            w += [f"R{self.n(round(math.hypot(cx - sx, cy - sy)))}"]
+            w += [f"R{self.n(self.post.quantizer.radius_word((sx, sy), (cx, cy)))}"]  # the fitter's R model
         if m.feed_mm_min != self.feed:
             w.append(self.f_word(m.feed_mm_min))
             self.feed = m.feed_mm_min

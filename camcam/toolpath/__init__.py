@@ -12,7 +12,8 @@ from camcam.lazy import lazy_exports
 __getattr__, __dir__, __all__ = lazy_exports(__name__, {
     **dict.fromkeys(("FitResult", "fit_contour"), "camcam.toolpath.arcfit"),
     **dict.fromkeys(("line_estimate_blocks", "lower_bound_blocks"), "camcam.toolpath.lowerbound"),
-    **dict.fromkeys(("FitBudget", "DEFAULT_BUDGET"), "camcam.toolpath.budget"),
+    **dict.fromkeys(("FitBudget", "DEFAULT_BUDGET", "GrooveBudget", "DEFAULT_GROOVE_BUDGET", "FiveAxisBudget",
+                     "DEFAULT_FIVE_AXIS_BUDGET"), "camcam.toolpath.budget"),
     **dict.fromkeys(("Quantizer",), "camcam.toolpath.quantizer"),
     **dict.fromkeys(("CutContour", "fit_printed"), "camcam.toolpath.contours"),
     **dict.fromkeys(("Deviation", "measure_deviation"), "camcam.toolpath.deviation"),

@@ -30,12 +30,20 @@ from camcam.toolpath.arcchain import (CurveTable, OnCurve, chain_errors, chain_s
                                       on_curve, sample_spacing)
 from camcam.toolpath.arcprint import printed_chain
 from camcam.toolpath.beam import ArcSpline
+from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["fewer_arcs"]
+__all__ = ["fewer_arcs", "ENOUGH", "HOPELESS"]
 
-#: What printing the chain may add to its error, in grid steps: measured 0.0–0.35 steps on the 12 cases.
-PRINT_ALLOWANCE_STEPS = 0.4
+# What the chain may spend of the band (printing's allowance, the least share left, the G1 gap) is the budget's
+# (FitBudget.chain_print_steps, chain_min_share, chain_gap_share).  These two are search heuristics, not shares:
+# the chain is accepted only within the budget's band, then printed and measured, whatever they are.
+#: The optimiser may stop once a chain is within this × its band (3 % to spare for printing, which moves its
+#: error by up to 0.35 grid steps): a stopping rule of the search; a chain is accepted only within the band.
+ENOUGH = 0.97
+#: A drop's optimisation is given up once its chain is hopeless, still over this × the band (a stopping rule,
+#: see :data:`camcam.toolpath.arcseed.GIVE_UP` for how such factors were judged); it only saves time.
+HOPELESS = 1.05
 
 
 def _removal_order(oc: OnCurve, tab: CurveTable, per_arc: int) -> list[int]:
@@ -67,13 +75,15 @@ def _removal_order(oc: OnCurve, tab: CurveTable, per_arc: int) -> list[int]:
 
 
 def fewer_arcs(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_sweep: float, sag: float,
-               spline: ArcSpline, n_arcs: int, *, tries: int = 12, per_arc: int = 24) -> tuple[ArcSpline, ...]:
+               spline: ArcSpline, n_arcs: int, *, tries: int = 12, per_arc: int = 24,
+               budget: FitBudget = DEFAULT_BUDGET) -> tuple[ArcSpline, ...]:
     """A printed closed G1 spline of ``n_arcs`` arcs within ``tol``, from a march's ``spline`` with more.
 
     While the chain has more than ``n_arcs`` arcs, a joint is dropped: the first of :func:`_removal_order`
     (of the march's joints, then of the last chain's), of at most ``tries``, whose chain optimised
-    (:func:`~camcam.toolpath.arcchain.minimax_chain`) keeps within the band less :data:`PRINT_ALLOWANCE_STEPS`
-    grid steps.  (Optimising the march's own chain first, for its slack, found the same counts on the 12
+    (:func:`~camcam.toolpath.arcchain.minimax_chain`) keeps within the band less ``budget``'s allowance for
+    printing (:meth:`FitBudget.chain_band_mm <camcam.toolpath.budget.FitBudget.chain_band_mm>`).  (Optimising
+    the march's own chain first, for its slack, found the same counts on the 12
     cases in 1.4–2 × the time.)  The chain is printed (:func:`~camcam.toolpath.arcprint.printed_spline`) and
     measured both ways on the curve's table (:func:`~camcam.toolpath.arcprint.measured_deviation`).
 
@@ -84,8 +94,8 @@ def fewer_arcs(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_
         no drop keeps within the band, printing leaves it, or the band is too narrow for the grid.
     """
     m = len(spline.elements)
-    allowed = tol - PRINT_ALLOWANCE_STEPS * quantizer.step_mm
-    if m <= n_arcs or allowed <= 0.5 * tol or max_sweep > 0.9 * math.pi:
+    allowed = budget.chain_band_mm(tol, quantizer)
+    if m <= n_arcs or not budget.chain_holds(tol, quantizer) or max_sweep > 0.9 * math.pi:
         return ()
     tab = CurveTable(curve, a, b, 16384)
     jn = joints_of(spline.elements)
@@ -93,13 +103,13 @@ def fewer_arcs(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_
     while len(oc.t) > n_arcs:
         # the last drop may stop once within the target (3 % to spare for printing); an earlier one is optimised
         # to the end, which leaves the most room for the drops after it
-        enough = 0.97 * allowed if len(oc.t) == n_arcs + 1 else 0.0
+        enough = ENOUGH * allowed if len(oc.t) == n_arcs + 1 else 0.0
         for j in _removal_order(oc, tab, per_arc)[:tries]:
             keep = np.arange(len(oc.t)) != j
             trial = OnCurve(curve, a, b, oc.t[keep], oc.v[keep], oc.psi[keep], oc.w)
             trial, err, gap = minimax_chain(trial, tab, max_sweep=max_sweep, per_arc=per_arc,
-                                            hopeless=1.05 * allowed, enough=enough)
-            if err <= allowed and gap <= 1e-3 * tol:
+                                            hopeless=HOPELESS * allowed, enough=enough)
+            if err <= allowed and gap <= budget.chain_gap_mm(tol):
                 oc = trial
                 break
         else:

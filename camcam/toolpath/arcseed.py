@@ -24,7 +24,8 @@ over 1.2 ×, and such a seed costs half the time), and so is one still over
 1.03 × at half the steps (of the 11 seeds of those two samples that fitted,
 the slowest was at 1.00 × at half time; disc-translating-flat at 0.001 mm's
 first seed hovered at 1.04–1.06 × for all 30 steps, 0.23 CPU s;
-:func:`~camcam.toolpath.arcpolish.fewer_arcs` gives its chains 1.05 ×).
+:func:`~camcam.toolpath.arcpolish.fewer_arcs` gives its chains :data:`~camcam.toolpath.arcpolish.HOPELESS`,
+1.05 ×).
 Measured with ``benchmarks/run_nc.py --arcs`` (2026-12-06, every closed
 contour of the six disc samples with analytic motion at 0.1, 0.01, 0.002,
 0.001 and 0.0005 mm, 30 cases): fewer arcs than the beam march (with its
@@ -63,9 +64,10 @@ import numpy as np
 
 from camcam.geometry.curve import curvature, curvature_rate
 from camcam.toolpath.arcchain import CurveTable, OnCurve, minimax_chain
-from camcam.toolpath.arcpolish import PRINT_ALLOWANCE_STEPS
+from camcam.toolpath.arcpolish import ENOUGH
 from camcam.toolpath.arcprint import printed_chain
 from camcam.toolpath.beam import ArcSpline
+from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["seed_density", "seeded_count", "seeded_chain", "SMOOTH_RATIO", "PATTERN_CONSTANT"]
@@ -114,13 +116,15 @@ def seed_density(curve, a: float, b: float, tol: float, max_sweep: float, n: int
 
 
 def seeded_chain(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_sweep: float, sag: float,
-                 n_max: int, *, tries: int = 3, per_arc: int = 24) -> tuple[ArcSpline, ...]:
+                 n_max: int, *, tries: int = 3, per_arc: int = 24,
+                 budget: FitBudget = DEFAULT_BUDGET) -> tuple[ArcSpline, ...]:
     """A printed closed G1 spline of at most ``n_max`` arcs within ``tol``, seeded from the arc density.
 
     N = ⌈∫⌉ … ⌈∫⌉ + ``tries`` − 1 joints (at most ``n_max``), in turn, are put at equal steps of
     :func:`seed_density` from ``a``, on the curve along its tangent; the chain is optimised
     (:func:`~camcam.toolpath.arcchain.minimax_chain`), printed and measured both ways on the curve's table,
-    as :func:`~camcam.toolpath.arcpolish.fewer_arcs` does.
+    as :func:`~camcam.toolpath.arcpolish.fewer_arcs` does.  The chain's share of ``tol`` (what printing may
+    add, the G1 gap it may keep) is ``budget``'s (:class:`~camcam.toolpath.budget.FitBudget`).
 
     Returns
     -------
@@ -142,8 +146,8 @@ def seeded_chain(curve, a: float, b: float, tol: float, quantizer: Quantizer, ma
     >>> len(sp.elements) <= 1.2 * 14.65 + 4, sp.elements[0].start == sp.elements[-1].end
     (True, True)
     """
-    allowed = tol - PRINT_ALLOWANCE_STEPS * quantizer.step_mm
-    if allowed <= 0.5 * tol or max_sweep > 0.9 * math.pi:
+    allowed = budget.chain_band_mm(tol, quantizer)
+    if not budget.chain_holds(tol, quantizer) or max_sweep > 0.9 * math.pi:
         return ()
     density = seed_density(curve, a, b, allowed, max_sweep)
     first = max(3, math.ceil(float(density[1][-1])))
@@ -151,23 +155,25 @@ def seeded_chain(curve, a: float, b: float, tol: float, quantizer: Quantizer, ma
     for n in range(first, min(first + tries - 1, n_max) + 1):
         if tab is None:
             tab = CurveTable(curve, a, b, 16384)
-        for spline in seeded_count(curve, a, b, tol, quantizer, max_sweep, sag, n, density, tab, per_arc=per_arc):
+        for spline in seeded_count(curve, a, b, tol, quantizer, max_sweep, sag, n, density, tab, per_arc=per_arc,
+                                   budget=budget):
             return (spline,)
     return ()
 
 
 def seeded_count(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_sweep: float, sag: float, n: int,
-                 density, tab: CurveTable, *, per_arc: int = 24) -> tuple[ArcSpline, ...]:
+                 density, tab: CurveTable, *, per_arc: int = 24, budget: FitBudget = DEFAULT_BUDGET
+                 ) -> tuple[ArcSpline, ...]:
     """One seed of :func:`seeded_chain`: ``n`` joints at equal steps of ``density`` (:func:`seed_density` at the
-    band less printing's allowance) from ``a``, optimised on ``tab``, printed and measured; the spline, or
-    nothing (the chain given up or over the band, or its printed form over ``tol``)."""
-    allowed = tol - PRINT_ALLOWANCE_STEPS * quantizer.step_mm
+    band less printing's allowance, :meth:`FitBudget.chain_band_mm`) from ``a``, optimised on ``tab``, printed and
+    measured; the spline, or nothing (the chain given up or over the band, or its printed form over ``tol``)."""
+    allowed = budget.chain_band_mm(tol, quantizer)
     t, count, turns = density
     total = float(count[-1])
     joints_t = np.interp(np.arange(n) / n * total, count, np.concatenate([t, [b]]))
     seed = OnCurve(curve, a, b, joints_t, np.zeros(n), np.zeros(n), turns)
-    chain, err, gap = minimax_chain(seed, tab, max_sweep=max_sweep, per_arc=per_arc, enough=0.97 * allowed,
+    chain, err, gap = minimax_chain(seed, tab, max_sweep=max_sweep, per_arc=per_arc, enough=ENOUGH * allowed,
                                     early=(GIVE_UP[0], GIVE_UP[1] * allowed), hopeless=GIVE_UP[2] * allowed)
-    if err > allowed or gap > 1e-3 * tol:
+    if err > allowed or gap > budget.chain_gap_mm(tol):
         return ()
     return printed_chain(chain, tab, quantizer, sag, max_sweep, tol)

@@ -140,8 +140,22 @@ class Quantizer:
         return tuple(out)
 
     def radius_count(self, start, centre) -> int:
-        """The printed R word of an arc: the distance between the printed start and centre, rounded."""
-        (sx, sy), (cx, cy) = (self.count(float(v)) for v in start[:2]), (self.count(float(v)) for v in centre[:2])
+        """The printed R word of an arc (a count of 10^−d): :meth:`radius_word` of its printed start and centre."""
+        return self.radius_word([self.count(float(v)) for v in start[:2]], [self.count(float(v)) for v in centre[:2]])
+
+    @staticmethod
+    def radius_word(start_count, centre_count) -> int:
+        """The R word from the printed start and centre (counts of 10^−d): their distance, rounded to a count.
+
+        The one rounding of R: the writer (:mod:`camcam.post.gcode`) prints it, and the fitter's model of the
+        printed arc (:meth:`radius_count`, :meth:`printed_elements`) rebuilds the centre from it.
+
+        Examples
+        --------
+        >>> Quantizer.radius_word((0, 0), (30000, 40000))
+        50000
+        """
+        (sx, sy), (cx, cy) = start_count[:2], centre_count[:2]
         return round(math.hypot(cx - sx, cy - sy))
 
     def printed_elements(self, elements) -> tuple:

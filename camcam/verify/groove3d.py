@@ -65,6 +65,7 @@ from camcam.workers import parallel_map
 from camcam.geometry.cylindrical import CylindricalCam
 from camcam.verify.groove_motion import (Motion, ProgramMotion, RollerMotion, follower_poses, section_interval, side_extent,
                                      sincos_sum, wall_extents)
+from camcam.toolpath.budget import DEFAULT_GROOVE_BUDGET, GrooveBudget
 from camcam.toolpath.poses import CylinderTool, ToolPoses, frozen_array
 
 __all__ = ["WallExtreme", "WallDeviation", "GrooveMeasurement", "measure_groove", "pose_step_for", "WALL_LABELS",
@@ -452,13 +453,11 @@ def _refine(setup: _Setup, side: int, rho0: float, th0: float, sign: float, rho_
     return rho, th, setup.exact_deviation(rho, th, side)
 
 
-#: Largest step of a tool section between motion samples (mm), and the share of the tolerance the sampling
-#: bound h²/(8 r) may take at most (as the 2-D measurement's margin, FitBudget.sampling_share).
-POSE_STEP_MM, SAMPLING_SHARE = 0.1, 0.02
-
-
-def pose_step_for(tolerance_mm: float, tool_radius_mm: float) -> float:
-    """The pose step (mm) whose sampling bound h²/(8 r) is at most :data:`SAMPLING_SHARE` × the tolerance.
+def pose_step_for(tolerance_mm: float, tool_radius_mm: float,
+                  budget: GrooveBudget = DEFAULT_GROOVE_BUDGET) -> float:
+    """The pose step (mm) whose sampling bound h²/(8 r) is at most ``budget``'s
+    :attr:`~camcam.toolpath.budget.GrooveBudget.sampling_share` × the tolerance (:meth:`GrooveBudget.pose_step_for
+    <camcam.toolpath.budget.GrooveBudget.pose_step_for>`), and at most its ``pose_step_mm``.
 
     Examples
     --------
@@ -467,11 +466,12 @@ def pose_step_for(tolerance_mm: float, tool_radius_mm: float) -> float:
     >>> round(pose_step_for(0.001, 8.0), 6)  # 0.001 mm: bound 2e-5 mm
     0.035777
     """
-    return min(POSE_STEP_MM, math.sqrt(8.0 * tool_radius_mm * SAMPLING_SHARE * tolerance_mm))
+    return budget.pose_step_for(tolerance_mm, tool_radius_mm)
 
 
 def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *, radii: int | np.ndarray = 11,
-                   angle_step_deg: float = 0.25, pose_step_mm: float = POSE_STEP_MM, workers: int = 1) -> GrooveMeasurement:
+                   angle_step_deg: float = 0.25, pose_step_mm: float = DEFAULT_GROOVE_BUDGET.pose_step_mm,
+                   workers: int = 1) -> GrooveMeasurement:
     """Measure the groove the poses cut against the designed groove: both walls, all radii, all angles.
 
     Parameters

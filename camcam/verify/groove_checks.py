@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import math
 
-from camcam.nc.rotary import SAMPLING_SHARE, TILT_FIT_SHARE
 from camcam.nc.settings import MachiningSpec
 from camcam.nc.tools import SAME_TOOL_MM
+from camcam.toolpath.budget import DEFAULT_GROOVE_BUDGET, GrooveBudget
 from camcam.verdict import Check
 from camcam.verify.groove3d import GrooveMeasurement
 
@@ -20,14 +20,15 @@ __all__ = ["groove_check", "five_axis_check"]
 
 
 def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool_mm: float | None,
-                 flute_needed_mm: float | None = None) -> Check:
+                 flute_needed_mm: float | None = None, budget: GrooveBudget = DEFAULT_GROOVE_BUDGET) -> Check:
     """The 3-D groove deviation held to the tolerance, with the way out of a miss (``flute_needed_mm``: the
-    flute the printed poses need, :func:`camcam.verify.reach.tool_reach`)."""
+    flute the printed poses need, :func:`camcam.verify.reach.tool_reach`; ``budget``: the shares the plan was
+    fitted with, whence the tolerance a tilting roller's plan holds, :meth:`GrooveBudget.tilt_tolerance_mm`)."""
     value, tol = groove.max_deviation_mm, m.tolerance_mm
     holds = math.ceil(value * 1e4) / 1e4
     r_r = cam.roller_radius
     if cam.follower.roller_axis_tilts:
-        holds = math.ceil((value + TILT_FIT_SHARE * tol) / (1 - TILT_FIT_SHARE - SAMPLING_SHARE) * 1e4) / 1e4
+        holds = math.ceil(budget.tilt_tolerance_mm(value, tol) * 1e4) / 1e4
         # keys and values as a spec writes them, each with its section, so that the advice applies as it reads
         # (issue 43: it said "a tool of the roller's diameter (D8 mm)"); the tool first: axes = 5 with another
         # tool is refused.  On a post with no 5-axis mode "axes = 5" ends in a refusal, so the tolerance comes first

@@ -134,14 +134,15 @@ def test_fine_tolerance_samples_the_motion_finer():
     """At 0.002 mm the 0.1 mm pose step's sampling bound (0.1² / (8 · 8) = 1.6e-4 mm) would take 8 % of the
     tolerance; the step shrinks so that it takes at most 2 % (as the 2-D measurement's margin), and the figure
     held to the tolerance includes it."""
-    from camcam.verify.groove3d import SAMPLING_SHARE, pose_step_for
+    from camcam.toolpath.budget import DEFAULT_GROOVE_BUDGET
+    from camcam.verify.groove3d import pose_step_for
 
     spec = load_spec(ROOT / "samples" / "cylindrical-translating.toml")
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
     m = replace(spec.machining, axes=4, tolerance_mm=0.002)
     g = checked(built, m, spec.name).groove
     assert g.pose_step_mm == pose_step_for(0.002, 8.0) == pytest.approx(math.sqrt(8 * 8.0 * 0.02 * 0.002), rel=1e-12)
-    assert g.sampling_bound_mm <= SAMPLING_SHARE * m.tolerance_mm * (1 + 1e-12)  # h²/(8 r) at that step
+    assert g.sampling_bound_mm <= DEFAULT_GROOVE_BUDGET.sampling_share * m.tolerance_mm * (1 + 1e-12)  # h²/(8 r) at that step
     assert g.max_deviation_mm == g.measured_mm + g.sampling_bound_mm
     assert g.max_deviation_mm <= m.tolerance_mm
 

@@ -103,3 +103,35 @@ def test_snap_points_is_snap_point_of_each(data, decimals):
     got = q.snap_points(points)
     want = [q.snap_point(p) for p in points]
     assert [tuple(x.hex() for x in p) for p in got] == [tuple(x.hex() for x in p) for p in want]
+
+
+@settings(max_examples=150, deadline=None)
+@given(decimals=st.integers(3, 6), cx=st.floats(-500, 500), cy=st.floats(-500, 500), r=st.floats(0.05, 2000),
+       a0=st.floats(0, 6.283), sweep=st.floats(0.01, 2.0), ccw=st.booleans())
+def test_writer_prints_the_quantizers_r_word(decimals, cx, cy, r, a0, sweep, ccw):
+    """The R word the writer prints is the Quantizer's (Quantizer.radius_count, the fitter's model of the
+    printed arc), on random arcs at 3–6 decimals."""
+    import dataclasses
+    import math
+    import re
+    from decimal import Decimal
+
+    from camcam.post.gcode import write_program
+    from camcam.toolpath.path import ArcMove, Feed, Rapid, Toolpath
+
+    post = dataclasses.replace(load_post("linuxcnc"), arc_format="r", decimals=decimals, max_radius_error_mm=1.0)
+    q = post.quantizer
+    a1 = a0 + (sweep if ccw else -sweep)
+    start = (cx + r * math.cos(a0), cy + r * math.sin(a0))
+    end = (cx + r * math.cos(a1), cy + r * math.sin(a1))
+    if q.snap_point(start) == q.snap_point(end):
+        return
+    moves = (Rapid(x=start[0], y=start[1], z=1.0), Feed(x=start[0], y=start[1], z=0.0, feed_mm_min=300.0),
+             ArcMove(x=end[0], y=end[1], cx=cx, cy=cy, ccw=ccw, z=0.0, feed_mm_min=300.0))
+    text = write_program(Toolpath.of_moves("r", moves, 1000), post).text
+    (word,) = re.findall(r"^G[23] .*\bR(-?[0-9.]+)", text, re.M)
+    printed = int(Decimal(word).scaleb(decimals))
+    assert printed == q.radius_count(start, (cx, cy))
+    # and the contour the fitter measures (printed_elements) turns about a centre at that printed radius
+    (arc,) = q.printed_elements((Arc(start, end, (cx, cy), ccw),))
+    assert abs(math.dist(arc.start, arc.centre) - q.value(printed)) < 1e-9 * max(1.0, r)
