@@ -21,7 +21,7 @@ RANK = {
     "__init__": 0, "errors": 0, "inputs": 0, "verdict": 0, "lazy": 0, "workers": 0, "interrupts": 0, "data": 0,
     "motion": 1,
     "geometry": 2, "optimize": 2, "lifttable": 2,
-    "reverse": 3, "toolpath": 3, "dynamics": 3,
+    "reverse": 3, "toolpath": 3, "dynamics": 3, "inspect": 3,
     "nc": 4,
     "post": 5, "export": 5, "plots": 5, "report": 5, "verify": 5,
     "spec": 6, "sizing": 6, "dask_batch": 6,
@@ -178,6 +178,8 @@ PARALLEL_NAMES = {
     "size.py": ({"cli/size.py", "spec/size.py"}, "`camcam size`'s command line; the [size] table's reader"),
     # the spec's table readers are named after their tables
     "stock.py": ({"spec/stock.py", "nc/stock.py"}, "the [stock] table's reader; the NC job's blank"),
+    "inspection.py": ({"spec/inspection.py", "report/inspection.py"},
+                      "the [inspection] table's reader; the run report's inspection table"),
     # one module per cam kind, in the forward and the reverse direction
     "cylindrical.py": ({"geometry/cylindrical.py", "reverse/cylindrical.py"}, "a barrel cam built; a barrel cam measured"),
     "disc.py": ({"geometry/disc.py", "reverse/disc.py"}, "a disc cam built; a disc cam measured"),

@@ -9,8 +9,6 @@ design) and ``DIR/summary.json``; ``--json`` prints the summary.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from camcam.cli.commands import help_of
@@ -18,7 +16,8 @@ from camcam.cli.output import add_output_arguments, output_set, publish, to_json
 from camcam.errors import SpecError
 from camcam.export.figures import fixed
 from camcam.export.recovered_motion import motion_csv
-from camcam.reverse.design import ReverseOptions, design_motion, reverse_design
+from camcam.reverse.compare import motion_errors
+from camcam.reverse.design import ReverseOptions, reverse_design
 from camcam.reverse.fit import DEFAULT_MAX_GAP_DEG, FITS
 from camcam.reverse.points import load_points
 from camcam.spec import load_spec
@@ -42,25 +41,8 @@ def register(sub) -> None:
 
 
 def compare(angles_deg, recovered, program, cam_kind: str) -> tuple[np.ndarray, dict]:
-    """Design columns at ``angles_deg`` and the largest errors (per degree, and in time units at the design's rpm)."""
-    design = np.stack([design_motion(program, cam_kind, angles_deg, k) for k in range(3)], axis=-1)
-    err = np.abs(recovered - design).max(axis=0)
-    at = [float(angles_deg[int(np.argmax(np.abs(recovered[:, k] - design[:, k])))]) for k in range(3)]
-    per_rad = [float(err[k] * (180.0 / math.pi) ** k) for k in range(3)]
-    phys = [float(abs(program.to_physical(per_rad[k], k))) for k in range(3)]
-    return design, {
-        "max_lift_error": float(err[0]),
-        "max_velocity_error": float(err[1]),
-        "max_acceleration_error": float(err[2]),
-        "max_error_at_deg": {"lift": at[0], "velocity": at[1], "acceleration": at[2]},
-        "physical": {
-            "rpm": program.rpm,
-            "max_lift_error": phys[0],
-            "max_velocity_error": phys[1],
-            "max_acceleration_error": phys[2],
-            "units": list(program.units[:3]),
-        },
-    }
+    """Design columns at ``angles_deg`` and the largest errors (:func:`camcam.reverse.compare.motion_errors`)."""
+    return motion_errors(angles_deg, recovered, program, cam_kind)
 
 
 def run(args) -> int:

@@ -188,6 +188,15 @@ class CylindricalCam(CamBasics):
         p = self._contact(np.atleast_1d(np.asarray(theta, float)), 0, None, self._check_radius(radius_mm), index)
         return np.stack([j.value for j in p], axis=-1)
 
+    def wall_point(self, theta, radius_mm, index: int) -> np.ndarray:
+        """Cam-frame points (n, 3) of flank ``index`` at program angles θ, each on its own roller
+        cross-section ``radius_mm`` (an array like θ, not checked against the groove): the wall as an
+        exact surface of (θ, ρ), for finding the nearest wall point of a measured one."""
+        theta = np.atleast_1d(np.asarray(theta, float))
+        rho = np.broadcast_to(np.asarray(radius_mm, float), theta.shape)
+        p = self._to_cam(theta, self._contact(theta, 0, None, rho, index))
+        return np.stack([j.value for j in p], axis=-1)
+
     def _developed(self, theta, K, piece, rho, p):
         delta = Jet.atan2(p[1], p[2])
         u = (Jet.variable(theta, K) + delta * self.sigma) * rho
