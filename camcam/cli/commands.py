@@ -17,6 +17,7 @@ COMMANDS = {
     "fit": ("camcam.cli.fit", "remove bad points from a lift table, fair it and fit a spline"),
     "optimize": ("camcam.cli.optimize", "optimise a B-spline cam curve ([optimize] table)"),
     "reverse": ("camcam.cli.reverse", "recover the follower motion from measured cam points"),
+    "inspect": ("camcam.cli.inspect", "the part as measured (CMM, dial indicator, barrel walls) against the design, with a verdict"),
     "size": ("camcam.cli.size", "sweep a spec's [size] table: the smallest cam that meets every constraint"),
     "batch": ("camcam.cli.batch", "run many specs, each into its own folder, with one summary table and index page"),
 }

@@ -6,7 +6,7 @@ import numpy as np
 
 from camcam.plots.render import png_bytes, subplots
 
-__all__ = ["reverse_png"]
+__all__ = ["reverse_png", "stacked_png"]
 
 
 def reverse_png(angles_deg, recovered, unit: str, point_angles_deg, point_lift, design=None, title: str = "") -> bytes:
@@ -21,11 +21,18 @@ def reverse_png(angles_deg, recovered, unit: str, point_angles_deg, point_lift, 
         if k == 0:
             ax.plot(point_angles_deg, point_lift, ".", ms=2.5, color="C3", label="measured points")
         ax.set_ylabel(f"{names[k]} [{units[k]}]")
+    return stacked_png(fig, axes, title or "Reverse design")
+
+
+def stacked_png(fig, axes, title: str) -> bytes:
+    """Finish stacked axes over one revolution of cam angle (grid, legend on the top one, 0-360° in 30° ticks,
+    the title) and render them."""
+    for ax in axes:
         ax.grid(True, alpha=0.3)
     axes[0].legend(loc="best", fontsize=8)
     axes[-1].set_xlabel("cam angle [deg]")
     axes[-1].set_xlim(0, 360)
     axes[-1].set_xticks(np.arange(0, 361, 30))
-    fig.suptitle(title or "Reverse design")
+    fig.suptitle(title)
     fig.tight_layout()
     return png_bytes(fig)

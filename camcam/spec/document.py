@@ -27,6 +27,7 @@ if TYPE_CHECKING:
     from camcam.dynamics.train import DynamicsSpec
     from camcam.spec.cam import CamSpec
     from camcam.spec.follower import FollowerSpec
+    from camcam.spec.inspection import InspectionSpec
     from camcam.spec.machining import MachiningSpec
     from camcam.spec.motion import MotionSpec
     from camcam.spec.optimize import OptimizeSpec
@@ -54,6 +55,7 @@ class Spec:
     stock: StockSpec = DEFAULT_STOCK
     size: SizeSpec | None = None  # `camcam size` sweeps it; `camcam run` runs the design as written
     dynamics: DynamicsSpec | None = None  # forces, torque, contact stress, jump speed (camcam.dynamics)
+    inspection: InspectionSpec | None = None  # `camcam inspect`: the measured part's tolerance band
 
     @property
     def unit(self) -> str:
@@ -115,9 +117,11 @@ def parse_spec(data: dict, source: Path) -> Spec:
     size_spec = read_size(size_t, cam, follower, motion_spec, machining_spec) if size_t is not None else None
     dynamics_t = root.table("dynamics", None)
     dynamics = _reader("dynamics", "read_dynamics")(dynamics_t, cam, follower) if dynamics_t is not None else None
+    inspection_t = root.table("inspection", None)
+    inspection = _reader("inspection", "read_inspection")(inspection_t) if inspection_t is not None else None
     root.done()
     return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec, stock, size_spec,
-                dynamics)
+                dynamics, inspection=inspection)
 
 
 def _check_depth(m: MachiningSpec, cam: CamSpec) -> None:
