@@ -125,7 +125,7 @@ def design_and_drawing_checks(built, machining, machining_spec, strict: bool, pa
     checks = []
     if part_deviation_mm is not None:
         checks.append(Check("DXF part outline deviation", part_deviation_mm, machining.tolerance_mm, "mm",
-                            part_deviation_mm <= machining.tolerance_mm, where="layer PART against the design",
+                            ok=part_deviation_mm <= machining.tolerance_mm, where="layer PART against the design",
                             advice="use a post with more decimals or a larger tolerance"))
     return tuple(checks) + design_checks(built, machining_spec, strict)
 
@@ -289,7 +289,7 @@ DRAWING = "camcam.flow:drawing_and_check"
 CAM_PLOT = "camcam.plots.profile:cam_png"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Job:
     """One spec's whole result, in memory: nothing is on disk until :meth:`write`.
 
@@ -397,5 +397,6 @@ def run_job(spec=None, *, progress=None, plots=None) -> Job:
     files = _Files()
     summary, verdict, (motion, cam, machining) = _flow(spec, files, progress if progress is not None else _Quiet(),
                                                       plots, said)
-    return Job(spec.name, summary, verdict, files.contents(), tuple(t for k, t in said if k == "warning"),
-               tuple(t for k, t in said if k == "note"), motion=motion, cam=cam, machining=machining)
+    return Job(name=spec.name, summary=summary, verdict=verdict, files=files.contents(),
+               warnings=tuple(t for k, t in said if k == "warning"),
+               notes=tuple(t for k, t in said if k == "note"), motion=motion, cam=cam, machining=machining)

@@ -31,7 +31,7 @@ Examples
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 
 __all__ = ["Check", "Verdict", "OUT_OF_TOLERANCE"]
 
@@ -69,6 +69,7 @@ class Check:
     value: float
     limit: float
     unit: str
+    _: KW_ONLY
     ok: bool
     severity: str = "fail"
     where: str = ""

@@ -26,9 +26,9 @@ def demo_program() -> MotionProgram:
     """The demo spec's motion: modified sine rise 20 mm, dwell, cycloidal return, dwell."""
     return MotionProgram((
         Segment(make_law("modified-sine"), 0, 120, 20.0),
-        Segment(dwell(), 120, 180, 0.0, 20.0),
-        Segment(make_law("cycloidal"), 180, 300, -20.0, 20.0),
-        Segment(dwell(), 300, 360, 0.0, 0.0),
+        Segment(dwell(), 120, 180, 0.0, base=20.0),
+        Segment(make_law("cycloidal"), 180, 300, -20.0, base=20.0),
+        Segment(dwell(), 300, 360, 0.0, base=0.0),
     ), rpm=120)
 
 

@@ -241,3 +241,122 @@ def test_worker_processes_reach_no_stage_below_nc():
                 bad += [f"{path.relative_to(PACKAGE.parent)}:{node.lineno} {node.name}() takes workers"
                         for a in params if a.arg == "workers"]
     assert not bad, "\n".join(bad)
+
+
+#: The most positional parameters a public constructor takes (issue 44: a call such as
+#: ``RemovalReport(r, s, a, t, ...)`` with 20 values in a row cannot be read or checked by eye).
+MAX_POSITIONAL = 4
+
+
+def _is_dataclass_decorator(node: ast.expr) -> bool:
+    target = node.func if isinstance(node, ast.Call) else node
+    return (isinstance(target, ast.Name) and target.id == "dataclass") or (
+        isinstance(target, ast.Attribute) and target.attr == "dataclass")
+
+
+def _keyword_true(call: ast.expr, name: str) -> bool:
+    return isinstance(call, ast.Call) and any(
+        k.arg == name and isinstance(k.value, ast.Constant) and k.value.value is True for k in call.keywords)
+
+
+def _keyword_false(call: ast.expr, name: str) -> bool:
+    return isinstance(call, ast.Call) and any(
+        k.arg == name and isinstance(k.value, ast.Constant) and k.value.value is False for k in call.keywords)
+
+
+def _positional_parameters(cls: ast.ClassDef) -> list[str] | None:
+    """The parameters ``cls(...)`` accepts by position, or None when the class is neither a dataclass nor has an
+    explicit ``__init__``.  An explicit ``__init__`` wins; a dataclass's fields count up to a ``KW_ONLY`` marker,
+    leaving out ``ClassVar``s and ``field(init=False)`` / ``field(kw_only=True)``."""
+    init = next((n for n in cls.body
+                 if isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef)) and n.name == "__init__"), None)
+    if init is not None:
+        return [a.arg for a in (init.args.posonlyargs + init.args.args)[1:]]
+    deco = next((d for d in cls.decorator_list if _is_dataclass_decorator(d)), None)
+    if deco is None:
+        return None
+    if _keyword_true(deco, "kw_only") or _keyword_false(deco, "init"):
+        return []
+    out = []
+    for node in cls.body:
+        if not (isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name)):
+            continue
+        annotation = ast.unparse(node.annotation)
+        if "KW_ONLY" in annotation:
+            break
+        if "ClassVar" in annotation:
+            continue
+        value = node.value
+        if (isinstance(value, ast.Call) and isinstance(value.func, (ast.Name, ast.Attribute))
+                and getattr(value.func, "id", getattr(value.func, "attr", None)) == "field"
+                and (_keyword_false(value, "init") or _keyword_true(value, "kw_only"))):
+            continue
+        out.append(node.target.id)
+    return out
+
+
+def _long_positional_constructors(source: str, where: str = "<snippet>") -> list[str]:
+    return [f"{where}:{node.lineno} {node.name}({', '.join(params)}): {len(params)} positional"
+            for node in ast.walk(ast.parse(source))
+            if isinstance(node, ast.ClassDef) and not node.name.startswith("_")
+            for params in [_positional_parameters(node)] if params is not None and len(params) > MAX_POSITIONAL]
+
+
+def test_no_public_constructor_takes_more_than_four_positional_arguments():
+    """Issue 44: a call that passes eight values in a row (``MachiningSpec`` took 16, ``RemovalReport`` 20) is
+    read by counting, and a field added in the middle shifts every later value without an error.  A public class
+    (a dataclass, or one with its own ``__init__``) takes at most four leading values by position — the ones a
+    reader expects there, such as ``Feed(x, y, z, feed)`` — and everything else by keyword
+    (``@dataclass(kw_only=True)``, ``_: KW_ONLY``, or ``*`` in ``__init__``)."""
+    bad = [line for path in sorted(PACKAGE.rglob("*.py"))
+           for line in _long_positional_constructors(path.read_text(encoding="utf-8"),
+                                                     str(path.relative_to(PACKAGE.parent)))]
+    assert not bad, "constructors taking more than 4 positional arguments (make the rest keyword-only):\n" + \
+        "\n".join(bad)
+
+
+def test_the_positional_constructor_check_can_fail():
+    # the check above is only as good as this
+    snippet = '''
+from dataclasses import KW_ONLY, dataclass, field
+from typing import ClassVar
+
+@dataclass(frozen=True)
+class Five:
+    a: int
+    b: int
+    c: int
+    d: int
+    e: int = 0
+
+@dataclass(frozen=True, kw_only=True)
+class Keywords:
+    a: int; b: int; c: int; d: int; e: int
+
+@dataclass
+class Marked:
+    a: int; b: int; c: int; d: int
+    _: KW_ONLY
+    e: int
+
+@dataclass
+class Excluded:
+    a: int; b: int; c: int; d: int
+    e: ClassVar[int] = 0
+    f: int = field(init=False)
+    g: int = field(default=0, kw_only=True)
+
+@dataclass
+class _Private:
+    a: int; b: int; c: int; d: int; e: int
+
+class Explicit:
+    def __init__(self, a, b, c, d, e):
+        pass
+
+class Starred:
+    def __init__(self, a, b, c, d, *, e):
+        pass
+'''
+    bad = _long_positional_constructors(snippet)
+    assert [line.split()[1].split("(")[0] for line in bad] == ["Five", "Explicit"], bad

@@ -76,7 +76,8 @@ def run(args) -> int:
     fit = args.fit or default_fit(raw.full_revolution)
     if fit == "periodic" and not raw.full_revolution:
         raise SpecError("--fit", f'"periodic" needs a full revolution; {raw.source} covers {raw.angles_deg[0]:g}–{raw.angles_deg[-1]:g}°')
-    opts = FairingOptions(args.method, args.xi, not args.no_bad_points, args.threshold, args.min_size)
+    opts = FairingOptions(method=args.method, xi=args.xi, bad_points=not args.no_bad_points, threshold=args.threshold,
+                          min_size=args.min_size)
     ft = fit_table(raw, fit, opts)
     summary = fit_summary(ft)
     before, after = ft.interpolant("raw"), ft.interpolant("final")

@@ -56,7 +56,8 @@ def run(args) -> int:
     follower = spec.need("follower", "reverse")
     points = load_points(args.points)
     out = output_set(args, "reverse")
-    opts = ReverseOptions(args.fit, not args.no_smoothing, args.slopes, args.flank, args.max_gap)
+    opts = ReverseOptions(fit=args.fit, smoothing=not args.no_smoothing, slopes=args.slopes, flank=args.flank,
+                          max_gap_deg=args.max_gap)
     res = reverse_design(points, cam, follower, opts)
     angles, cols = res.motion.table(args.n_points)
     unit = res.unit

@@ -53,7 +53,7 @@ def jump_speed(built, d: DynamicsSpec, grid_coefficients=None) -> tuple[float, f
     return omega, theta
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Dynamics:
     """Forces, torque and contact stress of a cam at ``rpm``, with the spring it was given or sized.
 

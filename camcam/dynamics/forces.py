@@ -130,7 +130,7 @@ def contact_length_mm(built, d: DynamicsSpec) -> float:
     return float(built.spec.thickness)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Coefficients:
     """Per cam angle: Q(ω) = inertia·ω² + damping·ω + static, the gains from Q to F_n, the torque arm, R′.
 
@@ -206,8 +206,10 @@ def coefficients(built, d: DynamicsSpec, theta, piece: int | None = None, radii:
         r1, r0 = r * (1.0 + r * kc), r * (1.0 - r * kc)
         up = lift_flank(built)
         radius_lift, radius_return = (r0, r1) if up == 0 else (r1, r0)
-        return Coefficients(theta, inertia, damping, static, w, x, ext, q.d[1], gain_lift, gain_return, torque_arm,
-                            radius_lift, radius_return, c, s)
+        return Coefficients(theta=theta, inertia=inertia, damping=damping, static=static, lever_m=w, deflection_mm=x,
+                            external_n=ext, rate=q.d[1], gain_lift=gain_lift, gain_return=gain_return,
+                            torque_arm_m=torque_arm,
+                            radius_lift_mm=radius_lift, radius_return_mm=radius_return, cos_phi=c, sin_phi=s)
     disc = _disc(built)
     if disc.is_roller:
         e = disc.element(theta, 1, piece)
@@ -234,8 +236,10 @@ def coefficients(built, d: DynamicsSpec, theta, piece: int | None = None, radii:
         radius_lift = flat_radius(disc, theta, piece)[0] if radii else nan
         radius_return = nan
     torque_arm = sg * (px * ny - py * nx) / 1000.0
-    return Coefficients(theta, inertia, damping, static, w, x, ext, q.d[1], gain_lift, gain_return, torque_arm,
-                        radius_lift, radius_return, c, s)
+    return Coefficients(theta=theta, inertia=inertia, damping=damping, static=static, lever_m=w, deflection_mm=x,
+                        external_n=ext, rate=q.d[1], gain_lift=gain_lift, gain_return=gain_return,
+                        torque_arm_m=torque_arm,
+                        radius_lift_mm=radius_lift, radius_return_mm=radius_return, cos_phi=c, sin_phi=s)
 
 
 def first_root(a, b, c) -> np.ndarray:
@@ -263,7 +267,7 @@ def first_root(a, b, c) -> np.ndarray:
     return np.where(c > 0, out, np.where(c == 0, at_rest, 0.0))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Forces:
     """Arrays along the cam angle at one speed (``contact_force_n`` signed: > 0 on the lift flank)."""
 
@@ -296,7 +300,9 @@ def forces_of(built, d: DynamicsSpec, rpm: float, k: Coefficients) -> Forces:
         p_up = np.sqrt(up * e / (math.pi * L * k.radius_lift_mm))
         p_down = np.sqrt(down * e / (math.pi * L * k.radius_return_mm)) if is_grooved(built) else np.zeros_like(fn)
     stress = np.where(fn >= 0, p_up, p_down)
-    return Forces(k.theta, Q, fn, fn * k.torque_arm_m, Q * k.rate, stress, up, down)
+    return Forces(theta=k.theta, generalised=Q, contact_force_n=fn, torque_nm=fn * k.torque_arm_m,
+                  torque_power_balance_nm=Q * k.rate, contact_stress_mpa=stress, lift_flank_force_n=up,
+                  return_flank_force_n=down)
 
 
 def hertz_line_mpa(force_n, modulus_mpa, length_mm, radius_mm):

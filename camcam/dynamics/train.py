@@ -70,7 +70,7 @@ def contact_modulus_mpa(a: Material, b: Material) -> float:
     return 1.0 / ((1.0 - a.poisson**2) / (a.e_gpa * 1e3) + (1.0 - b.poisson**2) / (b.e_gpa * 1e3))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class DynamicsSpec:
     """The follower train (``[dynamics]``).
 

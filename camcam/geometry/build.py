@@ -78,7 +78,8 @@ def build_cam(c: CamSpec, f: FollowerSpec, program: MotionProgram) -> BuiltCam:
     """
     if c.kind == "cylindrical":
         fol = follower_kind(f.kind).barrel_from_spec(f)
-        cam = CylindricalCam(fol, program, c.base_radius, c.length, c.groove_depth, c.rotation, c.bore)
+        cam = CylindricalCam(fol, program, c.base_radius, length=c.length, groove_depth=c.groove_depth,
+                             rotation=c.rotation, bore=c.bore)
         return BuiltCam(cam, analyse_cylindrical(cam), cylinder_parts(cam), c)
     disc = DiscCam(disc_follower(f), program, c.base_radius, c.rotation)
     if c.kind == "disc":

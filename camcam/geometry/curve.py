@@ -12,7 +12,7 @@ curvature κ = (x′y″ − y′x″)/|P′|³ is positive where the curve turn
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 from typing import Callable, Protocol, runtime_checkable
 
 import numpy as np
@@ -74,6 +74,7 @@ class FunctionCurve:
     func: Callable[[np.ndarray, int], np.ndarray]
     t_start: float
     t_end: float
+    _: KW_ONLY
     closed: bool = False
     breaks_: tuple[float, ...] = ()
 

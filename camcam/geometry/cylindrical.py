@@ -51,7 +51,7 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field
+from dataclasses import KW_ONLY, dataclass, field
 
 import numpy as np
 
@@ -72,6 +72,7 @@ class CylindricalCam(CamBasics):
     follower: BarrelTranslatingRoller | BarrelOscillatingRoller  # a kind's ``barrel`` follower
     program: MotionProgram
     base_radius: float
+    _: KW_ONLY
     length: float
     groove_depth: float
     rotation: str = "ccw"

@@ -14,7 +14,7 @@ Examples
 >>> from camcam.motion.catalog import make_law
 >>> from camcam.motion.program import MotionProgram, Segment
 >>> p = MotionProgram((Segment(make_law("cycloidal"), 0, 180, 10.0),
-...                    Segment(make_law("cycloidal"), 180, 360, -10.0, 10.0)), rpm=60)
+...                    Segment(make_law("cycloidal"), 180, 360, -10.0, base=10.0)), rpm=60)
 >>> cam = DiscCam(TranslatingRoller(roller_radius=5.0), p, base_radius=30.0)
 >>> [round(float(v), 9) for v in cam.profile.evaluate([0.0])[0]]
 [0.0, 30.0]

@@ -10,7 +10,7 @@ one-sided values at a segment boundary where an acceleration jumps.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 from typing import Callable
 
 import numpy as np
@@ -66,6 +66,7 @@ class JetCurve:
 
     func: JetFunc
     breaks: np.ndarray
+    _: KW_ONLY
     t_start: float = 0.0
     t_end: float = 2 * math.pi
     closed: bool = True

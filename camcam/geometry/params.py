@@ -15,7 +15,7 @@ __all__ = ["CamSpec", "FollowerSpec", "CAM_KINDS", "FOLLOWER_KINDS"]
 CAM_KINDS = ("disc", "disc-groove", "cylindrical")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class CamSpec:
     """The cam to build (lengths in mm): ``kind`` one of :data:`CAM_KINDS`, rotation "ccw" or "cw"."""
 
@@ -32,7 +32,7 @@ class CamSpec:
     design_limits: str = "warn"  # "warn": a design limit missed is a warning (WARN); "fail": it fails the run (exit 3)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FollowerSpec:
     """The follower (lengths in mm): ``kind`` one of :data:`camcam.geometry.followers.FOLLOWERS`."""
 

@@ -29,7 +29,7 @@ __all__ = ["Sizing", "size_cam"]
 SEARCH_SAMPLES = 7200
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Sizing:
     """The sized cam and its figures."""
 
@@ -75,7 +75,7 @@ def size_cam(cam: DiscCam, limit_deg: float | None = None, optimise_offset: bool
     >>> from camcam.motion.catalog import make_law
     >>> from camcam.motion.program import MotionProgram, Segment
     >>> p = MotionProgram((Segment(make_law("cycloidal"), 0, 180, 20.0),
-    ...                    Segment(make_law("cycloidal"), 180, 360, -20.0, 20.0)), rpm=60)
+    ...                    Segment(make_law("cycloidal"), 180, 360, -20.0, base=20.0)), rpm=60)
     >>> z = size_cam(DiscCam(TranslatingRoller(roller_radius=10.0), p, base_radius=30.0), optimise_offset=False)
     >>> round(z.max_pressure_angle_deg, 6)
     30.0
@@ -83,7 +83,7 @@ def size_cam(cam: DiscCam, limit_deg: float | None = None, optimise_offset: bool
     if not cam.is_roller:
         rb = smallest_base_radius_without_undercut(replace(cam, base_radius=1e-3))
         sized = replace(cam, base_radius=rb)
-        return Sizing(sized, rb, None, 0.0, None)
+        return Sizing(cam=sized, base_radius_mm=rb, offset_mm=None, max_pressure_angle_deg=0.0, limit_deg=None)
     limit_deg = cam.follower.default_max_pressure_angle_deg if limit_deg is None else float(limit_deg)
     if not 0 < limit_deg < 90:
         raise GeometryError(f"pressure-angle limit must be between 0 and 90°, got {limit_deg:g}")
@@ -112,4 +112,5 @@ def size_cam(cam: DiscCam, limit_deg: float | None = None, optimise_offset: bool
     if undercut_margin(replace(base, base_radius=rb))[0] <= 0:
         rb = smallest_base_radius_without_undercut(replace(base, base_radius=rb))
     sized = replace(base, base_radius=rb)
-    return Sizing(sized, rb, offset, _max_pa(sized), limit_deg)
+    return Sizing(cam=sized, base_radius_mm=rb, offset_mm=offset, max_pressure_angle_deg=_max_pa(sized),
+                  limit_deg=limit_deg)

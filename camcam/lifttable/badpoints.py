@@ -52,7 +52,7 @@ class BadPoint:
     score: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class BadPointReport:
     """The bad points found (in order of removal) and the noise scale used."""
 
@@ -168,4 +168,5 @@ def find_bad_points(
             cleaned[i], _ = _predict(kx[idx] + shift, ky[idx], x[i])
         if periodic:
             cleaned[-1] = cleaned[0]
-    return BadPointReport(tuple(found), sigma, threshold, min_size, table.with_lift(cleaned))
+    return BadPointReport(points=tuple(found), noise_sigma=sigma, threshold=threshold, min_size=min_size,
+                          table=table.with_lift(cleaned))

@@ -38,7 +38,7 @@ def _pieces(spline) -> list[Polynomial]:
     return out
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class ChordBSpline:
     """y(x) of a chord-length parametric cubic B-spline, exact derivatives up to order 4.
 
@@ -152,4 +152,4 @@ def chord_bspline(x, y) -> ChordBSpline:
         nums.append(tuple(N))
         m = 2 * k - 1
         N = [n.deriv() * px.deriv() - m * n * px.deriv(2) for n, px in zip(N, xs)]
-    return ChordBSpline(x, chords, tuple(xs), tuple(ys), tuple(nums))
+    return ChordBSpline(x_knots=x, lengths=chords, xs=tuple(xs), ys=tuple(ys), numerators=tuple(nums))

@@ -39,7 +39,7 @@ DEFAULT_XI = 1e-4
 DEFAULT_MAX_ITERATIONS = 1000
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FairingResult:
     """A faired table and how it was obtained.
 
@@ -105,7 +105,8 @@ def midpoint_fairing(
         if step < xi:
             converged = True
             break
-    return FairingResult("mid-point", table.with_lift(h), it, float(np.max(np.abs(h - h0))), converged)
+    return FairingResult(method="mid-point", table=table.with_lift(h), iterations=it,
+                         max_correction=float(np.max(np.abs(h - h0))), converged=converged)
 
 
 def smoothing_fairing(table: LiftTable, lam: float | None = None) -> FairingResult:
@@ -142,7 +143,8 @@ def smoothing_fairing(table: LiftTable, lam: float | None = None) -> FairingResu
         g = reinsch(xs, ys, lam)
         h = g[len(x) - 1: 2 * len(x) - 1] if periodic else g
     faired = table.with_lift(h)
-    return FairingResult("smoothing", faired, 1, float(np.max(np.abs(faired.y - y))), True, lam)
+    return FairingResult(method="smoothing", table=faired, iterations=1,
+                         max_correction=float(np.max(np.abs(faired.y - y))), converged=True, lam=lam)
 
 
 def fair(

@@ -15,7 +15,7 @@ from camcam.motion.law import MotionLaw
 __all__ = ["FairingOptions", "FittedTable", "fit_table"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FairingOptions:
     """How to fair a table (``[motion.fairing]`` in a spec, options of ``camcam fit``)."""
 
@@ -27,7 +27,7 @@ class FairingOptions:
     max_iterations: int = DEFAULT_MAX_ITERATIONS
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FittedTable:
     """Every stage of a table's treatment; ``table`` is what the law interpolates."""
 
@@ -73,4 +73,6 @@ def fit_table(
         fair_result = fair(table, fairing.method, fit, fairing.xi, end_slopes, fairing.max_iterations)
         table = fair_result.table
     law = table_law(table, fit, end_slopes)
-    return FittedTable(raw, fit, bad, fair_result, table, law, difference_quotients(raw), difference_quotients(table), end_slopes)
+    return FittedTable(raw=raw, fit=fit, bad=bad, fairing=fair_result, table=table, law=law,
+                       roughness_before=difference_quotients(raw), roughness_after=difference_quotients(table),
+                       end_slopes=end_slopes)

@@ -17,7 +17,7 @@ previous angle 12``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 from pathlib import Path
 
 import numpy as np
@@ -66,6 +66,7 @@ class LiftTable:
     angles_deg: tuple[float, ...]
     lift: tuple[float, ...]
     source: str = "table"
+    _: KW_ONLY
     rows: tuple[int, ...] = ()
     resolution: float = 0.0
 
@@ -97,7 +98,8 @@ class LiftTable:
         if self.full_revolution:
             lift = lift.copy()
             lift[-1] = lift[0]
-        return LiftTable(self.angles_deg, tuple(float(v) for v in lift), self.source, self.rows, self.resolution)
+        return LiftTable(self.angles_deg, tuple(float(v) for v in lift), self.source, rows=self.rows,
+                         resolution=self.resolution)
 
     def row_of(self, index: int) -> int:
         return self.rows[index] if self.rows else index + 1
@@ -149,7 +151,7 @@ def parse_lift_table(text: str, source: str = "table") -> LiftTable:
         rows.append(lineno)
     if len(angles) < MIN_ROWS:
         raise InputError(f"{source}: {len(angles)} data row(s); a lift table needs at least {MIN_ROWS}")
-    table = LiftTable(tuple(angles), tuple(lifts), source, tuple(rows), 10.0 ** (-decimals))
+    table = LiftTable(tuple(angles), tuple(lifts), source, rows=tuple(rows), resolution=10.0 ** (-decimals))
     if table.full_revolution and abs(lifts[-1] - lifts[0]) > CLOSE_ATOL:
         raise InputError(
             f"{source} row {rows[-1]}: lift {lifts[-1]:g} at {angles[-1]:g}° differs from lift {lifts[0]:g} "

@@ -29,7 +29,7 @@ from camcam.motion.program import MotionProgram, Segment
 __all__ = ["ChordBSplineLaw", "law_from_interpolant", "table_law", "table_program"]
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class ChordBSplineLaw(MotionLaw):
     """S(T) = (y(a + T·span) − offset) / scale for a :class:`ChordBSpline` y(x)."""
 
@@ -95,7 +95,8 @@ def law_from_interpolant(f, x_knots, *, name: str, normalize: bool, rest_to_rest
             raise InputError(f"the table rises by {yN - y0:g} from {x[0]:g}° to {x[-1]:g}°; a rise law needs a non-zero rise")
         offset, scale = y0, yN - y0
     if isinstance(f, ChordBSpline):
-        return ChordBSplineLaw(name, f, a, span, offset, scale, rest_to_rest)
+        return ChordBSplineLaw(name=name, spline=f, a=a, span=span, offset=offset, scale=scale,
+                               rest_to_rest=rest_to_rest)
     if not isinstance(f, CubicSpline):
         raise TypeError(f"cannot make a law of {type(f).__name__}")
     breaks = (f.x - a) / span
@@ -128,4 +129,4 @@ def table_law(table: LiftTable, fit: str, end_slopes: tuple[float, float] = (0.0
 
 def table_program(law: MotionLaw, rpm: float, unit: str = "mm") -> MotionProgram:
     """The motion program of a full-revolution table law: one segment 0–360°, scale 1, base 0."""
-    return MotionProgram((Segment(law, 0.0, 360.0, 1.0, 0.0),), rpm, unit)
+    return MotionProgram((Segment(law, 0.0, 360.0, 1.0, base=0.0),), rpm, unit)

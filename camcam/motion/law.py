@@ -39,7 +39,7 @@ class Extreme:
     T: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Characteristics:
     """Extremes of V, A, J over T ∈ [0, 1].
 
@@ -112,7 +112,7 @@ class MotionLaw(ABC):
         vmin, vmax = self.extreme(1)
         amin, amax = self.extreme(2)
         jmin, jmax = self.extreme(3)
-        return Characteristics(vmax, vmin, amax, amin, jmax, jmin)
+        return Characteristics(Vmax=vmax, Vmin=vmin, Amax=amax, Amin=amin, Jmax=jmax, Jmin=jmin)
 
     def end_values(self) -> tuple[np.ndarray, np.ndarray]:
         """(S, V, A, J) at T = 0 and at T = 1, for continuity checks between segments."""

@@ -14,7 +14,7 @@ rad/s, rad/s², rad/s³ (oscillating).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import KW_ONLY, dataclass, field
 
 import numpy as np
 
@@ -42,6 +42,7 @@ class Segment:
     start_deg: float
     end_deg: float
     scale: float
+    _: KW_ONLY
     base: float = 0.0
 
     @property
@@ -100,7 +101,7 @@ class MotionProgram:
     >>> from camcam.motion.catalog import make_law
     >>> from camcam.motion.standard import dwell
     >>> p = MotionProgram((Segment(make_law("cycloidal"), 0, 180, 10.0),
-    ...                    Segment(make_law("cycloidal"), 180, 360, -10.0, 10.0)), rpm=60)
+    ...                    Segment(make_law("cycloidal"), 180, 360, -10.0, base=10.0)), rpm=60)
     >>> float(p.lift(math.radians(90.0)))
     5.0
     >>> p.joins

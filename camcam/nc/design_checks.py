@@ -74,8 +74,8 @@ def design_checks(built, machining=None, strict: bool = False) -> tuple[Check, .
     advice = "" if pa_ok else _limit_advice(
         built.cam, lambda c: limit + 1e-9 - max_pressure_angle(c).value, f"brings it within {limit:g}°",
         "lengthen the rise angle, or offset the follower", limits == "fail", strict)
-    checks = [Check("pressure angle", pa.value, limit, "deg", pa_ok, limits,
-                    f"program angle {pa.angle_deg:.2f}°, {cam.kind} follower", advice)]
+    checks = [Check("pressure angle", pa.value, limit, "deg", ok=pa_ok, severity=limits,
+                    where=f"program angle {pa.angle_deg:.2f}°, {cam.kind} follower", advice=advice)]
     rho = built.analysis.profile
     rho_min = getattr(spec, "min_curvature_radius_mm", None)
     roller = getattr(cam, "roller_radius", 0.0) or 0.0
@@ -86,26 +86,28 @@ def design_checks(built, machining=None, strict: bool = False) -> tuple[Check, .
         "a gentler motion law or a smaller roller" if roller else "a gentler motion law", limits == "fail", strict)
     where = (f"cam angle {rho.at_deg:.2f}°, " if rho.at_deg is not None else "") + \
         ("profile, convex side" if spec.kind != "cylindrical" else "developed flank at the groove bottom, convex side")
-    checks.append(Check("radius of curvature", rho.min_radius_mm, rho_limit, "mm", rho_ok, limits, where, advice,
+    checks.append(Check("radius of curvature", rho.min_radius_mm, rho_limit, "mm", ok=rho_ok, severity=limits,
+                        where=where, advice=advice,
                         at_least=True))
     if machining is None:
         return tuple(checks)
     depth = machining.depth_mm
     if spec.kind == "disc":
-        checks.append(Check("cut depth", depth, spec.thickness, "mm", depth <= spec.thickness, severity,
-                            f"part thickness {spec.thickness:g} mm",
-                            "the tool goes below the bottom face: set [machining] depth to the thickness, "
+        checks.append(Check("cut depth", depth, spec.thickness, "mm", ok=depth <= spec.thickness, severity=severity,
+                            where=f"part thickness {spec.thickness:g} mm",
+                            advice="the tool goes below the bottom face: set [machining] depth to the thickness, "
                             "or mount the blank over a sacrificial plate"))
     elif spec.kind != "cylindrical":
-        checks.append(Check("cut depth", depth, spec.groove_depth, "mm", depth <= spec.groove_depth, severity,
-                            f"groove depth {spec.groove_depth:g} mm",
-                            "the tool goes below the groove floor: set [machining] depth to the groove depth"))
+        checks.append(Check("cut depth", depth, spec.groove_depth, "mm", ok=depth <= spec.groove_depth,
+                            severity=severity,
+                            where=f"groove depth {spec.groove_depth:g} mm",
+                            advice="the tool goes below the groove floor: set [machining] depth to the groove depth"))
     # a barrel's cut depth is the job's check, measured on the printed program (camcam.verify.reach): its tool goes
     # below the groove floor by design (4 axes: to the wall corner; 5 axes: the tilted flat end), which the
     # stated depth does not say ("8 mm / 8 mm within" where the flat end dipped 3.9 mm below the floor)
     if spec.kind == "disc":
         a, step = machining.finish_allowance_mm, machining.stepdown_mm
-        checks.append(Check("finish allowance", a, step, "mm", a <= step, severity,
-                            f"stepdown {step:g} mm",
-                            "keep the finish allowance at most the stepdown (typically 0.2–0.5 mm)"))
+        checks.append(Check("finish allowance", a, step, "mm", ok=a <= step, severity=severity,
+                            where=f"stepdown {step:g} mm",
+                            advice="keep the finish allowance at most the stepdown (typically 0.2–0.5 mm)"))
     return tuple(checks)

@@ -233,7 +233,7 @@ def tip_lengths(nodes: np.ndarray) -> np.ndarray:
     return v @ w
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FivePath:
     """The fitted 5-axis path of one pass: printed nodes, the error figures and the tool's reach."""
 
@@ -287,8 +287,9 @@ def five_axis_path(pose: ToolPose, tolerance_mm: float, quantizer: Quantizer,
     nodes = fit_five_axis(pose, tolerance_mm, quantizer, cut, budget)
     err = block_errors(pose, nodes[:-1], nodes[1:], cut, REPORT_SAMPLES)
     worst = int(np.argmax(err.max(axis=1)))
-    return FivePath(nodes, cut, pose.floor_radius(), float(err[:, 0].max()), float(err[:, 1].max()),
-                    float(0.5 * (nodes[worst, 2] + nodes[worst + 1, 2])))
+    return FivePath(nodes=nodes, cut_length_mm=cut, floor_radius_mm=pose.floor_radius(),
+                    error_tip_mm=float(err[:, 0].max()), error_top_mm=float(err[:, 1].max()),
+                    worst_a_deg=float(0.5 * (nodes[worst, 2] + nodes[worst + 1, 2])))
 
 
 def _lowest_tip_z(nodes: np.ndarray, raise_mm: float, quantizer: Quantizer) -> float:
@@ -311,12 +312,14 @@ def _pass_moves(nodes: np.ndarray, raise_mm: float, m: MachiningSpec, outer: flo
     x0, z0, c0 = clear(0)
     x1, z1, c1 = clear(-1)
     a0, b0 = float(nodes[0, 2]), float(nodes[0, 3])
-    moves = [Rapid(float(x0), 0.0, None, a0, b0), Rapid(None, None, float(z0)),
-             Feed(float(xs[0]), 0.0, float(zs[0]), m.plunge_feed_mm_min, a0, c0, b0)]
+    moves = [Rapid(float(x0), 0.0, None, a_deg=a0, b_deg=b0), Rapid(None, None, float(z0)),
+             Feed(float(xs[0]), 0.0, float(zs[0]), m.plunge_feed_mm_min, a_deg=a0, length_mm=c0, b_deg=b0)]
     for k in range(1, len(nodes)):
-        moves.append(Feed(float(xs[k]), 0.0, float(zs[k]), m.feed_mm_min, float(nodes[k, 2]), float(lengths[k - 1]),
-                          float(nodes[k, 3])))
-    moves += [Feed(float(x1), 0.0, float(z1), m.plunge_feed_mm_min, float(nodes[-1, 2]), c1, float(nodes[-1, 3])),
+        moves.append(Feed(float(xs[k]), 0.0, float(zs[k]), m.feed_mm_min, a_deg=float(nodes[k, 2]),
+                          length_mm=float(lengths[k - 1]),
+                          b_deg=float(nodes[k, 3])))
+    moves += [Feed(float(x1), 0.0, float(z1), m.plunge_feed_mm_min, a_deg=float(nodes[-1, 2]), length_mm=c1,
+                   b_deg=float(nodes[-1, 3])),
               Rapid(None, None, outer + m.safe_z_mm)]
     return moves
 
@@ -359,9 +362,10 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int
         post.five_axis_feed_note)
     title = job_title(name, built.spec.kind, cam.kind, m.tool_diameter_mm, "lines", m.tolerance_mm, post.name) \
         + ", 5 axes"
-    toolpath = Toolpath(title, passes, m.spindle_rpm, m.tool_number, m.tool_diameter_mm, True, comments,
+    toolpath = Toolpath(title, passes, m.spindle_rpm, tool_number=m.tool_number, tool_diameter_mm=m.tool_diameter_mm,
+                        rotary=True, comments=comments,
                         opening=(Rapid(None, None, outer + m.safe_z_mm),),
-                        closing=(Rapid(None, None, None, None, 0.0),), five_axis=True)
+                        closing=(Rapid(None, None, None, a_deg=None, b_deg=0.0),), five_axis=True)
     # printed without the 3-D check: camcam.verify.job_checks measures this program and adds its result to the
     # header (the same moves)
     program = post.write_program(toolpath, name, m.setup)
@@ -369,7 +373,8 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int
     curve = cam.developed_centre(rho)
     printed = _developed(pose, nodes, rho)
     worst = max(path.error_tip_mm, path.error_top_mm)
-    dev = Deviation(worst, worst, worst, 0.0, (rho * float(pose.theta(path.worst_a_deg)), 0.0))
+    dev = Deviation(max_deviation_mm=worst, path_to_curve_mm=worst, curve_to_path_mm=worst, margin_mm=0.0,
+                    worst_point=(rho * float(pose.theta(path.worst_a_deg)), 0.0))
     segs, pieces_blocks, bounds = [], [], []
     for lo, hi in zip(cam.breaks[:-1], cam.breaks[1:]):
         a_lo, a_hi = sorted((pose.sign * math.degrees(lo), pose.sign * math.degrees(hi)))
@@ -379,10 +384,11 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int
         segs.append(SegmentBlocks(math.degrees(lo), math.degrees(hi), blocks, bound))
         pieces_blocks.append(blocks)
         bounds.append(bound)
-    fit = FitResult(printed, "lines", m.tolerance_mm, post.decimals, dev, float(sum(bounds)), tuple(pieces_blocks),
-                    tuple(bounds))
-    contour = CutContour(LABEL, curve, fit, printed, dev, cam.roller_radius,
-                         False, tuple(segs), "both")
+    fit = FitResult(elements=printed, mode="lines", tolerance_mm=m.tolerance_mm, decimals=post.decimals, deviation=dev,
+                    lower_bound=float(sum(bounds)), piece_blocks=tuple(pieces_blocks),
+                    piece_lower_bounds=tuple(bounds))
+    contour = CutContour(label=LABEL, curve=curve, fit=fit, printed=printed, deviation=dev, offset_mm=cam.roller_radius,
+                         leads=False, segments=tuple(segs), stock_side="both")
     notes = (f"5-axis fit model (the tool side's normal displacement at the walls, printed numbers): "
              f"{path.error_tip_mm:.5f} mm at the tip, {path.error_top_mm:.5f} mm at the top of the cut; "
              f"{len(nodes) - 1} blocks per pass",
@@ -393,5 +399,7 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int
     plan = GroovePlan(axes=5, reach_radius_mm=path.floor_radius_mm,
                       reach_why="the tilted flat end, so that both walls reach the bottom; no roller touches the floor",
                       cut_length_mm=path.cut_length_mm)
-    return MachiningResult(name, built.spec.kind, cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, "lines",
-                           (contour,), toolpath, program, rho, notes, groove_plan=plan)
+    return MachiningResult(name=name, cam_kind=built.spec.kind, follower_kind=cam.kind, post=post,
+                           tool_diameter_mm=m.tool_diameter_mm, tolerance_mm=m.tolerance_mm, mode="lines",
+                           contours=(contour,), toolpath=toolpath, program=program, reference_radius_mm=rho,
+                           notes=notes, groove_plan=plan)

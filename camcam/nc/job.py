@@ -156,15 +156,19 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
             cs = replace(m.cut_settings(side if free is not None else "right"), clearance_z_mm=z_clear,
                          safe_z_mm=max(m.safe_z_mm, z_clear))
             if kind == "bore":
-                passes += bore_passes(k, fit.elements, blank, r_t, m, z_clear, levels[-1], built.spec.thickness)
+                passes += bore_passes(k, fit.elements, blank, r_t, z_clear, levels[-1], built.spec.thickness,
+                                      ramp_angle_deg=m.ramp_angle_deg, plunge_feed_mm_min=m.plunge_feed_mm_min,
+                                      feed_mm_min=m.feed_mm_min)
             elif free is not None:
                 spiral = resolve(spirals[k]) if k in spirals else _roughing_spiral(blank, m, side)
-                passes += _profile_passes(k, fit.elements, spiral, m, cs, levels)
+                passes += _profile_passes(k, fit.elements, spiral, cs, levels, allowance_mm=m.finish_allowance_mm,
+                                          spring_pass=m.spring_pass)
             else:
                 passes += [replace(p, note=note) if p.kind == "rough" else p  # a groove's rough ring: its plan
                            for p in ramp_loop_passes(k, kind, fit.elements, levels, blank.top_z_mm, m.ramp_angle_deg,
                                                      cs, m.spring_pass)]
-            contours.append(CutContour(label, curve, fit, printed, dev, offset, free is not None, segs, side))
+            contours.append(CutContour(label=label, curve=curve, fit=fit, printed=printed, deviation=dev,
+                                       offset_mm=offset, leads=free is not None, segments=segs, stock_side=side))
     # lead arcs, spirals and ramps planned at the post's largest sweep print within it (contours already do)
     passes = [replace(q, note=p.note) for p, q in
               zip(passes, passes_within_sweep(passes, post.quantizer, post.max_arc_sweep_deg), strict=True)]
@@ -173,10 +177,11 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
     for p in passes:
         counts[p.kind] = counts.get(p.kind, 0) + 1
     summary = ", ".join(f"{n} {kind}" for kind, n in counts.items())
-    toolpath = Toolpath(title, with_markers(passes, [c.label for c in contours]), m.spindle_rpm, m.tool_number,
-                        m.tool_diameter_mm, False,
-                        (f"{len(passes)} passes [{summary}] in {len(levels)} depth levels to {levels[-1]:g} mm",),
-                        safe, safe)
+    toolpath = Toolpath(title, with_markers(passes, [c.label for c in contours]), m.spindle_rpm,
+                        tool_number=m.tool_number, tool_diameter_mm=m.tool_diameter_mm, rotary=False,
+                        comments=(f"{len(passes)} passes [{summary}] in {len(levels)} depth levels to "
+                                  f"{levels[-1]:g} mm",),
+                        opening=safe, closing=safe)
     program = post.write_program(toolpath, name, m.setup)
     notes = ()
     if m.finish_allowance_mm > 0 and built.spec.kind != "disc":
@@ -184,9 +189,11 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
     # a contour whose arc spline no march closed is cut with lines (camcam.toolpath.arcfit, issue 43 C): said
     notes += tuple(f"{c.label}: no arc spline closed on {len(c.fit.lines_sections)} section(s); cut with "
                    f"{c.fit.line_blocks} lines within the tolerance instead" for c in contours if c.fit.lines_sections)
-    return MachiningResult(name, built.spec.kind, built.cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, m.mode,
-                           tuple(contours), toolpath, program, None, notes,
-                           deviation_checks(contours, m.tolerance_mm), blank=blank)
+    return MachiningResult(name=name, cam_kind=built.spec.kind, follower_kind=built.cam.kind, post=post,
+                           tool_diameter_mm=m.tool_diameter_mm, tolerance_mm=m.tolerance_mm, mode=m.mode,
+                           contours=tuple(contours), toolpath=toolpath, program=program, reference_radius_mm=None,
+                           notes=notes,
+                           checks=deviation_checks(contours, m.tolerance_mm), blank=blank)
 
 
 def _roughing_spiral(blank, m: MachiningSpec, side: str) -> Spiral | None:
@@ -196,16 +203,17 @@ def _roughing_spiral(blank, m: MachiningSpec, side: str) -> Spiral | None:
                        clockwise=(side == "right"), max_sweep_deg=m.post.max_arc_sweep_deg)
 
 
-def _profile_passes(k: int, elements, spiral: Spiral | None, m: MachiningSpec, cs, levels) -> list[Pass]:
+def _profile_passes(k: int, elements, spiral: Spiral | None, cs, levels, *, allowance_mm: float,
+                    spring_pass: bool) -> list[Pass]:
     """A disc profile: a roughing spiral at each level, then finish (each level without an allowance) and spring."""
-    a, passes = m.finish_allowance_mm, []
+    a, passes = allowance_mm, []
     for z in levels:
         if spiral is not None:
-            passes.append(Pass(k, "rough", z, spiral_moves(spiral, z, cs), spiral.describe()))
+            passes.append(Pass(k, "rough", z, spiral_moves(spiral, z, cs), note=spiral.describe()))
         if a == 0:
             passes.append(Pass(k, "finish", z, finish_moves(elements, z, cs)))
     if a > 0:
         passes.append(Pass(k, "finish", levels[-1], finish_moves(elements, levels[-1], cs)))
-    if m.spring_pass:
+    if spring_pass:
         passes.append(Pass(k, "spring", levels[-1], finish_moves(elements, levels[-1], cs)))
     return passes

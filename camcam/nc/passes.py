@@ -63,7 +63,7 @@ def _ramp(elements, z0: float, z1: float, feed: float) -> list:
         if isinstance(e, Line):
             out.append(Feed(e.end[0], e.end[1], z, feed))
         else:
-            out.append(ArcMove(e.end[0], e.end[1], e.centre[0], e.centre[1], e.ccw, z, feed))
+            out.append(ArcMove(e.end[0], e.end[1], e.centre[0], e.centre[1], ccw=e.ccw, z=z, feed_mm_min=feed))
     return out
 
 
@@ -105,5 +105,5 @@ def with_markers(passes, labels) -> tuple:
     n = len(passes)
     return tuple(Pass(p.contour, p.kind, p.z,
                       (Comment(f"{MARKER_PREFIX}{i + 1}/{n}: {p.kind}, {labels[p.contour]}, Z{p.z:g}"
-                               + (f", {p.note}" if p.note else "")),) + p.moves, p.note)
+                               + (f", {p.note}" if p.note else "")),) + p.moves, note=p.note)
                  for i, p in enumerate(passes))

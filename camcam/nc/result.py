@@ -20,7 +20,7 @@ if TYPE_CHECKING:  # what camcam.verify measures on the printed program (camcam.
 __all__ = ["MachiningResult", "Program", "GroovePlan", "deviation_checks"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Program:
     """A printed program and its block counts (moves only), as a post writes it."""
 
@@ -35,7 +35,7 @@ class Program:
 def deviation_checks(contours, tolerance_mm: float) -> tuple[Check, ...]:
     """One check per contour: its two-sided deviation on the printed program against the tolerance."""
     return tuple(Check(f"NC deviation ({c.label})", c.deviation.max_deviation_mm, tolerance_mm, "mm",
-                       c.deviation.max_deviation_mm <= tolerance_mm, where="two-sided, on the printed program",
+                       ok=c.deviation.max_deviation_mm <= tolerance_mm, where="two-sided, on the printed program",
                        advice="this is a fault of the fitter: please report it")
                  for c in contours)
 
@@ -56,7 +56,7 @@ class GroovePlan:
     cut_length_mm: float | None = None
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class MachiningResult:
     """Everything the NC step made for one cam (no files: exporters write them).
 

@@ -200,7 +200,8 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
                                          contour=k, kind=kind))
         except InputError as err:
             raise GeometryError(f"{name} {label}: {err}") from None
-        contours.append(CutContour(label, curve, fit, path, dev, offset, False, segs, "both"))
+        contours.append(CutContour(label=label, curve=curve, fit=fit, printed=path, deviation=dev, offset_mm=offset,
+                                   leads=False, segments=segs, stock_side="both"))
     comments = tuple(f"{c}" for c in machine_frame_lines(m.a_axis, rho_d))
     if corner > 0:
         comments += (f"last pass {corner:.{post.decimals}f} mm below the groove bottom: the tool end clears the wall "
@@ -226,6 +227,9 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     if flank_err > 0:
         notes += (f"4-axis: flank passes balanced over the depth; first-order flank error {flank_err:.4f} mm"
                   + (f", smallest tool holding half the tolerance D{smallest:.2f} mm" if smallest else ""),)
-    return MachiningResult(name, built.spec.kind, cam.kind, post, m.tool_diameter_mm, m.tolerance_mm, "lines",
-                           tuple(contours), toolpath, program, rho_d, notes,
-                           deviation_checks(contours, m.tolerance_mm), smallest_tool_mm=smallest, groove_plan=plan)
+    return MachiningResult(name=name, cam_kind=built.spec.kind, follower_kind=cam.kind, post=post,
+                           tool_diameter_mm=m.tool_diameter_mm, tolerance_mm=m.tolerance_mm, mode="lines",
+                           contours=tuple(contours), toolpath=toolpath, program=program, reference_radius_mm=rho_d,
+                           notes=notes,
+                           checks=deviation_checks(contours, m.tolerance_mm), smallest_tool_mm=smallest,
+                           groove_plan=plan)

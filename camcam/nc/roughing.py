@@ -77,7 +77,7 @@ def _ring(poly: Polygon) -> np.ndarray:
     return np.asarray(poly.exterior.coords)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Spiral:
     """One level's roughing path: ``entry`` (clear of the blank) then ``elements`` (tool centre, direction of cut).
 
@@ -168,8 +168,9 @@ def disc_spiral(part: Polygon, blank: Polygon, tool_radius_mm: float, allowance_
     pts = np.column_stack([rad * np.cos(ang), rad * np.sin(ang)])
     u = pts[0] / np.hypot(*pts[0])
     entry = pts[0] + ENTRY_CLEARANCE_MM * u
-    return Spiral((float(entry[0]), float(entry[1])), polyline_elements(pts, ROUGH_FIT_MM, max_sweep_deg),
-                  n, step, keep, plain)
+    return Spiral(entry=(float(entry[0]), float(entry[1])),
+                  elements=polyline_elements(pts, ROUGH_FIT_MM, max_sweep_deg),
+                  revolutions=n, step_mm=step, clearance_mm=keep, plain_revolutions=plain)
 
 
 def loops_needed(th: np.ndarray, r0: np.ndarray, rb: np.ndarray, tool_radius_mm: float, step_mm: float,
@@ -226,7 +227,7 @@ def band_width(ae, bend, tool_radius_mm: float):
     return ae * (1.0 + (2.0 * tool_radius_mm - ae) * bend / 2.0)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class GrooveRings:
     """A face groove's rough rings on one side of its centre pass: their offsets from the centre line (mm,
     toward the flank; the flank pass at ``span_mm`` follows them), and how many the step alone needs.
@@ -281,7 +282,8 @@ def groove_rings(ring_curve, material_side, span_mm: float, tool_radius_mm: floa
         offsets = [span_mm * j / (n + 1) for j in range(1, n + 2)]
         widest = max(float(band_width(ae, bend(o), r_t)) for o in offsets)
         if widest <= step_mm or ae <= 1e-3:
-            return GrooveRings(tuple(offsets[:-1]), span_mm, step_mm, plain, widest)
+            return GrooveRings(offsets=tuple(offsets[:-1]), span_mm=span_mm, step_mm=step_mm, plain=plain,
+                               widest_mm=widest)
         n += 1
 
 

@@ -62,7 +62,7 @@ STOCK_KINDS = ("round", "offset")
 DEFAULT_OVERSIZE_MM = 2.0
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class StockSpec:
     """The validated ``[stock]`` table.
 
@@ -102,7 +102,7 @@ class PostDialect(Protocol):
         """The printed program (:class:`camcam.post.Program`) with the work offset, coolant and number of ``setup``."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class MachiningSpec:
     """The validated ``[machining]`` table (lengths in mm, feeds in mm/min).
 

@@ -149,7 +149,7 @@ def _circle(radius: float) -> Polygon:
     return Polygon(np.column_stack([radius * np.cos(a), radius * np.sin(a)]))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Blank:
     """The blank and the part it must become, in the program's XY frame (mm).
 
@@ -252,8 +252,9 @@ def blank_for(built: BuiltCam, stock: StockSpec, tool_diameter_mm: float, bore: 
     else:
         diameter, allowance = None, stock.allowance_mm
         region = part.buffer(allowance, quad_segs=64)
-    return Blank(stock.kind, region, part, radius, at, diameter, allowance, stock.top_allowance_mm, stock.stated,
-                 groove, spec.bore, bore)
+    return Blank(kind=stock.kind, region=region, part=part, cam_radius_mm=radius, cam_radius_at_deg=at,
+                 diameter_mm=diameter, allowance_mm=allowance, top_z_mm=stock.top_allowance_mm, stated=stock.stated,
+                 groove=groove, bore_mm=spec.bore, bore_machined=bore)
 
 
 def bore_region(b: Blank) -> Polygon:

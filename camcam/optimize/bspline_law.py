@@ -16,7 +16,7 @@ C^(n−1) elsewhere.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import KW_ONLY, dataclass, field
 
 import numpy as np
 
@@ -54,6 +54,7 @@ class BSplineLaw(MotionLaw):
     segments: int
     symmetric: bool
     control_points: tuple[float, ...]
+    _: KW_ONLY
     name: str = "bspline"
     rest_to_rest: bool = True
     space: BSplineSpace | None = field(default=None, repr=False)
@@ -80,7 +81,7 @@ class BSplineLaw(MotionLaw):
     def from_free(cls, space: BSplineSpace, x, name: str = "bspline") -> "BSplineLaw":
         """The law of the free control points ``x`` of ``space``."""
         P = space.control_points(x)
-        return cls(space.degree, space.segments, space.symmetric, tuple(float(p) for p in P), name, space=space)
+        return cls(space.degree, space.segments, space.symmetric, tuple(float(p) for p in P), name=name, space=space)
 
     @property
     def knots(self) -> np.ndarray:

@@ -69,7 +69,7 @@ from camcam.optimize.evaluation import EvaluationFunction
 __all__ = ["ComplexSettings", "ComplexResult", "complex_method"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class ComplexSettings:
     """Parameters of the Complex method (α … M_L: the paper's values)."""
 
@@ -91,7 +91,7 @@ class ComplexSettings:
     symmetric: bool = True
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class ComplexResult:
     """The best vertex found and what it took."""
 
@@ -123,7 +123,7 @@ def complex_method(
     Examples
     --------
     >>> from camcam.optimize.evaluation import Problem
-    >>> p = Problem(5, 4, True, "A", (("V", 2.0), ("J", 61.4)))
+    >>> p = Problem(5, 4, True, "A", limits=(("V", 2.0), ("J", 61.4)))
     >>> f = EvaluationFunction(p)
     >>> a = complex_method(f, p.space.initial_free(), 3, ComplexSettings(max_evaluations=300))
     >>> b = complex_method(f, p.space.initial_free(), 3, ComplexSettings(max_evaluations=300))

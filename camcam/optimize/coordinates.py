@@ -124,7 +124,7 @@ def search_coordinates(f: EvaluationFunction, x1, scaled: bool = False, symmetri
     Examples
     --------
     >>> from camcam.optimize.evaluation import Problem
-    >>> f = EvaluationFunction(Problem(5, 18, False, "A", (("V", 1.91), ("J", 81.0))))
+    >>> f = EvaluationFunction(Problem(5, 18, False, "A", limits=(("V", 1.91), ("J", 81.0))))
     >>> c = search_coordinates(f, f.problem.space.initial_free())
     >>> c.size, c.symmetric
     (8, True)

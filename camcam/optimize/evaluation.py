@@ -17,7 +17,7 @@ k_rq = 1.  The extremes h_max, h_min are exact: per-piece polynomial roots
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import KW_ONLY, dataclass, field
 
 import numpy as np
 
@@ -48,7 +48,7 @@ class Problem:
 
     Examples
     --------
-    >>> p = Problem(5, 7, True, "A", (("V", 2.0), ("J", 61.4)))
+    >>> p = Problem(5, 7, True, "A", limits=(("V", 2.0), ("J", 61.4)))
     >>> p.space.n_free
     7
     """
@@ -57,6 +57,7 @@ class Problem:
     segments: int = 7
     symmetric: bool = True
     minimize: str = "A"
+    _: KW_ONLY
     limits: tuple[tuple[str, float], ...] = ()
     space: BSplineSpace = field(init=False, repr=False, compare=False)
 
@@ -121,7 +122,7 @@ class EvaluationFunction:
 
     Examples
     --------
-    >>> p = Problem(5, 7, True, "A", (("V", 2.0), ("J", 30.0)))
+    >>> p = Problem(5, 7, True, "A", limits=(("V", 2.0), ("J", 30.0)))
     >>> f = EvaluationFunction(p)
     >>> ic, ir = f.terms(p.space.initial_free())
     >>> float(ic[0]) < 1e-4, round(float(ic[1]), 1), round(ir, 2)   # cycloidal-like: J ≈ ±39.5, 9.5 over on each side

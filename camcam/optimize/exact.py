@@ -64,7 +64,7 @@ def lp_size(problem: Problem, per_piece: int = 6) -> tuple[int, int]:
     """(columns, rows) of the exact method's first LP: the free control points and the epigraph variable;
     two rows (±) at ``per_piece`` samples of every piece for each bounded or minimised quantity.
 
-    >>> lp_size(Problem(5, 7, True, "A", (("V", 2.0), ("J", 61.4))))
+    >>> lp_size(Problem(5, 7, True, "A", limits=(("V", 2.0), ("J", 61.4))))
     (8, 504)
     """
     quantities = len(set(dict(problem.limits)) | {problem.minimize})
@@ -88,7 +88,7 @@ def _check_size(problem: Problem, per_piece: int) -> None:
     )
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class ExactResult:
     """The LP optimum and how it was reached."""
 
@@ -116,7 +116,7 @@ def exact_optimum(
 
     Examples
     --------
-    >>> r = exact_optimum(Problem(5, 7, True, "A", (("V", 2.0), ("J", 61.4))))
+    >>> r = exact_optimum(Problem(5, 7, True, "A", limits=(("V", 2.0), ("J", 61.4))))
     >>> r.objective < 4.862 and r.worst_violation == 0.0
     True
     """

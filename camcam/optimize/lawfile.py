@@ -90,7 +90,7 @@ def law_from_document(doc, name: str = "bspline") -> BSplineLaw:
     if len(pts) != seg + deg:
         raise InputError(f"control_points: a degree-{deg} B-spline over {seg} segments has {seg + deg} control points, got {len(pts)}")
     try:
-        law = BSplineLaw(deg, seg, sym, tuple(float(p) for p in pts), name)
+        law = BSplineLaw(deg, seg, sym, tuple(float(p) for p in pts), name=name)
     except ValueError as err:
         raise InputError(f"segments: {err}") from None
     for T, k, v in law.space.conditions + ((1.0, 0, 1.0), (1.0, 1, 0.0), (1.0, 2, 0.0)):

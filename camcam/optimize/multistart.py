@@ -40,7 +40,7 @@ def multistart(
     --------
     >>> from camcam.optimize.evaluation import Problem
     >>> from camcam.optimize.start import ranked_starts
-    >>> f = EvaluationFunction(Problem(5, 4, True, "A", (("V", 2.0), ("J", 61.4))))
+    >>> f = EvaluationFunction(Problem(5, 4, True, "A", limits=(("V", 2.0), ("J", 61.4))))
     >>> r, law, run = multistart(f, ranked_starts(f), 1, ComplexSettings(max_evaluations=300))
     >>> r.evaluations, law, len(run)
     (300, 'polynomial-345', 1)

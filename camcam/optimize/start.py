@@ -60,7 +60,7 @@ def ranked_starts(f: EvaluationFunction, count: int = AUTO_STARTS) -> list[tuple
     Examples
     --------
     >>> from camcam.optimize.evaluation import Problem
-    >>> f = EvaluationFunction(Problem(5, 5, True, "A", (("V", 2.0), ("J", 61.4))))
+    >>> f = EvaluationFunction(Problem(5, 5, True, "A", limits=(("V", 2.0), ("J", 61.4))))
     >>> [name for _, name in ranked_starts(f)]
     ['polynomial-345', 'cycloidal', 'modified-trapezoid']
     """
@@ -84,7 +84,7 @@ def start_point(f: EvaluationFunction, name: str = "auto") -> tuple[np.ndarray, 
     Examples
     --------
     >>> from camcam.optimize.evaluation import Problem
-    >>> f = EvaluationFunction(Problem(5, 7, True, "A", (("V", 2.0), ("J", 61.4))))
+    >>> f = EvaluationFunction(Problem(5, 7, True, "A", limits=(("V", 2.0), ("J", 61.4))))
     >>> start_point(f)[1]
     'modified-trapezoid'
     """

@@ -328,5 +328,6 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: P
             k += post.line_number_step
         else:
             out.append(line)
-    return Program("\n".join(out) + "\n", post.extension, w.counts["line"], w.counts["arc"], w.counts["rapid"],
-                   w.timer.result())
+    return Program(text="\n".join(out) + "\n", extension=post.extension, line_blocks=w.counts["line"],
+                   arc_blocks=w.counts["arc"], rapid_blocks=w.counts["rapid"],
+                   cycle_time=w.timer.result())

@@ -98,7 +98,7 @@ _DEFAULT_OFFSETS = {"gcode": WORK_OFFSETS,
                     "heidenhain": tuple(f"CYCL DEF 247 DATUM SETTING ~\n  Q339=+{k} ;DATUM NUMBER" for k in range(1, 7))}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Post:
     """A validated controller dialect."""
 

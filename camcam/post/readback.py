@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 import re
 
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 
 import numpy as np
 
@@ -37,6 +37,7 @@ class Move:
     x: float
     y: float
     z: float
+    _: KW_ONLY
     a: float = 0.0
     centre: tuple[float, float] | None = None
     ccw: bool = False
@@ -86,7 +87,7 @@ def _gcode(text: str, post) -> list:
             continue
         nx, ny, nz = vals.get("X", x), vals.get("Y", y), vals.get("Z", z)
         if mode in (0, 1):
-            out.append(Move("rapid" if mode == 0 else "line", nx, ny, nz, 0.0))
+            out.append(Move("rapid" if mode == 0 else "line", nx, ny, nz, a=0.0))
             moved = True
         elif mode in (2, 3):
             ccw = mode == 3
@@ -96,7 +97,7 @@ def _gcode(text: str, post) -> list:
                 cx, cy = vals.get("I", x), vals.get("J", y)
             else:
                 cx, cy = x + vals.get("I", 0.0), y + vals.get("J", 0.0)
-            out.append(Move("arc", nx, ny, nz, 0.0, (cx, cy), ccw))
+            out.append(Move("arc", nx, ny, nz, a=0.0, centre=(cx, cy), ccw=ccw))
             moved = True
         if not moved:
             raise ValueError(f"line {no}: coordinates without a motion mode: {raw.strip()!r}")
@@ -123,12 +124,12 @@ def _heidenhain(text: str) -> list:
             continue
         if head == "L":
             nx, ny, nz = vals.get("X", x), vals.get("Y", y), vals.get("Z", z)
-            out.append(Move("rapid" if "FMAX" in line else "line", nx, ny, nz, 0.0))
+            out.append(Move("rapid" if "FMAX" in line else "line", nx, ny, nz, a=0.0))
         elif head == "C":
             if cc is None:
                 raise ValueError(f"line {no}: C without CC: {raw.strip()!r}")
             nx, ny, nz = vals.get("X", x), vals.get("Y", y), z
-            out.append(Move("arc", nx, ny, nz, 0.0, cc, "DR+" in line))
+            out.append(Move("arc", nx, ny, nz, a=0.0, centre=cc, ccw="DR+" in line))
         else:
             continue
         x, y, z = nx, ny, nz

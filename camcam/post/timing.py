@@ -69,7 +69,7 @@ def part_path_mm(start, end, a0_deg: float = 0.0, a1_deg: float = 0.0) -> float:
     return total / (3 * n)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class CycleTime:
     """A program's estimated run time, split by what takes it (seconds, mm)."""
 
@@ -144,5 +144,5 @@ class MoveTimer:
         self.tool_change_s += seconds
 
     def result(self) -> CycleTime:
-        return CycleTime(60.0 * self.feed_min, 60.0 * self.rapid_min, self.tool_change_s,
-                         self.feed_mm, self.rapid_mm, self.moves)
+        return CycleTime(feed_s=60.0 * self.feed_min, rapid_s=60.0 * self.rapid_min, tool_change_s=self.tool_change_s,
+                         feed_mm=self.feed_mm, rapid_mm=self.rapid_mm, moves=self.moves)

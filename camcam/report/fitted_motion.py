@@ -42,7 +42,7 @@ __all__ = ["FittedMotion", "fitted_motion"]
 STENCIL_STEP_RAD = 2e-3
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FittedMotion:
     """Design and as-machined follower motion on a grid of cam angles.
 
@@ -178,4 +178,5 @@ def fitted_motion(cam: DiscCam, elements, tool_radius: float, angles_deg: np.nda
     )
     design = np.array([program.to_physical(s_design[k] / scale, k) for k in range(4)])
     fitted = np.array([program.to_physical(fitted_rad[k] / scale, k) for k in range(4)])
-    return FittedMotion(np.asarray(angles_deg, float), design, fitted, idx, program.units)
+    return FittedMotion(angles_deg=np.asarray(angles_deg, float), design=design, fitted=fitted, element=idx,
+                        units=program.units)

@@ -21,7 +21,7 @@ from camcam.geometry.groove import GrooveCam
 __all__ = ["InspectionTable", "inspection_table"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class InspectionTable:
     """Columns, each shape (n,): angles in degrees, lengths in mm, lift in the program's unit."""
 

@@ -62,7 +62,7 @@ RESIDUAL_TOL = 1e-10
 MAX_NEWTON = 40
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class BarrelFollower:
     """What the inverse needs of a cylindrical cam and its follower.
 
@@ -119,7 +119,7 @@ class BarrelFollower:
         return v / ell if self.oscillating else v
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class CylinderSolution:
     """Per measured point: cam angle θ (rad, [0, 2π)), follower coordinate q (rad or mm from the
     swing's centre), dq/dθ, contact angle α (rad), cross-section ℓ (mm) and the flank slope
@@ -226,4 +226,4 @@ def solve_cylindrical(f: BarrelFollower, points: np.ndarray, tangents: np.ndarra
         )
     theta = np.mod(f.sigma * (np.arctan2(p[2], p[1]) - np.arctan2(P[:, 2], P[:, 1])), 2 * math.pi)
     slope = tangents[:, 0] / tangents[:, 2]
-    return CylinderSolution(theta, q, f.velocity(q, alpha, ell), alpha, ell, slope)
+    return CylinderSolution(cam_angle=theta, q=q, dq=f.velocity(q, alpha, ell), alpha=alpha, ell=ell, slope=slope)

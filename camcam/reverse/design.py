@@ -39,7 +39,7 @@ __all__ = ["ReverseOptions", "ReverseResult", "reverse_design", "design_motion",
 BASE_TOL = 0.02
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class ReverseOptions:
     """``fit``: "periodic" or "bspline" (default: bspline, seed 002, for cylindrical cams; periodic for discs).
     ``smoothing``: GCV smoothing of the profile fit and of the recovered lifts (for measured, noisy points).
@@ -53,7 +53,7 @@ class ReverseOptions:
     max_gap_deg: float = DEFAULT_MAX_GAP_DEG
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class ReverseResult:
     """The recovered motion and per-point figures (in the points' polar order).
 
@@ -197,7 +197,8 @@ def reverse_design(points: MeasuredPoints, cam: CamSpec, follower: FollowerSpec,
             f"cam.base_radius = {cam.base_radius:g} mm (the points come within {r.min():.4f} mm of the centre)"
         )
     motion = fit_motion(np.degrees(theta), lift, unit, options.fit or "periodic", options.smoothing, options.max_gap_deg)
-    return ReverseResult(motion, cam.kind, follower.kind, unit, np.degrees(theta), lift, None)
+    return ReverseResult(motion=motion, cam_kind=cam.kind, follower_kind=follower.kind, unit=unit,
+                         point_angles_deg=np.degrees(theta), point_lift=lift, point_velocity=None)
 
 
 def _reverse_cylindrical(points, cam, follower, options) -> ReverseResult:
@@ -208,8 +209,9 @@ def _reverse_cylindrical(points, cam, follower, options) -> ReverseResult:
     if options.flank not in (0, 1):
         raise ValueError(f"flank must be 0 or 1, got {options.flank!r}")
     pivot = follower_kind(follower.kind).barrel_from_spec(follower).pivot_distance  # None: a translating roller
-    bf = BarrelFollower(follower.roller_radius, cam.length, cam.rotation, pivot, options.flank,
-                        cam.base_radius - cam.groove_depth, cam.base_radius)
+    bf = BarrelFollower(roller_radius=follower.roller_radius, length=cam.length, rotation=cam.rotation,
+                        pivot_distance=pivot, flank=options.flank,
+                        inner_radius=cam.base_radius - cam.groove_depth, outer_radius=cam.base_radius)
     order, phi, X = _polar_order(points, points.xyz, (1, 2), options.smoothing)
     t = flank_tangents(phi, X[:, 0], np.hypot(X[:, 1], X[:, 2]), options.slopes, options.smoothing)
     sol = solve_cylindrical(bf, X, t, lambda i: points.describe(int(order[i])))
@@ -219,7 +221,8 @@ def _reverse_cylindrical(points, cam, follower, options) -> ReverseResult:
     lift = sol.q * scale
     vel = sol.dq * scale * math.pi / 180.0  # per degree of cam angle
     motion = fit_motion(np.degrees(sol.cam_angle), lift, unit, options.fit or "bspline", options.smoothing, options.max_gap_deg)
-    return ReverseResult(motion, cam.kind, follower.kind, unit, np.degrees(sol.cam_angle), lift, vel)
+    return ReverseResult(motion=motion, cam_kind=cam.kind, follower_kind=follower.kind, unit=unit,
+                         point_angles_deg=np.degrees(sol.cam_angle), point_lift=lift, point_velocity=vel)
 
 
 def design_motion(program: MotionProgram, cam_kind: str, angles_deg, order: int) -> np.ndarray:

@@ -57,7 +57,7 @@ def check_coverage(angles_deg: np.ndarray, max_gap_deg: float = DEFAULT_MAX_GAP_
         raise GeometryError(f"two points give the same cam angle {a[j]:.6f}°; remove the duplicate")
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class RecoveredMotion:
     """The recovered follower motion: ``motion(angle_deg, nu)`` is d^ν lift / dθ^ν (per degree).
 
@@ -107,4 +107,4 @@ def fit_motion(angles_deg, lift, unit: str, fit: str = "periodic", smoothing: bo
         xp = np.concatenate([x[-m:] - 360.0, xc, x[1:m + 1] + 360.0])
         yp = np.concatenate([ys[-m - 1:-1], ys, ys[1:m + 1]])
         f = chord_bspline(xp, yp)
-    return RecoveredMotion(x, ys[:-1], y, unit, fit, smoothing, f)
+    return RecoveredMotion(angles_deg=x, lift=ys[:-1], raw_lift=y, unit=unit, fit=fit, smoothed=smoothing, _f=f)

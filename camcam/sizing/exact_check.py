@@ -20,7 +20,7 @@ from camcam.motion.program import MotionProgram
 __all__ = ["ExactFigures", "exact_figures", "design_cam", "outer_radius"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class ExactFigures:
     """A design's figures by the full geometry; ``problem`` says why it cannot be built ("" if it can)."""
 
@@ -70,7 +70,7 @@ def exact_figures(kind: str, program: MotionProgram, params: dict[str, float], r
     >>> from camcam.motion.catalog import make_law
     >>> from camcam.motion.program import MotionProgram, Segment
     >>> p = MotionProgram((Segment(make_law("cycloidal"), 0, 180, 10.0),
-    ...                    Segment(make_law("cycloidal"), 180, 360, -10.0, 10.0)), rpm=60)
+    ...                    Segment(make_law("cycloidal"), 180, 360, -10.0, base=10.0)), rpm=60)
     >>> f = exact_figures("translating-roller", p, {"base_radius": 30.0, "offset": 0.0, "roller_radius": 5.0}, "ccw")
     >>> round(f.outer_radius_mm, 9), f.undercut
     (40.0, False)
@@ -79,12 +79,19 @@ def exact_figures(kind: str, program: MotionProgram, params: dict[str, float], r
     try:
         cam = design_cam(kind, program, params, rotation)
     except GeometryError as err:
-        return ExactFigures(nan, nan, nan, nan, nan, False, nan, str(err))
+        return ExactFigures(max_pressure_angle_deg=nan, max_pressure_angle_at_deg=nan, min_curvature_radius_mm=nan,
+                            min_curvature_radius_at_deg=nan, min_concave_radius_mm=nan, undercut=False,
+                            outer_radius_mm=nan, problem=str(err))
     margin, _ = undercut_margin(cam)
     if margin <= 0:
         pa = max_pressure_angle(cam)
-        return ExactFigures(pa.value, pa.angle_deg, nan, nan, nan, True, nan)
+        return ExactFigures(max_pressure_angle_deg=pa.value, max_pressure_angle_at_deg=pa.angle_deg,
+                            min_curvature_radius_mm=nan, min_curvature_radius_at_deg=nan, min_concave_radius_mm=nan,
+                            undercut=True, outer_radius_mm=nan)
     an = analyse(cam)
     concave = an.profile.min_concave_radius.value if an.profile.min_concave_radius is not None else math.inf
-    return ExactFigures(an.max_pressure_angle_deg.value, an.max_pressure_angle_deg.angle_deg, an.profile.min_radius_mm,
-                        an.profile.angle_deg, concave, False, outer_radius(cam))
+    return ExactFigures(max_pressure_angle_deg=an.max_pressure_angle_deg.value,
+                        max_pressure_angle_at_deg=an.max_pressure_angle_deg.angle_deg,
+                        min_curvature_radius_mm=an.profile.min_radius_mm,
+                        min_curvature_radius_at_deg=an.profile.angle_deg, min_concave_radius_mm=concave, undercut=False,
+                        outer_radius_mm=outer_radius(cam))

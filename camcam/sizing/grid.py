@@ -39,8 +39,10 @@ class DesignGrid:
     Examples
     --------
     >>> from camcam.spec.size import SizeAxis, SizeSpec
-    >>> g = DesignGrid.of(SizeSpec((SizeAxis("base_radius", (30.0, 40.0)), SizeAxis("offset", (0.0, 5.0, 10.0))),
-    ...                            (), 30.0, 0.0, None, None, "outer-radius", 3600))
+    >>> g = DesignGrid.of(SizeSpec(axes=(SizeAxis("base_radius", (30.0, 40.0)), SizeAxis("offset", (0.0, 5.0, 10.0))),
+    ...                            laws=(), max_pressure_angle_deg=30.0, min_curvature_radius_mm=0.0,
+    ...                            min_curvature_radius_rollers=None, tool_radius_mm=None, objective="outer-radius",
+    ...                            samples=3600))
     >>> len(g), g.params(0, 2, 5)["offset"].tolist()
     (6, [10.0, 0.0, 5.0])
     """

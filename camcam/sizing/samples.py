@@ -20,7 +20,7 @@ from camcam.motion.program import MotionProgram
 __all__ = ["ProgramSamples", "sample_program"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class ProgramSamples:
     """s, s′, s″ (per radian of cam angle) at the grid angles; radians of swing for an oscillating program.
 
@@ -53,7 +53,7 @@ def sample_program(program: MotionProgram, samples_per_rev: int) -> ProgramSampl
     >>> from camcam.motion.catalog import make_law
     >>> from camcam.motion.program import MotionProgram, Segment
     >>> p = MotionProgram((Segment(make_law("cycloidal"), 0, 180, 10.0),
-    ...                    Segment(make_law("cycloidal"), 180, 360, -10.0, 10.0)), rpm=60)
+    ...                    Segment(make_law("cycloidal"), 180, 360, -10.0, base=10.0)), rpm=60)
     >>> ps = sample_program(p, 360)
     >>> ps.theta.size, round(ps.lift_max, 12), round(ps.step_rad, 6)
     (362, 10.0, 0.017453)
@@ -79,5 +79,5 @@ def sample_program(program: MotionProgram, samples_per_rev: int) -> ProgramSampl
                 best_lo = min(best_lo, -v)
     data = np.concatenate(rows, axis=1) * scale
     step = 2 * math.pi / samples_per_rev
-    return ProgramSamples(np.concatenate(thetas), data[0], data[1], data[2], np.concatenate(inner),
-                          float(best_hi * scale), float(best_lo * scale), step)
+    return ProgramSamples(theta=np.concatenate(thetas), s=data[0], s1=data[1], s2=data[2], inner=np.concatenate(inner),
+                          lift_max=float(best_hi * scale), lift_min=float(best_lo * scale), step_rad=step)

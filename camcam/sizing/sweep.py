@@ -80,7 +80,7 @@ def evaluate_chunk(chunk: Chunk, ctx: SweepContext) -> dict[str, np.ndarray]:
     return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Limits:
     """The constraints as numbers (``None``: not applied)."""
 
@@ -92,8 +92,10 @@ class Limits:
 
     @classmethod
     def of(cls, size: SizeSpec, bore_mm: float = 0.0) -> "Limits":
-        return cls(size.max_pressure_angle_deg, size.min_curvature_radius_mm, size.min_curvature_radius_rollers, size.tool_radius_mm,
-                   bore_mm)
+        return cls(max_pressure_angle_deg=size.max_pressure_angle_deg,
+                   min_curvature_radius_mm=size.min_curvature_radius_mm,
+                   min_curvature_radius_rollers=size.min_curvature_radius_rollers, tool_radius_mm=size.tool_radius_mm,
+                   bore_mm=bore_mm)
 
     def bore_fits(self, base_radius, roller_radius):
         return np.asarray(base_radius) - np.asarray(roller_radius) >= self.bore_mm / 2 - LIMIT_ATOL
@@ -134,7 +136,7 @@ class Limits:
         return out
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class SizingResult:
     """The whole table (columns in order), the feasible set ranked, and the best design."""
 
@@ -236,8 +238,9 @@ def run_sweep(spec, executor: Executor) -> SizingResult:
         key = (round(value / TIE) * TIE, round(ex.max_pressure_angle_deg / TIE) * TIE, int(number))
         if best_key is None or key < best_key:
             best, best_ex, best_key = int(number), ex, key
-    return SizingResult(kind, rotation, grid, limits, size.objective, table, ranked, best, best_ex, tuple(checked),
-                        programs, size.samples, note)
+    return SizingResult(kind=kind, rotation=rotation, grid=grid, limits=limits, objective=size.objective, table=table,
+                        ranked=ranked, best=best, best_exact=best_ex, checked=tuple(checked),
+                        programs=programs, samples_per_rev=size.samples, note=note)
 
 
 def grid_bounds(result: SizingResult) -> tuple[float, float]:

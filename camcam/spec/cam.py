@@ -53,4 +53,6 @@ def read_cam(t: Table) -> CamSpec:
     min_rho = t.number("min_curvature_radius_mm", None, minimum=0.0, unit="mm")
     limits = t.string("design_limits", "warn", choices=DESIGN_LIMITS)
     t.done()
-    return CamSpec(kind, base, bore, rotation, thickness, groove, outer, length, max_pa, min_rho, limits)
+    return CamSpec(kind=kind, base_radius=base, bore=bore, rotation=rotation, thickness=thickness, groove_depth=groove,
+                   outer_radius=outer, length=length, max_pressure_angle_deg=max_pa, min_curvature_radius_mm=min_rho,
+                   design_limits=limits)

@@ -40,7 +40,7 @@ _NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,63}")  # whole name (fullmatch:
 MAX_SPEC_BYTES = 1 << 20
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Spec:
     """A validated spec.  Tables a file leaves out are ``None``; commands say which they need."""
 
@@ -120,8 +120,9 @@ def parse_spec(data: dict, source: Path) -> Spec:
     inspection_t = root.table("inspection", None)
     inspection = _reader("inspection", "read_inspection")(inspection_t) if inspection_t is not None else None
     root.done()
-    return Spec(name, source, motion_spec, cam, follower, optimize_spec, machining_spec, report_spec, stock, size_spec,
-                dynamics, inspection=inspection)
+    return Spec(name=name, source=source, motion=motion_spec, cam=cam, follower=follower, optimize=optimize_spec,
+                machining=machining_spec, report=report_spec, stock=stock, size=size_spec,
+                dynamics=dynamics, inspection=inspection)
 
 
 def _check_depth(m: MachiningSpec, cam: CamSpec) -> None:

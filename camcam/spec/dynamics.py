@@ -137,5 +137,8 @@ def read_dynamics(t: Table, cam, follower) -> DynamicsSpec:
     else:
         t.check("load_arm_mm", not t.has("load_arm_mm"), "a translating follower's spring acts along its axis")
     t.done()
-    return DynamicsSpec(mass, inertia, rate, preload, size, ratio, damping, load, table, friction, width, cam_m,
-                        follower_m, allowable, least, overspeed, fluctuation, arm)
+    return DynamicsSpec(mass_kg=mass, inertia_kgm2=inertia, spring_rate_n_per_mm=rate, preload_n=preload,
+                        size_spring=size, damping_ratio=ratio, damping_n_s_per_m=damping, external_load_n=load,
+                        external_load_table=table, friction=friction, roller_width_mm=width, cam_material=cam_m,
+                        follower_material=follower_m, allowable_contact_stress_mpa=allowable, min_contact_force_n=least,
+                        overspeed=overspeed, speed_fluctuation=fluctuation, load_arm_mm=arm)

@@ -38,4 +38,4 @@ def read_follower(t: Table, cam_kind: str | None = None) -> FollowerSpec:
     if cam_kind == "cylindrical" and "offset" in keys:
         t.check("offset", offset == 0.0, "a cylindrical cam's translating follower has no offset")
     t.done()
-    return FollowerSpec(kind, rr, offset, pivot, arm)
+    return FollowerSpec(kind=kind, roller_radius=rr, offset=offset, pivot_distance=pivot, arm_length=arm)

@@ -165,6 +165,9 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
         key, _, message = str(err).partition(": ")
         raise t.error(key, message) from None
     t.done()
-    return MachiningSpec(post, tool, tol, mode, feed, spindle, depth, stepdown, plunge, safe, clearance, lead,
-                         allowance, spring, tool_number, accept, setup=setup, flute_length_mm=flute, a_axis=a_axis,
+    return MachiningSpec(post=post, tool_diameter_mm=tool, tolerance_mm=tol, mode=mode, feed_mm_min=feed,
+                         spindle_rpm=spindle, depth_mm=depth, stepdown_mm=stepdown, plunge_feed_mm_min=plunge,
+                         safe_z_mm=safe, clearance_z_mm=clearance, lead_radius_mm=lead,
+                         finish_allowance_mm=allowance, spring_pass=spring, tool_number=tool_number,
+                         accept_out_of_tolerance=accept, setup=setup, flute_length_mm=flute, a_axis=a_axis,
                          stepover=stepover, ramp_angle_deg=ramp, bore=bore, axes=axes)

@@ -61,7 +61,7 @@ __all__ = ["SegmentSpec", "TableMotionSpec", "MotionSpec", "read_motion"]
 CLOSURE_ATOL = 1e-9
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class SegmentSpec:
     """One segment as written in the spec, with its law resolved."""
 
@@ -103,7 +103,7 @@ class MotionSpec:
         segs = []
         lift = 0.0
         for s in self.segments:
-            segs.append(Segment(s.law, s.from_deg, s.to_deg, s.rise, lift))
+            segs.append(Segment(s.law, s.from_deg, s.to_deg, s.rise, base=lift))
             lift = segs[-1].end_lift
         program = MotionProgram(tuple(segs), self.rpm, unit)
         if self.strict:
@@ -242,7 +242,7 @@ def read_motion(t: Table, base_dir: Path, unit: str = "mm") -> MotionSpec:
         else:
             rise = row.number("rise", table_rise if table_rise is not None else MISSING, unit="mm" if unit == "mm" else "degrees")
         row.done()
-        segments.append(SegmentSpec(name, law, a, b, rise))
+        segments.append(SegmentSpec(law_name=name, law=law, from_deg=a, to_deg=b, rise=rise))
         prev_to = b
     if abs(prev_to - 360.0) > TILE_ATOL_DEG:
         raise t.error(f"segments[{len(rows) - 1}].to", f"{fmt(prev_to)}: the last segment must end at 360")

@@ -31,7 +31,7 @@ __all__ = ["OptimizeSpec", "read_optimize", "METHODS"]
 METHODS = ("exact", "complex")
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class OptimizeSpec:
     """The validated ``[optimize]`` table."""
 
@@ -76,7 +76,7 @@ def read_optimize(t: Table) -> OptimizeSpec:
             limits.append((q, lt.number(q, minimum=0, inclusive=False)))
         lt.done()
     try:
-        problem = Problem(degree, segments, symmetric, minimize, tuple(limits))
+        problem = Problem(degree, segments, symmetric, minimize, limits=tuple(limits))
     except ValueError as err:
         raise SpecError(t.key_path("segments"), f"{fmt(segments)}: {err}") from None
-    return OptimizeSpec(problem, method, seed, start, evaluations)
+    return OptimizeSpec(problem=problem, method=method, seed=seed, start=start, evaluations=evaluations)

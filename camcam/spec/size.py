@@ -69,7 +69,7 @@ class LawChoice:
     laws: tuple[str, ...]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class SizeSpec:
     axes: tuple[SizeAxis, ...]
     laws: tuple[LawChoice, ...]
@@ -198,7 +198,9 @@ def read_size(t: Table, cam, follower, motion, machining) -> SizeSpec:
     t.check("objective", roller or objective != "pressure-angle", "a flat face's pressure angle is zero throughout")
     samples = t.integer("samples", 3600, minimum=360, maximum=100_000)
     t.done()
-    spec = SizeSpec(tuple(axes), tuple(sorted(choices, key=lambda c: c.segment)), pa, rho, rollers, tool, objective, samples)
+    spec = SizeSpec(axes=tuple(axes), laws=tuple(sorted(choices, key=lambda c: c.segment)), max_pressure_angle_deg=pa,
+                    min_curvature_radius_mm=rho, min_curvature_radius_rollers=rollers, tool_radius_mm=tool,
+                    objective=objective, samples=samples)
     if spec.design_count > MAX_DESIGNS:
         raise SpecError("size", f"the sweep has {spec.design_count:,} designs; it is capped at {MAX_DESIGNS:,}: use coarser steps")
     return spec

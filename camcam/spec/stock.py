@@ -42,4 +42,4 @@ def read_stock(t: Table, cam=None) -> StockSpec:
         allowance = t.number("allowance", minimum=0.0, inclusive=False, unit="mm")
     top = t.number("top_allowance", 0.0, minimum=0.0, unit="mm")
     t.done()
-    return StockSpec(kind, diameter, allowance, top, True)
+    return StockSpec(kind=kind, diameter_mm=diameter, allowance_mm=allowance, top_allowance_mm=top, stated=True)

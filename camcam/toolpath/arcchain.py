@@ -228,7 +228,7 @@ class OnCurve:
     the curve by κ·u²/2 and turn against it by κu, both far more than δ).
     """
 
-    def __init__(self, curve, a, b, t, v, psi, w):
+    def __init__(self, curve, a, b, *, t, v, psi, w):
         self.curve, self.a, self.b = curve, a, b
         self.t = a + np.mod(np.asarray(t, float) - a, b - a)
         self.v, self.psi, self.w = np.asarray(v, float), np.asarray(psi, float), int(w)
@@ -242,7 +242,8 @@ class OnCurve:
         self.joints = Joints(d0 + self.v[:, None] * self.N, phi + self.psi, w)
 
     def moved(self, du, dv, dpsi):
-        return OnCurve(self.curve, self.a, self.b, self.t + du / self.speed, self.v + dv, self.psi + dpsi, self.w)
+        return OnCurve(self.curve, self.a, self.b, t=self.t + du / self.speed, v=self.v + dv, psi=self.psi + dpsi,
+                       w=self.w)
 
 
 def on_curve(curve, a, b, joints: Joints, t_guess) -> OnCurve:
@@ -260,7 +261,7 @@ def on_curve(curve, a, b, joints: Joints, t_guess) -> OnCurve:
     v = (J[:, 1] - d0[:, 1]) * T[:, 0] - (J[:, 0] - d0[:, 0]) * T[:, 1]
     phi = np.arctan2(T[:, 1], T[:, 0])
     psi = np.mod(joints.theta - phi + np.pi, 2 * np.pi) - np.pi
-    return OnCurve(curve, a, b, t, v, psi, joints.w)
+    return OnCurve(curve, a, b, t=t, v=v, psi=psi, w=joints.w)
 
 
 def step_jacobians(oc: OnCurve, res):
@@ -384,7 +385,7 @@ def minimax_chain(start: OnCurve, tab: CurveTable, *, max_sweep: float, per_arc:
     >>> C = FunctionCurve(circle, 0.0, 2 * np.pi, closed=True)
     >>> tab = CurveTable(C, 0.0, 2 * np.pi, 4096)
     >>> t = np.array([0.1, 1.7, 3.3, 4.6])
-    >>> start = OnCurve(C, 0.0, 2 * np.pi, t, np.full(4, 0.01), np.array([0.002, -0.001, 0.0, 0.001]), 1)
+    >>> start = OnCurve(C, 0.0, 2 * np.pi, t=t, v=np.full(4, 0.01), psi=np.array([0.002, -0.001, 0.0, 0.001]), w=1)
     >>> chain, err, gap = minimax_chain(start, tab, max_sweep=np.radians(120))
     >>> bool(err < 1e-6 and gap < 1e-9)
     True

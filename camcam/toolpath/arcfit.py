@@ -47,7 +47,7 @@ from camcam.toolpath.quantizer import Quantizer
 __all__ = ["FitResult", "fit_contour", "lower_bound_blocks", "line_estimate_blocks"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FitResult:
     """A fitted contour: elements on the decimal grid, in the curve's direction."""
 
@@ -157,8 +157,10 @@ def _fit_arcs(curve, tolerance_mm, band, quantizer, max_sweep, a, b, exact, prin
     blocks = [int(np.count_nonzero((starts >= lo) & ((starts < hi) | (hi == last))))
               for lo, hi in edges]  # each arc counts on the piece its start joint lies on
     measured_whole = len(sections) == 1 and sections[0] == (exact.t_start, exact.t_end)
-    return FitResult(tuple(elems), "arcs", tolerance_mm, quantizer.decimals, worst, float(sum(lbs)),
-                     tuple(blocks), tuple(lbs), measured_whole, tuple(fallbacks))
+    return FitResult(elements=tuple(elems), mode="arcs", tolerance_mm=tolerance_mm, decimals=quantizer.decimals,
+                     deviation=worst, lower_bound=float(sum(lbs)),
+                     piece_blocks=tuple(blocks), piece_lower_bounds=tuple(lbs), measured_whole=measured_whole,
+                     lines_sections=tuple(fallbacks))
 
 
 def _lines_section(curve, exact, printed, quantizer, band, tolerance_mm, lo, hi, budget, missed):
@@ -288,5 +290,6 @@ def fit_contour(curve: PlanarCurve, tolerance_mm: float, *, mode: str = "arcs",
         blocks.append(len(elems))
         if worst is None or dev.max_deviation_mm > worst.max_deviation_mm:
             worst = dev
-    return FitResult(tuple(all_elems), mode, tolerance_mm, quantizer.decimals, worst, float(sum(lbs)),
-                     tuple(blocks), tuple(lbs))
+    return FitResult(elements=tuple(all_elems), mode=mode, tolerance_mm=tolerance_mm, decimals=quantizer.decimals,
+                     deviation=worst, lower_bound=float(sum(lbs)),
+                     piece_blocks=tuple(blocks), piece_lower_bounds=tuple(lbs))

@@ -106,7 +106,7 @@ def fewer_arcs(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_
         enough = ENOUGH * allowed if len(oc.t) == n_arcs + 1 else 0.0
         for j in _removal_order(oc, tab, per_arc)[:tries]:
             keep = np.arange(len(oc.t)) != j
-            trial = OnCurve(curve, a, b, oc.t[keep], oc.v[keep], oc.psi[keep], oc.w)
+            trial = OnCurve(curve, a, b, t=oc.t[keep], v=oc.v[keep], psi=oc.psi[keep], w=oc.w)
             trial, err, gap = minimax_chain(trial, tab, max_sweep=max_sweep, per_arc=per_arc,
                                             hopeless=HOPELESS * allowed, enough=enough)
             if err <= allowed and gap <= budget.chain_gap_mm(tol):

@@ -171,7 +171,7 @@ def seeded_count(curve, a: float, b: float, tol: float, quantizer: Quantizer, ma
     t, count, turns = density
     total = float(count[-1])
     joints_t = np.interp(np.arange(n) / n * total, count, np.concatenate([t, [b]]))
-    seed = OnCurve(curve, a, b, joints_t, np.zeros(n), np.zeros(n), turns)
+    seed = OnCurve(curve, a, b, t=joints_t, v=np.zeros(n), psi=np.zeros(n), w=turns)
     chain, err, gap = minimax_chain(seed, tab, max_sweep=max_sweep, per_arc=per_arc, enough=ENOUGH * allowed,
                                     early=(GIVE_UP[0], GIVE_UP[1] * allowed), hopeless=GIVE_UP[2] * allowed)
     if err > allowed or gap > budget.chain_gap_mm(tol):

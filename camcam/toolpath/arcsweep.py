@@ -119,8 +119,9 @@ def passes_within_sweep(passes, quantizer: Quantizer, max_sweep_deg: float) -> t
                 parts = parts_within(Arc((at[0], at[1]), (m.x, m.y), (m.cx, m.cy), m.ccw), quantizer, max_sweep_deg)
                 z0 = m.z if at[2] is None else at[2]
                 moves += [m] if len(parts) == 1 else [
-                    ArcMove(p.end[0], p.end[1], m.cx, m.cy, m.ccw, m.z if k == len(parts) else
-                            z0 + (m.z - z0) * k / len(parts), m.feed_mm_min) for k, p in enumerate(parts, 1)]
+                    ArcMove(p.end[0], p.end[1], m.cx, m.cy, ccw=m.ccw, z=m.z if k == len(parts) else
+                            z0 + (m.z - z0) * k / len(parts), feed_mm_min=m.feed_mm_min) for k,
+                                                      p in enumerate(parts, 1)]
             else:
                 moves.append(m)
             if not isinstance(m, Comment):

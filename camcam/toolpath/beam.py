@@ -28,7 +28,7 @@ from camcam.toolpath.quantizer import Quantizer
 __all__ = ["SplineBudget", "ArcSpline", "march", "TURN_RANGE"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class SplineBudget:
     """How the march spends the tolerance δ and how hard it searches.
 

@@ -70,7 +70,7 @@ __all__ = ["FitBudget", "DEFAULT_BUDGET", "GrooveBudget", "DEFAULT_GROOVE_BUDGET
            "DEFAULT_FIVE_AXIS_BUDGET"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class FitBudget:
     """The shares of a contour's tolerance δ (fractions of δ unless a unit is named).
 

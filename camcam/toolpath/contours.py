@@ -42,7 +42,7 @@ class SegmentBlocks:
         return 1.2 * self.lower_bound + 4.0
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class CutContour:
     """One contour the tool follows.
 

@@ -26,7 +26,7 @@ from camcam.toolpath.elements import Arc, element_distance, element_points
 __all__ = ["Deviation", "closest_params", "measure_deviation"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Deviation:
     """Two-sided deviation of a path from a curve (mm); ``max_deviation_mm`` includes ``margin_mm``."""
 
@@ -173,4 +173,5 @@ def measure_deviation(curve: PlanarCurve, elements, lo: float | None = None, hi:
     i_pc, i_cp = int(np.argmax(d_pc)), int(np.argmax(d_cp))
     worst = pts[i_pc] if d_pc[i_pc] >= d_cp[i_cp] else cp[i_cp]
     a, b = float(d_pc[i_pc]), float(d_cp[i_cp])
-    return Deviation(max(a, b) + margin, a, b, margin, (float(worst[0]), float(worst[1])))
+    return Deviation(max_deviation_mm=max(a, b) + margin, path_to_curve_mm=a, curve_to_path_mm=b, margin_mm=margin,
+                     worst_point=(float(worst[0]), float(worst[1])))

@@ -10,7 +10,7 @@ the A axis for 4-axis cylindrical cams (inverse-time feeds are the writer's job)
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 
 import numpy as np
 
@@ -29,6 +29,7 @@ class Rapid:
     x: float | None
     y: float | None
     z: float | None
+    _: KW_ONLY
     a_deg: float | None = None
     b_deg: float | None = None
 
@@ -41,6 +42,7 @@ class Feed:
     y: float | None
     z: float | None
     feed_mm_min: float
+    _: KW_ONLY
     a_deg: float | None = None
     length_mm: float = 0.0  # inverse-time feeds: path length (4-axis: at the reference radius; 5-axis: of the tool tip)
     b_deg: float | None = None
@@ -54,6 +56,7 @@ class ArcMove:
     y: float
     cx: float
     cy: float
+    _: KW_ONLY
     ccw: bool
     z: float
     feed_mm_min: float
@@ -90,6 +93,7 @@ class Pass:
     kind: str
     z: float
     moves: tuple
+    _: KW_ONLY
     note: str = ""
 
     def __post_init__(self) -> None:
@@ -119,6 +123,7 @@ class Toolpath:
     title: str
     passes: tuple[Pass, ...]
     spindle_rpm: float
+    _: KW_ONLY
     tool_number: int = 1
     tool_diameter_mm: float = 0.0
     rotary: bool = False
@@ -145,11 +150,12 @@ def join_toolpaths(title: str, paths) -> Toolpath:
     first = paths[0]
     comments = tuple(dict.fromkeys(c for p in paths for c in p.comments))
     passes = tuple(q for p in paths for q in p.passes)
-    return Toolpath(title, passes, first.spindle_rpm, first.tool_number, first.tool_diameter_mm, first.rotary,
-                    comments, first.opening, paths[-1].closing)
+    return Toolpath(title, passes, first.spindle_rpm, tool_number=first.tool_number,
+                    tool_diameter_mm=first.tool_diameter_mm, rotary=first.rotary,
+                    comments=comments, opening=first.opening, closing=paths[-1].closing)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class CutSettings:
     """How a contour is cut (mm, mm/min, rev/min).
 
@@ -227,13 +233,14 @@ def _pass_moves(elements, z, feed, plunge, lead, away_left, cs):
     finish = c_out + lead * t1
     moves = [Rapid(float(start[0]), float(start[1]), None), Rapid(None, None, cs.clearance_z_mm),
              Feed(None, None, z, plunge),
-             ArcMove(float(p0[0]), float(p0[1]), float(c_in[0]), float(c_in[1]), away_left, z, feed)]
+             ArcMove(float(p0[0]), float(p0[1]), float(c_in[0]), float(c_in[1]), ccw=away_left, z=z, feed_mm_min=feed)]
     for e in elements:
         if isinstance(e, Line):
             moves.append(Feed(e.end[0], e.end[1], z, feed))
         else:
-            moves.append(ArcMove(e.end[0], e.end[1], e.centre[0], e.centre[1], e.ccw, z, feed))
-    moves.append(ArcMove(float(finish[0]), float(finish[1]), float(c_out[0]), float(c_out[1]), away_left, z, feed))
+            moves.append(ArcMove(e.end[0], e.end[1], e.centre[0], e.centre[1], ccw=e.ccw, z=z, feed_mm_min=feed))
+    moves.append(ArcMove(float(finish[0]), float(finish[1]), float(c_out[0]), float(c_out[1]), ccw=away_left, z=z,
+                         feed_mm_min=feed))
     moves.append(Rapid(None, None, cs.clearance_z_mm))
     return moves
 
@@ -272,7 +279,7 @@ def _contour_moves(elements, z, feed):
         if isinstance(e, Line):
             moves.append(Feed(e.end[0], e.end[1], z, feed))
         else:
-            moves.append(ArcMove(e.end[0], e.end[1], e.centre[0], e.centre[1], e.ccw, z, feed))
+            moves.append(ArcMove(e.end[0], e.end[1], e.centre[0], e.centre[1], ccw=e.ccw, z=z, feed_mm_min=feed))
     return moves
 
 
@@ -307,9 +314,10 @@ def slot_toolpath(elements, cs: CutSettings, title: str = "camcam", contour: int
         moves += _contour_moves(elements, z, cs.feed_mm_min)
         moves.append(Rapid(None, None, cs.clearance_z_mm))
         passes.append(Pass(contour, k, z, tuple(moves)))
-    return Toolpath(title, tuple(passes), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False,
-                    (f"{len(levels)} depth passes to {levels[-1]:g} mm, plunged in the groove",),
-                    (Rapid(None, None, cs.safe_z_mm),), (Rapid(None, None, cs.safe_z_mm),))
+    return Toolpath(title, tuple(passes), cs.spindle_rpm, tool_number=cs.tool_number,
+                    tool_diameter_mm=cs.tool_diameter_mm, rotary=False,
+                    comments=(f"{len(levels)} depth passes to {levels[-1]:g} mm, plunged in the groove",),
+                    opening=(Rapid(None, None, cs.safe_z_mm),), closing=(Rapid(None, None, cs.safe_z_mm),))
 
 
 def contour_toolpath(elements, cs: CutSettings, title: str = "camcam", contour: int = 0) -> Toolpath:
@@ -341,9 +349,10 @@ def contour_toolpath(elements, cs: CutSettings, title: str = "camcam", contour: 
     passes = tuple(Pass(contour, kind, z, tuple(_pass_moves(path, z, cs.feed_mm_min, plunge, cs.lead_radius_mm,
                                                              away_left, cs)))
                    for path, z, kind in plan)
-    return Toolpath(title, passes, cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, False,
-                    (f"{len(levels)} depth passes to {levels[-1]:g} mm",),
-                    (Rapid(None, None, cs.safe_z_mm),), (Rapid(None, None, cs.safe_z_mm),))
+    return Toolpath(title, passes, cs.spindle_rpm, tool_number=cs.tool_number, tool_diameter_mm=cs.tool_diameter_mm,
+                    rotary=False,
+                    comments=(f"{len(levels)} depth passes to {levels[-1]:g} mm",),
+                    opening=(Rapid(None, None, cs.safe_z_mm),), closing=(Rapid(None, None, cs.safe_z_mm),))
 
 
 def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "camcam",
@@ -368,11 +377,14 @@ def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "
     passes = []
     for z in levels:
         moves = [Rapid(float(pts[0, 0]), 0.0, None),  # Y0: the tool axis through the cam axis
-                 Feed(None, None, radius_mm + cs.clearance_z_mm, plunge, float(a[0]), cs.safe_z_mm),
-                 Feed(None, None, z, plunge, float(a[0]), cs.clearance_z_mm + radius_mm - z)]
+                 Feed(None, None, radius_mm + cs.clearance_z_mm, plunge, a_deg=float(a[0]), length_mm=cs.safe_z_mm),
+                 Feed(None, None, z, plunge, a_deg=float(a[0]), length_mm=cs.clearance_z_mm + radius_mm - z)]
         for k in range(1, len(pts)):
-            moves.append(Feed(float(pts[k, 0]), None, z, cs.feed_mm_min, float(a[k]), float(seg[k - 1])))
+            moves.append(Feed(float(pts[k, 0]), None, z, cs.feed_mm_min, a_deg=float(a[k]),
+                              length_mm=float(seg[k - 1])))
         moves.append(Rapid(None, None, radius_mm + cs.safe_z_mm))
         passes.append(Pass(contour, kind, z, tuple(moves)))
-    return Toolpath(title, tuple(passes), cs.spindle_rpm, cs.tool_number, cs.tool_diameter_mm, True,
-                    (f"4-axis, developed at R{dev_r:g} mm",), (Rapid(None, None, radius_mm + cs.safe_z_mm),))
+    return Toolpath(title, tuple(passes), cs.spindle_rpm, tool_number=cs.tool_number,
+                    tool_diameter_mm=cs.tool_diameter_mm, rotary=True,
+                    comments=(f"4-axis, developed at R{dev_r:g} mm",),
+                    opening=(Rapid(None, None, radius_mm + cs.safe_z_mm),))

@@ -20,7 +20,7 @@ from numpy.polynomial import chebyshev as C
 __all__ = ["ChebyshevCurve", "chebyshev_curve"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class ChebyshevCurve:
     """Piecewise Chebyshev copy of a curve: same parameter, breaks and ends."""
 
@@ -127,4 +127,5 @@ def chebyshev_curve(curve, accuracy_mm: float = 1e-7) -> ChebyshevCurve:
     for lo, hi in zip(br, br[1:]):
         worst = max(worst, _piece(curve, float(lo), float(hi), accuracy_mm, 0, parts))
     knots = np.array([p[0] for p in parts] + [parts[-1][1]])
-    return ChebyshevCurve(br, knots, tuple(p[2] for p in parts), worst, bool(curve.closed))
+    return ChebyshevCurve(breaks=br, knots=knots, series=tuple(p[2] for p in parts), error_mm=worst,
+                          closed=bool(curve.closed))

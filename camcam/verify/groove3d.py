@@ -123,7 +123,7 @@ class WallDeviation:
                 "material_left_cam_angle_deg": m.cam_angle_deg}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class GrooveMeasurement:
     """The 3-D wall deviation of a cut groove.
 
@@ -504,8 +504,8 @@ def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *,
     >>> from camcam.motion.catalog import make_law
     >>> from camcam.motion.program import MotionProgram, Segment
     >>> law = make_law("cycloidal")
-    >>> prog = MotionProgram((Segment(law, 0, 180, 20.0), Segment(law, 180, 360, -20.0, 20.0)), rpm=60)
-    >>> cam = CylindricalCam(BarrelTranslatingRoller(8.0), prog, 50.0, 80.0, 10.0)
+    >>> prog = MotionProgram((Segment(law, 0, 180, 20.0), Segment(law, 180, 360, -20.0, base=20.0)), rpm=60)
+    >>> cam = CylindricalCam(BarrelTranslatingRoller(8.0), prog, 50.0, length=80.0, groove_depth=10.0)
     >>> X, Y, Z, a, B = follower_poses(cam, np.radians(np.arange(0.0, 360.01, 0.1)))
     >>> poses = ToolPoses(np.stack([X, Y, Z + 30.0], axis=-1), np.degrees(a), np.degrees(B))
     >>> m = measure_groove(cam, CylinderTool(8.0, 40.0), poses, radii=3, angle_step_deg=2.0)
@@ -550,8 +550,9 @@ def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *,
         ext.append(WallExtreme(float(v), float(rho), float(math.degrees(t) % 360.0)))
     walls = [WallDeviation(0, ext[0], ext[1]), WallDeviation(1, ext[2], ext[3])]
     bound = pose_step_mm**2 / (8.0 * tool.radius_mm)
-    return GrooveMeasurement(frozen_array(rad), frozen_array(np.degrees(th)), frozen_array(dev), (walls[0], walls[1]),
-                             float(bound), float(pose_step_mm), uncut)
+    return GrooveMeasurement(radii_mm=frozen_array(rad), cam_angle_deg=frozen_array(np.degrees(th)),
+                             deviation_mm=frozen_array(dev), walls=(walls[0], walls[1]),
+                             sampling_bound_mm=float(bound), pose_step_mm=float(pose_step_mm), uncut_points=uncut)
 
 
 def design_walls(cam: CylindricalCam, radius_mm: float, cam_angle_deg, pose_step_mm: float = 0.1) -> np.ndarray:

@@ -60,7 +60,8 @@ def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool
                   f"depth), or accept a tolerance of at least {holds:g} mm")
     else:
         advice = f"accept a tolerance of at least {holds:g} mm"
-    return Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(), advice)
+    return Check("3-D groove deviation", value, tol, "mm", ok=value <= tol, severity="fail", where=groove.where(),
+                 advice=advice)
 
 
 def five_axis_check(m: MachiningSpec, groove: GrooveMeasurement, cut_length_mm: float,
@@ -79,4 +80,5 @@ def five_axis_check(m: MachiningSpec, groove: GrooveMeasurement, cut_length_mm: 
                   f"{cut_length_mm:.2f} mm up the tool from its tip)")
     else:
         advice = f"accept a tolerance of at least {holds:g} mm"
-    return Check("3-D groove deviation", value, tol, "mm", value <= tol, "fail", groove.where(), advice)
+    return Check("3-D groove deviation", value, tol, "mm", ok=value <= tol, severity="fail", where=groove.where(),
+                 advice=advice)

@@ -28,7 +28,7 @@ from camcam.verdict import Check
 __all__ = ["ToolReach", "tool_reach", "flute_text"]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class ToolReach:
     """The printed program's reach (mm): its deepest radius, the flute it needs, and what the walls need."""
 
@@ -65,9 +65,9 @@ class ToolReach:
                  if dip > 0 else f"the tool reaches R{self.deepest_radius_mm:.4g}, above the groove floor "
                  f"R{self.bottom_radius_mm:g}")
         return Check("cut depth", self.depth_mm, self.needed_depth_mm, "mm",
-                     self.depth_mm <= self.needed_depth_mm + self.print_step_mm, "warn", where,
-                     "the tool goes deeper into the groove floor than the walls need: set [machining] depth to the "
-                     "groove depth")
+                     ok=self.depth_mm <= self.needed_depth_mm + self.print_step_mm, severity="warn", where=where,
+                     advice="the tool goes deeper into the groove floor than the walls need: set [machining] depth "
+                     "to the groove depth")
 
     def as_dict(self) -> dict:
         return {"depth_mm": self.depth_mm, "deepest_radius_mm": self.deepest_radius_mm,
@@ -84,8 +84,10 @@ def tool_reach(poses: ToolPoses, tool_radius_mm: float, top_radius_mm: float, bo
     rho = np.hypot(tip[:, 1], tip[:, 2])
     deepest = float((rho - tool_radius_mm * sin_b).min())
     flute = float(((top_radius_mm + tool_radius_mm * sin_b - rho) / cos_b).max())
-    return ToolReach(top_radius_mm, bottom_radius_mm, deepest, needed_radius_mm, max(flute, 0.0), flute_length_mm,
-                     10.0 ** -decimals, why)
+    return ToolReach(top_radius_mm=top_radius_mm, bottom_radius_mm=bottom_radius_mm, deepest_radius_mm=deepest,
+                     needed_radius_mm=needed_radius_mm, flute_needed_mm=max(flute, 0.0),
+                     flute_length_mm=flute_length_mm,
+                     print_step_mm=10.0 ** -decimals, why=why)
 
 
 def flute_text(reach: ToolReach) -> str:

@@ -59,7 +59,7 @@ TREE_LEAF = 64
 #: a finishing pass; the boundary points it leaves farther are searched among all (the same figure).
 LEFT_FIRST_MM = 0.1
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class RemovalReport:
     """The figures of the check (mm, degrees); ``*_where`` name the pass and the point."""
 
@@ -88,23 +88,23 @@ class RemovalReport:
 
     def checks(self) -> tuple[Check, ...]:
         out = [
-            Check("plunges into material", float(self.plunges), 0.0, "moves", self.plunges == 0,
+            Check("plunges into material", float(self.plunges), 0.0, "moves", ok=self.plunges == 0,
                   where=self.plunge_where, advice="enter outside the material or ramp at the ramp angle"),
-            Check("rapids touching material", float(self.rapid_touches), 0.0, "moves", self.rapid_touches == 0,
+            Check("rapids touching material", float(self.rapid_touches), 0.0, "moves", ok=self.rapid_touches == 0,
                   where=self.rapid_where, advice="raise clearance_z above the blank"),
             Check("radial engagement", self.max_engagement_mm, self.stepover_mm, "mm",
-                  self.max_engagement_mm <= self.stepover_mm + TOUCH_MM, where=self.engagement_where,
+                  ok=self.max_engagement_mm <= self.stepover_mm + TOUCH_MM, where=self.engagement_where,
                   advice=self._engagement_advice()),
             Check("material left over the profile", self.material_left_mm, self.tolerance_mm, "mm",
-                  self.material_left_mm <= self.tolerance_mm, where=self.left_where,
+                  ok=self.material_left_mm <= self.tolerance_mm, where=self.left_where,
                   advice="the finish pass does not reach the profile: check the stock and the depth"),
             Check("overcut into the profile", self.overcut_mm, self.tolerance_mm, "mm",
-                  self.overcut_mm <= self.tolerance_mm, where=self.overcut_where,
+                  ok=self.overcut_mm <= self.tolerance_mm, where=self.overcut_where,
                   advice="a pass cuts into the part: check the stock, the tool and the allowance"),
         ]
         if self.rough_clearance_mm is not None:
             out.append(Check("roughing stock over the profile (at least the allowance)", self.rough_clearance_mm,
-                             self.allowance_mm, "mm", self.rough_clearance_mm >= self.allowance_mm - TOUCH_MM,
+                             self.allowance_mm, "mm", ok=self.rough_clearance_mm >= self.allowance_mm - TOUCH_MM,
                              where=self.rough_clearance_where, advice="report a bug: the roughing came too close"))
         return tuple(out)
 
@@ -188,10 +188,13 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
             left = float(dist[j])
             left_at = (f"slab Z{bounds[i + 1]:g}…Z{bounds[i]:g}: material at X{pts[j, 0]:.3f} Y{pts[j, 1]:.3f} "
                        "not cut")
-    return RemovalReport(r_t, stepover_mm, ramp_angle_deg, tolerance_mm, allowance_mm, tuple(levels), passes,
-                         swept.engagement_mm, swept.engagement_where, swept.slot_engagement_mm, swept.plunges,
-                         swept.plunge_where, swept.rapids, swept.rapid_where, left, left_at, over, over_at,
-                         clearance, clear_at)
+    return RemovalReport(tool_radius_mm=r_t, stepover_mm=stepover_mm, ramp_angle_deg=ramp_angle_deg,
+                         tolerance_mm=tolerance_mm, allowance_mm=allowance_mm, levels=tuple(levels), passes=passes,
+                         max_engagement_mm=swept.engagement_mm, engagement_where=swept.engagement_where,
+                         max_slot_engagement_mm=swept.slot_engagement_mm, plunges=swept.plunges,
+                         plunge_where=swept.plunge_where, rapid_touches=swept.rapids, rapid_where=swept.rapid_where,
+                         material_left_mm=left, left_where=left_at, overcut_mm=over, overcut_where=over_at,
+                         rough_clearance_mm=clearance, rough_clearance_where=clear_at)
 
 
 def _first_uncut(pieces, pts: np.ndarray, owner: np.ndarray, dist: np.ndarray, left: float, centres, r_t: float):

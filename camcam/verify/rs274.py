@@ -17,7 +17,7 @@ from __future__ import annotations
 import re
 import shutil
 import subprocess
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 from pathlib import Path
 
 import numpy as np
@@ -39,6 +39,7 @@ class CanonMove:
     x: float
     y: float
     z: float
+    _: KW_ONLY
     a: float
     centre: tuple[float, float] | None = None
     ccw: bool = False
@@ -88,9 +89,9 @@ def run_rs274(path: str | Path, timeout_s: float = 60.0, comments: bool = False,
             if plane != "CANON_PLANE_XY":
                 raise RuntimeError(f"arc in {plane}: only G17 arcs are expected")
             x, y, cx, cy, rot, z, a = v[:7]
-            moves.append(CanonMove("arc", x, y, z, a, (cx, cy), rot > 0, int(abs(rot)) - 1))
+            moves.append(CanonMove("arc", x, y, z, a=a, centre=(cx, cy), ccw=rot > 0, turns=int(abs(rot)) - 1))
         else:
-            moves.append(CanonMove("rapid" if kind == "STRAIGHT_TRAVERSE" else "line", *v[:4], b=v[4]))
+            moves.append(CanonMove("rapid" if kind == "STRAIGHT_TRAVERSE" else "line", *v[:3], a=v[3], b=v[4]))
     return moves
 
 

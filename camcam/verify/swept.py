@@ -13,7 +13,7 @@ figures combined as one pass over all of them would find them.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 
 import numpy as np
 import shapely
@@ -59,6 +59,7 @@ class Move:
     kind: str  # rapid, line, arc
     p0: tuple
     p1: tuple
+    _: KW_ONLY
     centre: tuple | None
     ccw: bool
     pass_kind: str
@@ -103,7 +104,7 @@ def moves_of(events) -> list[Move]:
             continue
         p1 = (ev.x, ev.y, ev.z)
         if pos is not None and p1 != pos:
-            out.append(Move(ev.kind, pos, p1, ev.centre, ev.ccw, kind, label))
+            out.append(Move(ev.kind, pos, p1, centre=ev.centre, ccw=ev.ccw, pass_kind=kind, pass_label=label))
         pos = p1
     return out
 
@@ -184,7 +185,7 @@ def front_extent(slab, pts: np.ndarray, tangents: np.ndarray, r_probe: float, ov
     return width
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Sweep:
     """The program's sweep through the slabs: the material left in each and the figures found on the way."""
 
@@ -429,6 +430,9 @@ def sweep_slabs(moves: list, slabs: list, bounds: list, r_t: float, slope: float
     eng, eng_at = (0.0, "") if best is None else (best[0], swept[-best[2]].engagement[2])
     plunges = sorted({j for s in swept for j in s.plunge_moves})
     rapids = sorted({j for s in swept for j in s.rapid_moves})
-    return Sweep(tuple(s.slab for s in swept), eng, eng_at, max((s.slot_engagement_mm for s in swept), default=0.0),
-                 len(plunges), where(moves[plunges[0]].pass_label, moves[plunges[0]].p1) if plunges else "",
-                 len(rapids), where(moves[rapids[0]].pass_label, moves[rapids[0]].p1) if rapids else "")
+    return Sweep(slabs=tuple(s.slab for s in swept), engagement_mm=eng, engagement_where=eng_at,
+                 slot_engagement_mm=max((s.slot_engagement_mm for s in swept), default=0.0),
+                 plunges=len(plunges),
+                 plunge_where=where(moves[plunges[0]].pass_label, moves[plunges[0]].p1) if plunges else "",
+                 rapids=len(rapids),
+                 rapid_where=where(moves[rapids[0]].pass_label, moves[rapids[0]].p1) if rapids else "")

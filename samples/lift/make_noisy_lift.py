@@ -27,10 +27,10 @@ SPIKES = ((47.0, 0.040), (151.0, -0.035), (233.0, 0.050), (329.0, -0.035))
 def truth_program(rise_mm: float = 10.0) -> MotionProgram:
     return MotionProgram(
         (
-            Segment(make_law("modified-sine"), 0, 120, rise_mm, 0.0),
-            Segment(dwell(), 120, 180, 0.0, rise_mm),
-            Segment(make_law("cycloidal"), 180, 300, -rise_mm, rise_mm),
-            Segment(dwell(), 300, 360, 0.0, 0.0),
+            Segment(make_law("modified-sine"), 0, 120, rise_mm, base=0.0),
+            Segment(dwell(), 120, 180, 0.0, base=rise_mm),
+            Segment(make_law("cycloidal"), 180, 300, -rise_mm, base=rise_mm),
+            Segment(dwell(), 300, 360, 0.0, base=0.0),
         ),
         rpm=120,
     )

@@ -187,7 +187,8 @@ def test_broken_post_files(data):
     except InputError as err:
         assert str(err).startswith("post mill: ") and "\n" not in str(err)
         return
-    moves = (Rapid(0.0, 10.0, 25.0), Feed(None, None, -5.0, 200.0), ArcMove(10.0, 0.0, 0.0, 0.0, False, -5.0, 400.0))
+    moves = (Rapid(0.0, 10.0, 25.0), Feed(None, None, -5.0, 200.0),
+             ArcMove(10.0, 0.0, 0.0, 0.0, ccw=False, z=-5.0, feed_mm_min=400.0))
     try:
         prog = write_program(Toolpath.of_moves("t) G0 Z-50 (", moves, 3000.0, comments=("x\nG0 Z-50",)), post, "cam")
     except InputError as err:  # e.g. block numbers past the post's max_line_number

@@ -102,7 +102,7 @@ def test_a_bug_is_not_dressed_up_as_bad_input(tmp_path, monkeypatch):
 
 @pytest.mark.parametrize("accepted, status", [(False, 3), (True, 0)])
 def test_fail_verdict_writes_everything_and_exits_3(tmp_path, monkeypatch, accepted, status):
-    failing = Check("3-D groove deviation", 1.3, 0.02, "mm", False, where="flank 0, r = 80.00 mm",
+    failing = Check("3-D groove deviation", 1.3, 0.02, "mm", ok=False, where="flank 0, r = 80.00 mm",
                     advice="use a tool of the roller's diameter")
     monkeypatch.setattr(run_module, "job_verdict", lambda m, s: Verdict((failing,), accepted))
     code, out, err = cli("run", str(SAMPLE), "-o", str(tmp_path), "--json")

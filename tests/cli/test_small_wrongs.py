@@ -38,8 +38,10 @@ def test_figure_helpers():
 
 
 def test_inspection_table_has_no_negative_zero():
-    table = InspectionTable(np.array([0.0, 10.0]), np.array([[-1e-9, 40.0], [-0.0004, -6.9456]]), np.array([40.0, 7.0]),
-                       np.array([-0.001, 90.0]), None, np.array([-2e-12, 1.25]), "mm", 0.01)
+    table = InspectionTable(angle_deg=np.array([0.0, 10.0]), profile_xy=np.array([[-1e-9, 40.0], [-0.0004, -6.9456]]),
+                            radius_mm=np.array([40.0, 7.0]),
+                       normal_deg=np.array([-0.001, 90.0]), roller_centre_xy=None, lift=np.array([-2e-12, 1.25]),
+                            lift_unit="mm", tolerance_mm=0.01)
     rows = table.rows()
     assert rows[0][1:5] == ("0.000", "40.000", "40.000", "0.00") and rows[0][7] == "0.0000 mm"
     assert rows[1][1] == "0.000" and rows[1][2] == "-6.946"  # a figure that is not zero keeps its sign

@@ -17,9 +17,11 @@ T = np.linspace(0, 2 * math.pi, 721)
 
 def cams():
     return [
-        CylindricalCam(BarrelTranslatingRoller(8.0), program("mm"), 50.0, 80.0, 10.0, bore=20.0),
-        CylindricalCam(BarrelTranslatingRoller(8.0), program("mm"), 50.0, 80.0, 10.0, "cw"),
-        CylindricalCam(BarrelOscillatingRoller(15.0, 245.0, 170.0), program("deg", 15.0), 80.0, 160.0, 10.0, bore=30.0),
+        CylindricalCam(BarrelTranslatingRoller(8.0), program("mm"), 50.0, length=80.0, groove_depth=10.0, bore=20.0),
+        CylindricalCam(BarrelTranslatingRoller(8.0), program("mm"), 50.0, length=80.0, groove_depth=10.0,
+                       rotation="cw"),
+        CylindricalCam(BarrelOscillatingRoller(15.0, 245.0, 170.0), program("deg", 15.0), 80.0, length=160.0,
+                       groove_depth=10.0, bore=30.0),
     ]
 
 
@@ -87,4 +89,4 @@ def test_mesh_watertight_and_volume():
 
 def test_too_short_cylinder():
     with pytest.raises(GeometryError, match="cam.length 30 mm is too short"):
-        CylindricalCam(BarrelTranslatingRoller(8.0), program("mm"), 50.0, 30.0, 10.0)
+        CylindricalCam(BarrelTranslatingRoller(8.0), program("mm"), 50.0, length=30.0, groove_depth=10.0)

@@ -115,7 +115,8 @@ def test_report_figures_agree_with_dense_polyline(cam):
 
 def _sharp():
     c = make_law("cycloidal")
-    return MotionProgram((Segment(c, 0, 45, 40.0, 0.0), Segment(c, 45, 90, -40.0, 40.0), Segment(dwell(), 90, 360, 1.0, 0.0)), 60)
+    return MotionProgram((Segment(c, 0, 45, 40.0, base=0.0), Segment(c, 45, 90, -40.0, base=40.0),
+                          Segment(dwell(), 90, 360, 1.0, base=0.0)), 60)
 
 
 def test_undercut_names_angle_and_fix():

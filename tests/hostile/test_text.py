@@ -27,7 +27,8 @@ HOSTILE_TEXT = [
 
 def _toolpath(title: str, comments=()) -> Toolpath:
     moves = (Rapid(None, None, 25.0), Rapid(0.0, 10.0, 25.0), Rapid(None, None, 2.0), Feed(None, None, -5.0, 200.0),
-             ArcMove(10.0, 0.0, 0.0, 0.0, False, -5.0, 400.0), Feed(0.0, -10.0, -5.0, 400.0), Rapid(None, None, 25.0))
+             ArcMove(10.0, 0.0, 0.0, 0.0, ccw=False, z=-5.0, feed_mm_min=400.0), Feed(0.0, -10.0, -5.0, 400.0),
+             Rapid(None, None, 25.0))
     return Toolpath.of_moves(title, moves, 3000.0, tool_number=1, tool_diameter_mm=16.0, comments=tuple(comments))
 
 

@@ -14,10 +14,10 @@ from camcam.motion.standard import dwell
 def demo(rpm=120.0):
     return MotionProgram(
         (
-            Segment(make_law("modified-sine"), 0, 120, 20.0, 0.0),
-            Segment(dwell(), 120, 180, 0.0, 20.0),
-            Segment(make_law("cycloidal"), 180, 300, -20.0, 20.0),
-            Segment(dwell(), 300, 360, 0.0, 0.0),
+            Segment(make_law("modified-sine"), 0, 120, 20.0, base=0.0),
+            Segment(dwell(), 120, 180, 0.0, base=20.0),
+            Segment(make_law("cycloidal"), 180, 300, -20.0, base=20.0),
+            Segment(dwell(), 300, 360, 0.0, base=0.0),
         ),
         rpm,
     )
@@ -65,7 +65,7 @@ def test_harmonic_into_dwell_reports_acceleration_jump():
     p = MotionProgram(
         (
             Segment(make_law("harmonic"), 0, 180, 10.0),
-            Segment(dwell(), 180, 360, 0.0, 10.0),
+            Segment(dwell(), 180, 360, 0.0, base=10.0),
         ),
         60,
     )
@@ -85,7 +85,7 @@ def test_harmonic_into_dwell_reports_acceleration_jump():
 def test_harmonic_rise_and_return_is_smooth():
     # a harmonic rise straight into a harmonic return is one cosine: no jump anywhere
     p = MotionProgram(
-        (Segment(make_law("harmonic"), 0, 180, 10.0), Segment(make_law("harmonic"), 180, 360, -10.0, 10.0)), 60
+        (Segment(make_law("harmonic"), 0, 180, 10.0), Segment(make_law("harmonic"), 180, 360, -10.0, base=10.0)), 60
     )
     assert p.joins == ()
 

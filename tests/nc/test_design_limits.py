@@ -85,9 +85,9 @@ def test_radius_of_curvature_is_a_check_with_a_least_limit_and_measured_advice()
 
 
 def test_verdict_states():
-    ok = Check("NC deviation", 0.008, 0.01, "mm", True)
-    warn = Check("pressure angle", 46.39, 35.0, "deg", False, "warn")
-    fail = Check("3-D groove deviation", 0.08, 0.02, "mm", False)
+    ok = Check("NC deviation", 0.008, 0.01, "mm", ok=True)
+    warn = Check("pressure angle", 46.39, 35.0, "deg", ok=False, severity="warn")
+    fail = Check("3-D groove deviation", 0.08, 0.02, "mm", ok=False)
     assert [c.state for c in (ok, warn, fail)] == ["PASS", "WARN", "FAIL"]
     assert Verdict((ok,)).status == "PASS" and Verdict((ok, warn)).status == "WARN"
     assert Verdict((ok, warn, fail)).status == "FAIL"

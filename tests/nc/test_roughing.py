@@ -73,7 +73,8 @@ def _variant(sample, **machining):
 def test_blank_smaller_than_the_cam_is_refused():
     spec, built, m = _variant("disc-translating-roller")
     with pytest.raises(SpecError, match=r"^stock.diameter: 110 mm is smaller than the cam: its largest radius is 59.928"):
-        checked(built, m, "small", StockSpec("round", 110.0, None, 0.0, True))
+        checked(built, m, "small",
+                StockSpec(kind="round", diameter_mm=110.0, allowance_mm=None, top_allowance_mm=0.0, stated=True))
 
 
 def test_bore_larger_than_base_minus_roller_is_refused():
@@ -93,7 +94,8 @@ def test_offset_blank_face_stock_and_helical_bore():
     """A pre-profiled blank with face stock and a Ø30 bore cut by the Ø16 tool: all checks hold, the bore too."""
     spec, built, m = _variant("disc-translating-roller", bore=True)
     bored = replace(built, spec=replace(built.spec, bore=30.0))
-    r = checked(bored, m, "offset", StockSpec("offset", None, 6.0, 0.5, True))
+    r = checked(bored, m, "offset",
+                StockSpec(kind="offset", diameter_mm=None, allowance_mm=6.0, top_allowance_mm=0.5, stated=True))
     rem = r.removal
     assert [p.kind for p in r.passes] == ["rough", "rough", "finish", "spring", "bore"]
     assert rem.plunges == 0 and rem.rapid_touches == 0

@@ -37,10 +37,11 @@ def spiral_engagement(spec, stepover=None):
                      clockwise=spec.cam.rotation == "cw", max_sweep_deg=m.post.max_arc_sweep_deg)
     z = -1.0
     s = sp.elements[0].start
-    moves = [Move("line", (*sp.entry, z), (*s, z), None, False, "rough", "rough")]
+    moves = [Move("line", (*sp.entry, z), (*s, z), centre=None, ccw=False, pass_kind="rough", pass_label="rough")]
     for e in sp.elements:
         kind, centre, ccw = ("line", None, False) if isinstance(e, Line) else ("arc", e.centre, e.ccw)
-        moves.append(Move(kind, (*e.start, z), (*e.end, z), centre, ccw, "rough", "rough"))
+        moves.append(Move(kind, (*e.start, z), (*e.end, z), centre=centre, ccw=ccw, pass_kind="rough",
+                          pass_label="rough"))
     swept = sweep_slabs(moves, [shapely.Polygon(blank.region)], [0.0, z], r_t, math.tan(math.radians(3.0)), 2e-4)
     return swept.engagement_mm, m.stepover_mm, sp
 
@@ -149,7 +150,10 @@ def test_random_cams_hold_the_engagement_limit(tmp_path, seed, stepover):
 def test_engagement_advice_names_the_passes_own_way_out(where, advice):
     # a finishing pass's engagement comes from the allowance wrapping round the tool in a concave corner: a
     # lower stepover (the old advice for every pass) changes nothing there
-    r = RemovalReport(8.0, 6.4, 3.0, 0.01, 0.3, (-6.0, -12.0), 4, 7.0, where, 0.0, 0, "", 0, "", 0.0, "", 0.0, "",
-                      0.35, "")
+    r = RemovalReport(tool_radius_mm=8.0, stepover_mm=6.4, ramp_angle_deg=3.0, tolerance_mm=0.01, allowance_mm=0.3,
+                      levels=(-6.0, -12.0), passes=4, max_engagement_mm=7.0, engagement_where=where,
+                      max_slot_engagement_mm=0.0, plunges=0, plunge_where="", rapid_touches=0, rapid_where="",
+                      material_left_mm=0.0, left_where="", overcut_mm=0.0, overcut_where="",
+                      rough_clearance_mm=0.35, rough_clearance_where="")
     check = {c.name: c for c in r.checks()}["radial engagement"]
     assert not check.ok and advice in check.advice

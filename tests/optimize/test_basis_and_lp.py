@@ -67,7 +67,7 @@ def test_cardinal_pieces_are_a_partition_of_unity_with_exact_knot_values():
 def test_degree_9_space_optimises():
     # Regression: BSplineSpace(9, …) segfaulted in scipy's FITPACK (PPoly.from_spline, degrees ≤ 5 only),
     # killing `camcam optimize` with degree = 9, which the spec accepts (MAX_DEGREE).
-    r = exact_optimum(Problem(9, 10, True, "A", (("V", 2.0), ("J", 61.4))))
+    r = exact_optimum(Problem(9, 10, True, "A", limits=(("V", 2.0), ("J", 61.4))))
     # every curve is above the continuous optimum a* = 4.72821 of benchmarks/optimize_tables.py
     # (bang-bang jerk, closed form there); the LP meets the limits literally
     assert r.objective >= 4.72821

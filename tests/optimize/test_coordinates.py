@@ -7,7 +7,7 @@ from camcam.optimize.coordinates import _metric, mirror_map, search_coordinates
 from camcam.optimize.evaluation import EvaluationFunction, Problem
 from camcam.optimize.exact import exact_optimum
 
-TABLE4 = Problem(5, 18, False, "A", (("V", 1.91), ("J", 81.0)))
+TABLE4 = Problem(5, 18, False, "A", limits=(("V", 1.91), ("J", 81.0)))
 
 
 @settings(max_examples=20, deadline=None)
@@ -41,7 +41,7 @@ def test_symmetric_subspace_holds_the_asymmetric_optimum():
 
 
 def test_scaled_coordinates_are_round_in_the_minimised_quantity():
-    for p in (TABLE4, Problem(5, 7, True, "J", (("V", 1.76), ("A", 5.53)))):
+    for p in (TABLE4, Problem(5, 7, True, "J", limits=(("V", 1.76), ("A", 5.53)))):
         f = EvaluationFunction(p)
         c = search_coordinates(f, p.space.initial_free(), scaled=True)
         # a unit step in any search direction changes the sampled objective quantity by 1 r.m.s.
@@ -49,6 +49,6 @@ def test_scaled_coordinates_are_round_in_the_minimised_quantity():
 
 
 def test_a_limit_on_a_v_keeps_the_whole_space():
-    f = EvaluationFunction(Problem(5, 18, False, "A", (("V", 1.91), ("AV", 8.0))))
+    f = EvaluationFunction(Problem(5, 18, False, "A", limits=(("V", 1.91), ("AV", 8.0))))
     c = search_coordinates(f, f.problem.space.initial_free())
     assert not c.symmetric and c.size == 17  # A·V is not convex: the averaging argument fails

@@ -72,7 +72,8 @@ def test_the_samples_are_well_under_the_lp_limit():
         opt = tomllib.loads(path.read_text()).get("optimize")
         if opt is None:
             continue
-        p = Problem(opt["degree"], opt["segments"], opt["symmetric"], opt["minimize"], tuple(opt["limits"].items()))
+        p = Problem(opt["degree"], opt["segments"], opt["symmetric"], opt["minimize"],
+                    limits=tuple(opt["limits"].items()))
         cols, rows = lp_size(p)
         assert cols * rows <= MAX_LP_ENTRIES / 40, path.name  # Table 4, the largest: 11 664 entries
 

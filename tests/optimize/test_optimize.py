@@ -20,7 +20,7 @@ from camcam.optimize.start import project_law, start_point
 from camcam.motion.catalog import make_law
 from camcam.spec import load_spec
 
-TABLE1 = Problem(5, 7, True, "A", (("V", 2.0), ("J", 61.4)))
+TABLE1 = Problem(5, 7, True, "A", limits=(("V", 2.0), ("J", 61.4)))
 
 
 @settings(max_examples=40, deadline=None)
@@ -99,8 +99,8 @@ def test_exact_table1_beats_the_paper_and_holds_on_100000_points():
 @pytest.mark.parametrize(
     "problem, paper",
     [
-        (Problem(5, 7, True, "J", (("V", 1.76), ("A", 5.53))), 55.3),  # issue target; paper 66.439
-        (Problem(5, 18, False, "A", (("V", 1.91), ("J", 81.0))), 4.657),  # paper Table 4
+        (Problem(5, 7, True, "J", limits=(("V", 1.76), ("A", 5.53))), 55.3),  # issue target; paper 66.439
+        (Problem(5, 18, False, "A", limits=(("V", 1.91), ("J", 81.0))), 4.657),  # paper Table 4
     ],
 )
 def test_exact_tables_2_and_4(problem, paper):
@@ -111,7 +111,7 @@ def test_exact_tables_2_and_4(problem, paper):
 
 def test_exact_approaches_the_continuous_optimum_from_above():
     a_star = 61.4 / 4 * (1 - np.sqrt(1 - 32 / 61.4))  # jerk bang-bang bound, README
-    r = exact_optimum(Problem(5, 40, True, "A", (("V", 2.0), ("J", 61.4))))
+    r = exact_optimum(Problem(5, 40, True, "A", limits=(("V", 2.0), ("J", 61.4))))
     # The spline space is a subset of all curves: never below the bound (1e-9: LP tolerance).
     assert a_star * (1 - 1e-9) <= r.objective <= a_star * 1.0025
 
@@ -122,9 +122,9 @@ def test_start_point_is_the_law_the_limits_come_from():
     assert law == "modified-trapezoid"  # Table 1's limits are the modified trapezoid's Vm, Jm
     ic, ir = f.terms(x1)
     assert not ic.any() and 4.86 < ir < 4.93  # feasible projection, Am 4.920 (paper 4.869)
-    f2 = EvaluationFunction(Problem(5, 7, True, "J", (("V", 1.76), ("A", 5.53))))
+    f2 = EvaluationFunction(Problem(5, 7, True, "J", limits=(("V", 1.76), ("A", 5.53))))
     assert start_point(f2)[1] == "modified-sine"  # Table 2's limits are the modified sine's
-    f4 = EvaluationFunction(Problem(5, 18, False, "A", (("V", 1.91), ("J", 81.0))))
+    f4 = EvaluationFunction(Problem(5, 18, False, "A", limits=(("V", 1.91), ("J", 81.0))))
     assert start_point(f4)[1] == "yu-lee"  # Table 4's limits are Yu and Lee's (projection +1.9 % in J)
     x_named, name = start_point(f, "cycloidal")
     assert name == "cycloidal" and np.allclose(x_named, project_law(TABLE1.space, make_law("cycloidal")))
@@ -248,7 +248,7 @@ def test_multistart_hands_the_rest_of_the_budget_on_and_keeps_the_best():
     from camcam.optimize.multistart import multistart
     from camcam.optimize.start import ranked_starts
 
-    f = EvaluationFunction(Problem(5, 5, True, "A", (("V", 2.0), ("J", 61.4))))
+    f = EvaluationFunction(Problem(5, 5, True, "A", limits=(("V", 2.0), ("J", 61.4))))
     starts = ranked_starts(f)
     assert [name for _, name in starts] == ["polynomial-345", "cycloidal", "modified-trapezoid"]
     quick = ComplexSettings(max_evaluations=2500, D_min=1e-2)  # D_min: each run converges after a few cycles

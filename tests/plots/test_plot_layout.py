@@ -52,7 +52,7 @@ def assert_laid_out(fig):
 def wide_program():
     """Values whose tick labels are as wide as the formatter prints (offsets, minus signs, 7 characters)."""
     law = make_law("modified-trapezoid")
-    return MotionProgram((Segment(law, 0, 100, 1234.5), Segment(law, 100, 360, -1234.5, 1234.5)), rpm=3000)
+    return MotionProgram((Segment(law, 0, 100, 1234.5), Segment(law, 100, 360, -1234.5, base=1234.5)), rpm=3000)
 
 
 @pytest.mark.parametrize("program", ["sample", "wide"])

@@ -11,7 +11,8 @@ from camcam.toolpath.path import ArcMove, Feed, Rapid, Toolpath
 
 def test_three_axis_program_against_a_hand_sum():
     moves = (Rapid(None, None, 25.0), Rapid(10.0, 0.0, None), Rapid(None, None, 2.0), Feed(None, None, -3.0, 100.0),
-             ArcMove(0.0, 10.0, 0.0, 0.0, True, -3.0, 400.0), Feed(0.0, 30.0, -3.0, 400.0), Rapid(None, None, 25.0))
+             ArcMove(0.0, 10.0, 0.0, 0.0, ccw=True, z=-3.0, feed_mm_min=400.0), Feed(0.0, 30.0, -3.0, 400.0),
+             Rapid(None, None, 25.0))
     post = load_post("linuxcnc")  # rapid_mm_min 5000, tool_change_s 10
     t = write_program(Toolpath.of_moves("hand", moves, 1000.0), post).cycle_time
     # by hand: rapids 25 (from Z0, where rs274 starts) + 10 + 23 + 28 = 86 mm at 5000 mm/min = 1.032 s;
@@ -27,7 +28,8 @@ def test_three_axis_program_against_a_hand_sum():
 
 def test_inverse_time_moves_take_one_over_f_minutes():
     # G93: F = feed / length is printed; the controller takes 1/F minutes whatever the axes travel
-    moves = (Rapid(None, None, 30.0), Feed(0.0, None, 20.0, 100.0, 0.0, 10.0), Feed(5.0, None, 20.0, 400.0, 90.0, 20.0))
+    moves = (Rapid(None, None, 30.0), Feed(0.0, None, 20.0, 100.0, a_deg=0.0, length_mm=10.0),
+             Feed(5.0, None, 20.0, 400.0, a_deg=90.0, length_mm=20.0))
     tp = Toolpath.of_moves("rot", moves, 1000.0, rotary=True)
     t = write_program(tp, load_post("linuxcnc")).cycle_time
     # F10 → 6 s, F20 → 3 s; rapid 30 mm at 5000 mm/min = 0.36 s; tool change 10 s

@@ -99,7 +99,8 @@ def test_deterministic_and_dialect(name):
 
 
 def test_inverse_time_rotary():
-    moves = (Rapid(None, None, 30.0), Feed(0.0, None, 20.0, 100.0, 0.0, 10.0), Feed(5.0, None, 20.0, 400.0, 90.0, 20.0))
+    moves = (Rapid(None, None, 30.0), Feed(0.0, None, 20.0, 100.0, a_deg=0.0, length_mm=10.0),
+             Feed(5.0, None, 20.0, 400.0, a_deg=90.0, length_mm=20.0))
     tp = Toolpath.of_moves("rot", moves, 1000, rotary=True)
     t = write_program(tp, load_post("linuxcnc")).text
     assert "G93" in t and "G94" in t
@@ -111,9 +112,13 @@ def test_inverse_time_rotary():
 
 # an arc the fitter would never make: a fault of ours (exit 1), not the user's input
 def test_bad_arc_is_refused():
-    tp = Toolpath.of_moves("x", (Rapid(0.0, 0.0, 1.0), ArcMove(10.0, 0.0, 5.0, 0.1, True, 1.0, 100.0)), 1000)
+    tp = Toolpath.of_moves("x",
+                           (Rapid(0.0, 0.0, 1.0), ArcMove(10.0, 0.0, 5.0, 0.1, ccw=True, z=1.0, feed_mm_min=100.0)),
+                           1000)
     with pytest.raises(PostError, match="sweeps"):
         write_program(tp, load_post("linuxcnc"))
-    tp = Toolpath.of_moves("x", (Rapid(0.0, 0.0, 1.0), ArcMove(10.0, 0.0, 4.0, 0.0, True, 1.0, 100.0)), 1000)
+    tp = Toolpath.of_moves("x",
+                           (Rapid(0.0, 0.0, 1.0), ArcMove(10.0, 0.0, 4.0, 0.0, ccw=True, z=1.0, feed_mm_min=100.0)),
+                           1000)
     with pytest.raises(PostError, match="radius differ"):
         write_program(tp, load_post("grbl"))

@@ -21,7 +21,7 @@ RT = 5.0  # tool radius, mm
 def harmonic_program():
     # two harmonic segments of rise ±2E make s = E·(1 − cos θ): an eccentric circle under a flat face
     h = make_law("harmonic")
-    return MotionProgram((Segment(h, 0, 180, 2 * E), Segment(h, 180, 360, -2 * E, 2 * E)), rpm=60)
+    return MotionProgram((Segment(h, 0, 180, 2 * E), Segment(h, 180, 360, -2 * E, base=2 * E)), rpm=60)
 
 
 def circle_as_arcs(centre, radius, ccw):
@@ -79,7 +79,7 @@ def test_roller_on_eccentric_circle_closed_form():
 def test_fitted_program_lift_error_within_tolerance(request):
     # a real fit: the lift error can not exceed the path deviation over cos(pressure angle)
     law = make_law("cycloidal")
-    prog = MotionProgram((Segment(law, 0, 180, 10.0), Segment(law, 180, 360, -10.0, 10.0)), rpm=100)
+    prog = MotionProgram((Segment(law, 0, 180, 10.0), Segment(law, 180, 360, -10.0, base=10.0)), rpm=100)
     cam = DiscCam(TranslatingRoller(8.0), prog, 30.0)
     fit = fit_contour(cam.offset_profile(RT), 0.01)
     fm = fitted_motion(cam, fit.elements, RT, np.arange(0.0, 360.0, 1.0))

@@ -22,7 +22,8 @@ def spec_cam(name: str):
     c, f = spec.cam, spec.follower
     if c.kind == "cylindrical":
         fol = follower_kind(f.kind).barrel_from_spec(f)
-        cam = CylindricalCam(fol, prog, c.base_radius, c.length, c.groove_depth, c.rotation, c.bore)
+        cam = CylindricalCam(fol, prog, c.base_radius, length=c.length, groove_depth=c.groove_depth,
+                             rotation=c.rotation, bore=c.bore)
     else:
         cam = DiscCam(disc_follower(f), prog, c.base_radius, c.rotation)
     return spec, prog, cam

@@ -29,7 +29,8 @@ def test_solve_recovers_forward_angles_and_seed_eq13(seed002):
     phi = np.mod(np.arctan2(P[:, 2], P[:, 1]), 2 * math.pi)
     o = np.argsort(phi)
     P, phi, theta = P[o], phi[o], theta[o]
-    f = BarrelFollower(cam.roller_radius, cam.length, cam.rotation, cam.follower.pivot_distance, 0)
+    f = BarrelFollower(roller_radius=cam.roller_radius, length=cam.length, rotation=cam.rotation,
+                       pivot_distance=cam.follower.pivot_distance, flank=0)
     sol = solve_cylindrical(f, P, flank_tangents(phi, P[:, 0], np.hypot(P[:, 1], P[:, 2])))
     lo, hi = prog.extremes(0)
     # cam angle and follower angle per point: with random (not jittered) spacing, gaps up to ~8°,
@@ -50,7 +51,8 @@ def test_per_point_velocity_matches_design(seed002):
     spec, prog, cam = seed002
     P = measure_cylindrical(cam, 180, np.random.default_rng(8))
     phi = np.mod(np.arctan2(P[:, 2], P[:, 1]), 2 * math.pi)
-    f = BarrelFollower(cam.roller_radius, cam.length, cam.rotation, cam.follower.pivot_distance, 0)
+    f = BarrelFollower(roller_radius=cam.roller_radius, length=cam.length, rotation=cam.rotation,
+                       pivot_distance=cam.follower.pivot_distance, flank=0)
     sol = solve_cylindrical(f, P, flank_tangents(phi, P[:, 0], np.hypot(P[:, 1], P[:, 2]), "central"))
     # eqs. 16–18 with the seed's three-point slopes: dθf/dθc within 2% of the peak 0.43
     assert np.abs(sol.dq - np.radians(prog.lift(sol.cam_angle, 1))).max() < 0.02 * 0.43

@@ -27,8 +27,9 @@ SAMPLES = 720
 
 
 def program(unit: str, rise: float, law: str = "modified-sine") -> MotionProgram:
-    return MotionProgram((Segment(make_law(law), 0, 120, rise), Segment(dwell(), 120, 180, 0, rise),
-                          Segment(make_law("cycloidal"), 180, 300, -rise, rise), Segment(dwell(), 300, 360, 0, 0)),
+    return MotionProgram((Segment(make_law(law), 0, 120, rise), Segment(dwell(), 120, 180, 0, base=rise),
+                          Segment(make_law("cycloidal"), 180, 300, -rise, base=rise),
+                          Segment(dwell(), 300, 360, 0, base=0)),
                          rpm=60, unit=unit)
 
 

@@ -39,7 +39,7 @@ def test_the_step_derivatives_are_those_of_the_errors(seed, scale):
     n = 9
     t = np.sort(rng.uniform(0, 2 * np.pi, n))
     t = np.linspace(0, 2 * np.pi, n, endpoint=False) + 0.2 * (t - np.pi) / n
-    oc = OnCurve(curve, 0.0, 2 * np.pi, t, rng.normal(0, 0.003 * scale, n), rng.normal(0, 2e-4 * scale, n), 1)
+    oc = OnCurve(curve, 0.0, 2 * np.pi, t=t, v=rng.normal(0, 0.003 * scale, n), psi=rng.normal(0, 2e-4 * scale, n), w=1)
     tab = CurveTable(curve, 0.0, 2 * np.pi, 4096)
     rows, arc = chain_samples(oc, tab, 16)
     res = chain_errors(oc.joints, tab, rows, arc)
@@ -159,7 +159,7 @@ def test_a_chain_with_two_joints_on_one_point_is_refused_quietly():
 
     curve = polar_cam()
     tab = CurveTable(curve, 0.0, 2 * np.pi, 4096)
-    oc = OnCurve(curve, 0.0, 2 * np.pi, np.array([0.0, 1.0, 1.0, 3.0, 4.5]), np.zeros(5), np.zeros(5), 1)
+    oc = OnCurve(curve, 0.0, 2 * np.pi, t=np.array([0.0, 1.0, 1.0, 3.0, 4.5]), v=np.zeros(5), psi=np.zeros(5), w=1)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         _, err, gap = minimax_chain(oc, tab, max_sweep=KW["max_sweep"])

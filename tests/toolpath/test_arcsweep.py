@@ -65,7 +65,8 @@ def test_a_helical_lead_is_cut_with_its_drop_shared_out():
     """Moves: an arc over the limit from where the moves before it end, across passes; its z drop split equally."""
     q = Quantizer(3)
     first = Pass(0, "finish", -5.0, (Rapid(10.0, 0.0, 5.0), Feed(None, None, 0.0, 100.0)))
-    second = Pass(0, "finish", -5.0, (ArcMove(-10.0, 0.0, 0.0, 0.0, True, -6.0, 300.0), Feed(-10.0, 5.0, -6.0, 300.0)))
+    second = Pass(0, "finish", -5.0,
+                  (ArcMove(-10.0, 0.0, 0.0, 0.0, ccw=True, z=-6.0, feed_mm_min=300.0), Feed(-10.0, 5.0, -6.0, 300.0)))
     a, b = passes_within_sweep((first, second), q, 120.0)
     assert a is first  # nothing to cut: the same pass
     arcs = [m for m in b.moves if isinstance(m, ArcMove)]

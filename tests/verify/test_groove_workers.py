@@ -12,8 +12,8 @@ from camcam.toolpath.poses import CylinderTool, ToolPoses
 
 def test_two_workers_same_measurement():
     law = make_law("cycloidal")
-    prog = MotionProgram((Segment(law, 0, 180, 20.0), Segment(law, 180, 360, -20.0, 20.0)), rpm=60)
-    cam = CylindricalCam(BarrelTranslatingRoller(8.0), prog, 50.0, 80.0, 10.0)
+    prog = MotionProgram((Segment(law, 0, 180, 20.0), Segment(law, 180, 360, -20.0, base=20.0)), rpm=60)
+    cam = CylindricalCam(BarrelTranslatingRoller(8.0), prog, 50.0, length=80.0, groove_depth=10.0)
     X, Y, Z, a, B = follower_poses(cam, np.radians(np.arange(0.0, 360.01, 0.5)))
     # a tool 0.2 mm smaller than the roller, posed like it: both walls left with material, refined
     poses = ToolPoses(np.stack([X, Y, Z + 30.0], axis=-1), np.degrees(a), np.degrees(B))

@@ -30,11 +30,11 @@ def _check(events, keep_top: float, ramp_deg: float = 3.0, stepover: float = 4.0
 
 
 def _line(x, y, z):
-    return CanonMove("line", x, y, z, 0.0)
+    return CanonMove("line", x, y, z, a=0.0)
 
 
 def _rapid(x, y, z):
-    return CanonMove("rapid", x, y, z, 0.0)
+    return CanonMove("rapid", x, y, z, a=0.0)
 
 
 @pytest.mark.parametrize("ae", [0.5, 1.0, 2.5, 4.0, 7.5])

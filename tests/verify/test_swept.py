@@ -81,7 +81,7 @@ def _program(steps):
             n += 1
             events.append(f"pass {n}/9: {s[1]}, test")
         else:
-            events.append(CanonMove(s[0], s[1], s[2], s[3], 0.0))
+            events.append(CanonMove(s[0], s[1], s[2], s[3], a=0.0))
     return events
 
 
@@ -130,11 +130,12 @@ def test_ties_go_to_the_first_move_and_slab():
     # slab i probes only its samples at or below its floor, so each slab names a different first point: the
     # figure is the top slab's (the first of the tie in (move, slab) order), at the first sample below Z-1.
     # The flat cuts afterwards only make the levels (and meet the same width again, later: not named)
-    events = ["pass 1/2: rough, ramp", CanonMove("rapid", -12.0, 25.0, 5.0, 0.0), CanonMove("line", -12.0, 25.0, 0.0, 0.0),
-              CanonMove("line", 112.0, 25.0, -3.0, 0.0), "pass 2/2: rough, levels"]
+    events = ["pass 1/2: rough, ramp", CanonMove("rapid", -12.0, 25.0, 5.0, a=0.0),
+              CanonMove("line", -12.0, 25.0, 0.0, a=0.0),
+              CanonMove("line", 112.0, 25.0, -3.0, a=0.0), "pass 2/2: rough, levels"]
     for z in (-1.0, -2.0, -3.0):
-        events += [CanonMove("rapid", -12.0, 5.0, 5.0, 0.0), CanonMove("line", -12.0, 5.0, z, 0.0),
-                   CanonMove("line", 112.0, 5.0, z, 0.0), CanonMove("rapid", 112.0, 5.0, 5.0, 0.0)]
+        events += [CanonMove("rapid", -12.0, 5.0, 5.0, a=0.0), CanonMove("line", -12.0, 5.0, z, a=0.0),
+                   CanonMove("line", 112.0, 5.0, z, a=0.0), CanonMove("rapid", 112.0, 5.0, 5.0, a=0.0)]
     moves = moves_of(events)
     bounds = [0.0, -1.0, -2.0, -3.0]
     slope = np.tan(np.radians(3.0))
@@ -156,8 +157,8 @@ def test_a_path_cut_again_one_level_deeper_is_not_swept_again_in_the_slab_above(
 
     events = ["pass 1/2: finish, Z-1"]
     for z in (-1.0, -2.0):
-        events += [CanonMove("rapid", -12.0, 25.0, 5.0, 0.0), CanonMove("line", -12.0, 25.0, z, 0.0),
-                   CanonMove("line", 112.0, 25.0, z, 0.0), CanonMove("rapid", 112.0, 25.0, 5.0, 0.0)]
+        events += [CanonMove("rapid", -12.0, 25.0, 5.0, a=0.0), CanonMove("line", -12.0, 25.0, z, a=0.0),
+                   CanonMove("line", 112.0, 25.0, z, a=0.0), CanonMove("rapid", 112.0, 25.0, 5.0, a=0.0)]
         events.append("pass 2/2: finish, Z-2")
     moves = moves_of(events[:-1])
     bounds = [0.0, -1.0, -2.0]
@@ -222,8 +223,8 @@ def _spiral_program(turns: float, drop: float, seg_mm: float, start_deg: float, 
     events = []
     for lv in range(1, levels + 1):
         z = -1.0 * lv
-        events += [f"pass {lv}/9: rough, spiral Z{z:g}", CanonMove("rapid", 95.0, 50.0, 5.0, 0.0),
-                   CanonMove("line", 95.0, 50.0, z, 0.0)]
+        events += [f"pass {lv}/9: rough, spiral Z{z:g}", CanonMove("rapid", 95.0, 50.0, 5.0, a=0.0),
+                   CanonMove("line", 95.0, 50.0, z, a=0.0)]
         a0 = np.radians(start_deg)
         n = int(turns * 2 * np.pi * 40.0 / seg_mm)
         for k in range(n + 1):
@@ -231,15 +232,15 @@ def _spiral_program(turns: float, drop: float, seg_mm: float, start_deg: float, 
             r = 40.0 - drop * k / n
             x, y = 50.0 + r * np.cos(a), 50.0 + r * np.sin(a)
             if arcs_every and k % arcs_every == 0 and k:
-                events.append(CanonMove("arc", x, y, z, 0.0, centre=(50.0, 50.0), ccw=True))
+                events.append(CanonMove("arc", x, y, z, a=0.0, centre=(50.0, 50.0), ccw=True))
             else:
-                events.append(CanonMove("line", x, y, z, 0.0))
-        events.append(CanonMove("rapid", x, y, 5.0, 0.0))
+                events.append(CanonMove("line", x, y, z, a=0.0))
+        events.append(CanonMove("rapid", x, y, 5.0, a=0.0))
     events.append("pass 9/9: finish, circle")
-    events += [CanonMove("rapid", 85.5, 50.0, 5.0, 0.0), CanonMove("line", 85.5, 50.0, -levels, 0.0)]
+    events += [CanonMove("rapid", 85.5, 50.0, 5.0, a=0.0), CanonMove("line", 85.5, 50.0, -levels, a=0.0)]
     for k in range(1, 181):
         a = np.radians(2.0 * k)
-        events.append(CanonMove("line", 50.0 + 35.5 * np.cos(a), 50.0 + 35.5 * np.sin(a), -levels, 0.0))
+        events.append(CanonMove("line", 50.0 + 35.5 * np.cos(a), 50.0 + 35.5 * np.sin(a), -levels, a=0.0))
     return events
 
 
