@@ -88,6 +88,7 @@ def inspection_report(ins, cam, name: str, spec_name: str, predicted=None) -> In
                           "deviation_mm": float(ins.deviation_mm[i]),
                           **({"wall": int(wall[i])} if wall is not None else {})} for i in worst],
         "max_acceleration_error": ins.max_acceleration_error,
+        "max_acceleration_error_unit": f"{ins.motion[0].unit}/deg²" if ins.motion else None,
         "motion": _motion_summary(ins),
     }
     if al.zero_mm is not None:
