@@ -61,9 +61,9 @@ def exaggeration(size_mm: float, deviation_mm: float) -> float:
 
 
 def polar_deviation_png(nominal_xy, nominal_normal, foot_xy, normal_xy, deviation_mm, outlier, tolerance_mm: float,
-                        factor: float, title: str = "") -> bytes:
+                        factor: float, title: str = "", labels: tuple[str, str] = ("x [mm]", "y [mm]")) -> bytes:
     """The nominal outline (closed polyline) with its tolerance band and the measured points, both drawn
-    ``factor`` × their deviation off it along the normal (the scale is in the title)."""
+    ``factor`` × their deviation off it along the normal (the scale is in the title); ``labels`` of the axes."""
     nominal_xy, nominal_normal = np.asarray(nominal_xy), np.asarray(nominal_normal)
     foot_xy, normal_xy = np.asarray(foot_xy), np.asarray(normal_xy)
     dev, outlier = np.asarray(deviation_mm), np.asarray(outlier, dtype=bool)
@@ -82,8 +82,8 @@ def polar_deviation_png(nominal_xy, nominal_normal, foot_xy, normal_xy, deviatio
     ax.plot([0], [0], "+", color="k", ms=10)
     ax.set_aspect("equal")
     ax.grid(True, alpha=0.3)
-    ax.set_xlabel("x [mm]")
-    ax.set_ylabel("y [mm]")
+    ax.set_xlabel(labels[0])
+    ax.set_ylabel(labels[1])
     ax.legend(loc="upper right", fontsize=7)
     ax.set_title((title + "\n" if title else "") + f"deviations drawn × {factor:g} (1 mm drawn = {1000 / factor:g} µm)",
                  fontsize=9)

@@ -108,8 +108,9 @@ def inspection_report(ins, cam, name: str, spec_name: str, predicted=None) -> In
     foot, normal = at(np.radians(ins.angle_deg))
     kept_dev = np.abs(ins.deviation_mm[ins.kept])
     factor = exaggeration(size, max(float(kept_dev.max()), ins.tolerance_mm))
+    labels = (("cam angle as polar angle, radius = cylinder [mm]", "") if wall is not None else ("x [mm]", "y [mm]"))
     files["polar.png"] = polar_deviation_png(outline, outline_n, foot, normal, ins.deviation_mm, ins.outlier,
-                                             ins.tolerance_mm, factor, title)
+                                             ins.tolerance_mm, factor, title, labels)
     summary["polar_exaggeration"] = factor
     if ins.motion:
         files["motion.png"] = motion_error_png(ins.motion, f"{title}: motion of the measured cam − design")
