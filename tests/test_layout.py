@@ -225,6 +225,7 @@ def test_no_dialect_names_outside_post():
            if "heidenhain" in line.lower() or "klartext" in line.lower()]
     assert not bad, "\n".join(bad)
 
+
 def test_worker_processes_reach_no_stage_below_nc():
     """Issue 44: process plumbing is behind the NC stage.  Stages before ``nc`` neither import
     ``camcam.workers`` nor take a ``workers`` count; the fitter is handed a map-like callable
@@ -360,3 +361,17 @@ class Starred:
 '''
     bad = _long_positional_constructors(snippet)
     assert [line.split()[1].split("(")[0] for line in bad] == ["Five", "Explicit"], bad
+
+
+def test_the_tolerance_keeps_one_name():
+    """Issue 44: the tolerance is ``tolerance_mm`` from the spec (``MachiningSpec.tolerance_mm``) to the fitter's
+    innermost function; no parameter abbreviates it (``tol`` and ``tol_mm`` were 15 functions of the fitter and
+    the roughing).  Library tolerances keep their libraries' names (scipy's ``xtol``, numpy's ``atol``)."""
+    bad = []
+    for name, (path, _) in MODULES.items():
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                bad += [f"{path.relative_to(PACKAGE.parent)}:{node.lineno} {node.name}({a.arg})"
+                        for a in node.args.posonlyargs + node.args.args + node.args.kwonlyargs
+                        if a.arg in ("tol", "tol_mm", "tolerance", "delta", "delta_mm")]
+    assert not bad, "\n".join(bad)

@@ -303,8 +303,8 @@ def _circle(p, q, r):
     return (cx, cy), math.hypot(cx - p[0], cy - p[1]), d > 0
 
 
-def _try(pts: np.ndarray, i: int, j: int, tol: float, max_sweep: float):
-    """An element from pts[i] to pts[j] within ``tol`` of every point between, or None."""
+def _try(pts: np.ndarray, i: int, j: int, tolerance_mm: float, max_sweep: float):
+    """An element from pts[i] to pts[j] within ``tolerance_mm`` of every point between, or None."""
     seg = pts[i:j + 1]
     a, b = seg[0], seg[-1]
     d = b - a
@@ -312,7 +312,7 @@ def _try(pts: np.ndarray, i: int, j: int, tol: float, max_sweep: float):
     if L == 0:
         return None
     off = np.abs((seg[:, 0] - a[0]) * d[1] - (seg[:, 1] - a[1]) * d[0]) / L
-    if off.max() <= tol:
+    if off.max() <= tolerance_mm:
         return Line((float(a[0]), float(a[1])), (float(b[0]), float(b[1])))
     circ = _circle(a, seg[len(seg) // 2], b)
     if circ is None:
@@ -321,7 +321,7 @@ def _try(pts: np.ndarray, i: int, j: int, tol: float, max_sweep: float):
     if radius > 1e5:
         return None
     dist = np.hypot(seg[:, 0] - c[0], seg[:, 1] - c[1])
-    if np.abs(dist - radius).max() > tol:
+    if np.abs(dist - radius).max() > tolerance_mm:
         return None
     arc = Arc((float(a[0]), float(a[1])), (float(b[0]), float(b[1])), (float(c[0]), float(c[1])), bool(ccw))
     if arc.sweep > max_sweep:
@@ -332,8 +332,8 @@ def _try(pts: np.ndarray, i: int, j: int, tol: float, max_sweep: float):
     return arc if np.all(steps >= -1e-12) else None
 
 
-def polyline_elements(points: np.ndarray, tol_mm: float, max_sweep_deg: float) -> tuple:
-    """Greedy lines and arcs through a dense polyline, each within ``tol_mm`` of the points it replaces.
+def polyline_elements(points: np.ndarray, tolerance_mm: float, max_sweep_deg: float) -> tuple:
+    """Greedy lines and arcs through a dense polyline, each within ``tolerance_mm`` of the points it replaces.
 
     Examples
     --------
@@ -346,10 +346,10 @@ def polyline_elements(points: np.ndarray, tol_mm: float, max_sweep_deg: float) -
     max_sweep = math.radians(min(max_sweep_deg, 179.0))
     out, i, n = [], 0, len(pts)
     while i < n - 1:
-        best, good = _try(pts, i, i + 1, tol_mm, max_sweep), i + 1
+        best, good = _try(pts, i, i + 1, tolerance_mm, max_sweep), i + 1
         step, bad = 1, None
         while good + step <= n - 1:  # gallop, then bisect between the last fit and the first miss
-            e = _try(pts, i, good + step, tol_mm, max_sweep)
+            e = _try(pts, i, good + step, tolerance_mm, max_sweep)
             if e is None:
                 bad = good + step
                 break
@@ -359,7 +359,7 @@ def polyline_elements(points: np.ndarray, tol_mm: float, max_sweep_deg: float) -
             bad = n
         while bad - good > 1:
             mid = (good + bad) // 2
-            e = _try(pts, i, mid, tol_mm, max_sweep)
+            e = _try(pts, i, mid, tolerance_mm, max_sweep)
             if e is None:
                 bad = mid
             else:

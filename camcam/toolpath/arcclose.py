@@ -6,7 +6,7 @@ and, from each state of its beam, tries to close onto its own first joints:
 with a biarc whose join is free (:func:`closing_biarcs`, Held–Eibl's family)
 or with one arc that lands tangentially on the circle of an early arc
 (:func:`landings`).  ``m`` is the march (its table of the curve ``P``, the
-quantizer ``q``, the band ``tol``, the sag and sweep limits, the budget).
+quantizer ``q``, the band ``tolerance_mm``, the sag and sweep limits, the budget).
 """
 
 from __future__ import annotations
@@ -128,7 +128,7 @@ def closing_biarcs(m, st, p1, t1, ratios, row: int) -> list:
     dev_j = np.hypot(q[None, :, 0] - J[..., 0], q[None, :, 1] - J[..., 1]).min(axis=1)
     for (_, e1, e2), dc, dj in zip(kept, dev_c.tolist(), dev_j.tolist()):
         dev = max(dc, dj)
-        if dev <= m.tol:
+        if dev <= m.tolerance_mm:
             out.append((dev, e1, e2))
     return out
 
@@ -186,6 +186,6 @@ def landings(m, st, chain, jmax: int, row_cap: int) -> list:
         qs = m.P[rows]
         dev_c = float(np.minimum(element_distance(e1, qs), element_distance(e2, qs)).max())
         dev = max(dev_c, float(np.hypot(*(qs - x).T).min()))
-        if dev <= m.tol:
+        if dev <= m.tolerance_mm:
             out.append((j, dev, e1, e2))
     return out

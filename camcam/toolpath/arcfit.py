@@ -79,21 +79,21 @@ class FitResult:
         return self.deviation.max_deviation_mm
 
 
-def _fit_lines_piece(piece, tol):
+def _fit_lines_piece(piece, tolerance_mm):
     a, b = piece.a, piece.b
     k = np.abs(curvature(piece.curve, piece.grid))
     v = speed(piece.curve, piece.grid)
 
     def deviations(t0, ts):
-        return lines_deviation(piece, t0, ts, tol)
+        return lines_deviation(piece, t0, ts, tolerance_mm)
 
     nodes = [a]
     while nodes[-1] < b:
         t0 = nodes[-1]
         j = int(np.searchsorted(piece.grid, t0))
         j = min(j, len(piece.grid) - 1)
-        step_mm = math.sqrt(8.0 * tol / max(k[j], 1e-12))  # seed paper eq. (8): δ = L²/8ρ
-        nodes.append(greedy(t0, b, deviations, tol, step_mm / max(v[j], 1e-12)))
+        step_mm = math.sqrt(8.0 * tolerance_mm / max(k[j], 1e-12))  # seed paper eq. (8): δ = L²/8ρ
+        nodes.append(greedy(t0, b, deviations, tolerance_mm, step_mm / max(v[j], 1e-12)))
     pts = piece.point(np.array(nodes))
     return [Line(tuple(p), tuple(q)) for p, q in zip(pts[:-1], pts[1:])]
 

@@ -74,10 +74,10 @@ def _removal_order(oc: OnCurve, tab: CurveTable, per_arc: int) -> list[int]:
     return order
 
 
-def fewer_arcs(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_sweep: float, sag: float,
+def fewer_arcs(curve, a: float, b: float, tolerance_mm: float, quantizer: Quantizer, max_sweep: float, sag: float,
                spline: ArcSpline, n_arcs: int, *, tries: int = 12, per_arc: int = 24,
                budget: FitBudget = DEFAULT_BUDGET) -> tuple[ArcSpline, ...]:
-    """A printed closed G1 spline of ``n_arcs`` arcs within ``tol``, from a march's ``spline`` with more.
+    """A printed closed G1 spline of ``n_arcs`` arcs within ``tolerance_mm``, from a march's ``spline`` with more.
 
     While the chain has more than ``n_arcs`` arcs, a joint is dropped: the first of :func:`_removal_order`
     (of the march's joints, then of the last chain's), of at most ``tries``, whose chain optimised
@@ -94,8 +94,8 @@ def fewer_arcs(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_
         no drop keeps within the band, printing leaves it, or the band is too narrow for the grid.
     """
     m = len(spline.elements)
-    allowed = budget.chain_band_mm(tol, quantizer)
-    if m <= n_arcs or not budget.chain_holds(tol, quantizer) or max_sweep > 0.9 * math.pi:
+    allowed = budget.chain_band_mm(tolerance_mm, quantizer)
+    if m <= n_arcs or not budget.chain_holds(tolerance_mm, quantizer) or max_sweep > 0.9 * math.pi:
         return ()
     tab = CurveTable(curve, a, b, 16384)
     jn = joints_of(spline.elements)
@@ -109,9 +109,9 @@ def fewer_arcs(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_
             trial = OnCurve(curve, a, b, t=oc.t[keep], v=oc.v[keep], psi=oc.psi[keep], w=oc.w)
             trial, err, gap = minimax_chain(trial, tab, max_sweep=max_sweep, per_arc=per_arc,
                                             hopeless=HOPELESS * allowed, enough=enough)
-            if err <= allowed and gap <= budget.chain_gap_mm(tol):
+            if err <= allowed and gap <= budget.chain_gap_mm(tolerance_mm):
                 oc = trial
                 break
         else:
             return ()
-    return printed_chain(oc, tab, quantizer, sag, max_sweep, tol)
+    return printed_chain(oc, tab, quantizer, sag, max_sweep, tolerance_mm)

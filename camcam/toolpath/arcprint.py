@@ -55,7 +55,7 @@ def _angle_between(t0, t1) -> np.ndarray:
     return np.abs(np.arctan2(t0[:, 0] * t1[:, 1] - t0[:, 1] * t1[:, 0], np.einsum("ij,ij->i", t0, t1)))
 
 
-def printed_spline(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: float, max_sweep: float, tol: float,
+def printed_spline(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: float, max_sweep: float, tolerance_mm: float,
                    along: int = 6, beam: int = 12, samples: int = 48):
     """The printed form of an optimised chain: joints on the grid, each arc as the post prints it.
 
@@ -132,7 +132,7 @@ def printed_spline(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: floa
             new_worst = np.maximum(new_worst, dev2)
         keep = np.argsort(rank, kind="stable")[:beam]
         if j == n - 1:
-            keep = keep[np.isfinite(rank[keep]) & (new_worst[keep] <= tol)]
+            keep = keep[np.isfinite(rank[keep]) & (new_worst[keep] <= tolerance_mm)]
             if not len(keep):
                 return [], float(np.min(new_worst))
         history.append((src[keep], tgt[keep], centre[keep], ccw[keep], is_line[keep]))
@@ -183,11 +183,11 @@ def measured_deviation(elements, oc: OnCurve, tab: CurveTable) -> float:
 
 
 def printed_chain(oc: OnCurve, tab: CurveTable, quantizer: Quantizer, sag: float, max_sweep: float,
-                  tol: float) -> tuple[ArcSpline, ...]:
-    """An optimised chain as the program prints it (:func:`printed_spline`), kept only if it is within ``tol``
+                  tolerance_mm: float) -> tuple[ArcSpline, ...]:
+    """An optimised chain as the program prints it (:func:`printed_spline`), kept only if it is within ``tolerance_mm``
     both ways on the table's curve (:func:`measured_deviation`): the one spline, its elements starting at the
     curve parameters ``oc.t``; or nothing (no printed form closes within the band, or it measures over it)."""
-    elements, _ = printed_spline(oc, tab, quantizer, sag, max_sweep, tol)
-    if not elements or measured_deviation(elements, oc, tab) > tol:
+    elements, _ = printed_spline(oc, tab, quantizer, sag, max_sweep, tolerance_mm)
+    if not elements or measured_deviation(elements, oc, tab) > tolerance_mm:
         return ()
     return (ArcSpline(tuple(elements), tuple(float(t) for t in oc.t)),)

@@ -84,8 +84,8 @@ SMOOTH_RATIO = 1.01
 GIVE_UP = (8, 1.25, 1.03)
 
 
-def seed_density(curve, a: float, b: float, tol: float, max_sweep: float, n: int = 4096):
-    """The optimal pattern's arcs along [a, b] within ``tol``: parameters (n,), the running count (n + 1,)
+def seed_density(curve, a: float, b: float, tolerance_mm: float, max_sweep: float, n: int = 4096):
+    """The optimal pattern's arcs along [a, b] within ``tolerance_mm``: parameters (n,), the running count (n + 1,)
     and the turns the tangent makes round the closed curve (+1 counter-clockwise, −1 clockwise).
 
     The count per unit length is max((|κ′| / 124.7·tol)^⅓, |κ| / (0.9·max_sweep)), integrated by the
@@ -107,7 +107,7 @@ def seed_density(curve, a: float, b: float, tol: float, max_sweep: float, n: int
     t = np.linspace(a, b, n, endpoint=False)
     d1 = curve.evaluate(t, 1)
     sp = np.hypot(d1[:, 0], d1[:, 1])
-    pattern = np.cbrt(np.abs(curvature_rate(curve, t)) / (PATTERN_CONSTANT * tol))
+    pattern = np.cbrt(np.abs(curvature_rate(curve, t)) / (PATTERN_CONSTANT * tolerance_mm))
     per_length = np.maximum(pattern, np.abs(curvature(curve, t)) / (0.9 * max_sweep))
     count = np.concatenate([[0.0], np.cumsum(per_length * sp) * ((b - a) / n)])
     heading = np.arctan2(d1[:, 1], d1[:, 0])
@@ -115,21 +115,21 @@ def seed_density(curve, a: float, b: float, tol: float, max_sweep: float, n: int
     return t, count, round(float(turning.sum()) / (2 * np.pi))
 
 
-def seeded_chain(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_sweep: float, sag: float,
+def seeded_chain(curve, a: float, b: float, tolerance_mm: float, quantizer: Quantizer, max_sweep: float, sag: float,
                  n_max: int, *, tries: int = 3, per_arc: int = 24,
                  budget: FitBudget = DEFAULT_BUDGET) -> tuple[ArcSpline, ...]:
-    """A printed closed G1 spline of at most ``n_max`` arcs within ``tol``, seeded from the arc density.
+    """A printed closed G1 spline of at most ``n_max`` arcs within ``tolerance_mm``, seeded from the arc density.
 
     N = ⌈∫⌉ … ⌈∫⌉ + ``tries`` − 1 joints (at most ``n_max``), in turn, are put at equal steps of
     :func:`seed_density` from ``a``, on the curve along its tangent; the chain is optimised
     (:func:`~camcam.toolpath.arcchain.minimax_chain`), printed and measured both ways on the curve's table,
-    as :func:`~camcam.toolpath.arcpolish.fewer_arcs` does.  The chain's share of ``tol`` (what printing may
+    as :func:`~camcam.toolpath.arcpolish.fewer_arcs` does.  The chain's share of ``tolerance_mm`` (what printing may
     add, the G1 gap it may keep) is ``budget``'s (:class:`~camcam.toolpath.budget.FitBudget`).
 
     Returns
     -------
     tuple of ArcSpline
-        The first spline that keeps within ``tol``, its elements starting at the curve parameters in
+        The first spline that keeps within ``tolerance_mm``, its elements starting at the curve parameters in
         ``starts``; or nothing (none did, or the band is too narrow for the grid, or arcs may sweep
         more than 0.9 π).
 
@@ -146,8 +146,8 @@ def seeded_chain(curve, a: float, b: float, tol: float, quantizer: Quantizer, ma
     >>> len(sp.elements) <= 1.2 * 14.65 + 4, sp.elements[0].start == sp.elements[-1].end
     (True, True)
     """
-    allowed = budget.chain_band_mm(tol, quantizer)
-    if not budget.chain_holds(tol, quantizer) or max_sweep > 0.9 * math.pi:
+    allowed = budget.chain_band_mm(tolerance_mm, quantizer)
+    if not budget.chain_holds(tolerance_mm, quantizer) or max_sweep > 0.9 * math.pi:
         return ()
     density = seed_density(curve, a, b, allowed, max_sweep)
     first = max(3, math.ceil(float(density[1][-1])))
@@ -155,25 +155,25 @@ def seeded_chain(curve, a: float, b: float, tol: float, quantizer: Quantizer, ma
     for n in range(first, min(first + tries - 1, n_max) + 1):
         if tab is None:
             tab = CurveTable(curve, a, b, 16384)
-        for spline in seeded_count(curve, a, b, tol, quantizer, max_sweep, sag, n, density, tab, per_arc=per_arc,
+        for spline in seeded_count(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, n, density, tab, per_arc=per_arc,
                                    budget=budget):
             return (spline,)
     return ()
 
 
-def seeded_count(curve, a: float, b: float, tol: float, quantizer: Quantizer, max_sweep: float, sag: float, n: int,
+def seeded_count(curve, a: float, b: float, tolerance_mm: float, quantizer: Quantizer, max_sweep: float, sag: float, n: int,
                  density, tab: CurveTable, *, per_arc: int = 24, budget: FitBudget = DEFAULT_BUDGET
                  ) -> tuple[ArcSpline, ...]:
     """One seed of :func:`seeded_chain`: ``n`` joints at equal steps of ``density`` (:func:`seed_density` at the
     band less printing's allowance, :meth:`FitBudget.chain_band_mm`) from ``a``, optimised on ``tab``, printed and
-    measured; the spline, or nothing (the chain given up or over the band, or its printed form over ``tol``)."""
-    allowed = budget.chain_band_mm(tol, quantizer)
+    measured; the spline, or nothing (the chain given up or over the band, or its printed form over ``tolerance_mm``)."""
+    allowed = budget.chain_band_mm(tolerance_mm, quantizer)
     t, count, turns = density
     total = float(count[-1])
     joints_t = np.interp(np.arange(n) / n * total, count, np.concatenate([t, [b]]))
     seed = OnCurve(curve, a, b, t=joints_t, v=np.zeros(n), psi=np.zeros(n), w=turns)
     chain, err, gap = minimax_chain(seed, tab, max_sweep=max_sweep, per_arc=per_arc, enough=ENOUGH * allowed,
                                     early=(GIVE_UP[0], GIVE_UP[1] * allowed), hopeless=GIVE_UP[2] * allowed)
-    if err > allowed or gap > budget.chain_gap_mm(tol):
+    if err > allowed or gap > budget.chain_gap_mm(tolerance_mm):
         return ()
-    return printed_chain(chain, tab, quantizer, sag, max_sweep, tol)
+    return printed_chain(chain, tab, quantizer, sag, max_sweep, tolerance_mm)

@@ -99,9 +99,9 @@ class _March:
     array operations.
     """
 
-    def __init__(self, curve, a, b, tol, max_sweep, sag, quantizer: Quantizer, budget: SplineBudget, start=None):
+    def __init__(self, curve, a, b, tolerance_mm, max_sweep, sag, quantizer: Quantizer, budget: SplineBudget, start=None):
         self.curve, self.a, self.b = curve, a, b
-        self.tol, self.max_sweep, self.sag, self.q = tol, max_sweep, sag, quantizer
+        self.tolerance_mm, self.max_sweep, self.sag, self.q = tolerance_mm, max_sweep, sag, quantizer
         self.budget = budget
         self.u = np.linspace(0.0, 1.0, budget.samples)
         self.t = np.linspace(a, b, budget.table)
@@ -127,7 +127,7 @@ class _March:
         q = self.P[rows]
         dev = peak_deviation(candidate_deviation(q, p0, p1, centre, ccw, is_line, a0, sweep))
         long_enough = np.hypot(*(p1 - p0).T) >= MIN_CHORD_STEPS * self.q.step_mm
-        ok = (dev <= self.tol) & (is_line | (sweep <= self.max_sweep)) & (i1 > i0) & long_enough
+        ok = (dev <= self.tolerance_mm) & (is_line | (sweep <= self.max_sweep)) & (i1 > i0) & long_enough
         return ok, (p1, centre, ccw, is_line, t_end, dev)
 
     def expand(self, states, offsets, append: bool = False) -> None:
@@ -146,7 +146,7 @@ class _March:
         K = self.budget.candidates
         stop = self.stop
         grid = np.linspace(0.4, 1.8, K)
-        rays = [_Ray(s, o * self.tol, max(s.h, 2.0)) for s in states for o in offsets]
+        rays = [_Ray(s, o * self.tolerance_mm, max(s.h, 2.0)) for s in states for o in offsets]
         for s in states:
             s.rays = (s.rays if append else []) + [r for r in rays if r.state is s]
         todo = rays
@@ -253,7 +253,7 @@ def _start_states(m: _March, closed: bool, budget: SplineBudget) -> list:
         return states
     # tangent errors in units of δ/h (h: a first guess of an arc's length); the optimum's joints turn ≈ 10.4 δ/h
     arc_len = float(np.hypot(*np.diff(m.P[: max(3, int(h0)) + 1], axis=0).T).sum())
-    unit = m.tol / max(arc_len, 1e-12)
+    unit = m.tolerance_mm / max(arc_len, 1e-12)
     for o in budget.offsets:
         for f in budget.start_turns:
             if o == 0.0 and f == 0.0:
@@ -261,7 +261,7 @@ def _start_states(m: _March, closed: bool, budget: SplineBudget) -> list:
             ang = f * unit
             c, s = math.cos(ang), math.sin(ang)
             tan = np.array([c * m.T[0, 0] - s * m.T[0, 1], s * m.T[0, 0] + c * m.T[0, 1]])
-            states.append(_State(0, m.q.snap(m.P[0] + o * m.tol * m.N[0]), tan, h0, None, None))
+            states.append(_State(0, m.q.snap(m.P[0] + o * m.tolerance_mm * m.N[0]), tan, h0, None, None))
     return states
 
 
@@ -282,11 +282,11 @@ def _frontier(m: _March, children: list, W: int, bins: tuple[int, int]) -> list:
     rows = np.array([c.i for c in children])
     p = np.array([c.p for c in children])
     tan = np.array([c.tan for c in children])
-    off = np.einsum("ij,ij->i", p - m.P[rows], m.N[rows]) / m.tol
+    off = np.einsum("ij,ij->i", p - m.P[rows], m.N[rows]) / m.tolerance_mm
     turn = np.arctan2(m.T[rows, 0] * tan[:, 1] - m.T[rows, 1] * tan[:, 0], np.einsum("ij,ij->i", m.T[rows], tan))
     d = p - np.array([c.parent.p for c in children])
     step = np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-12)  # each child's last chord
-    turn = turn * step / m.tol
+    turn = turn * step / m.tolerance_mm
     lim = TURN_RANGE
     bo = np.clip(np.rint((off + 1.0) / 2.0 * (bins[0] - 1)), 0, bins[0] - 1).astype(int)
     bt = np.clip(np.rint((np.clip(turn, -lim, lim) + lim) / (2 * lim) * (bins[1] - 1)), 0, bins[1] - 1).astype(int)
@@ -299,9 +299,9 @@ def _frontier(m: _March, children: list, W: int, bins: tuple[int, int]) -> list:
     return kept[:W]
 
 
-def march(curve, a, b, tol, quantizer, max_sweep, sag, closed, budget, start) -> ArcSpline:
+def march(curve, a, b, tolerance_mm, quantizer, max_sweep, sag, closed, budget, start) -> ArcSpline:
     """One beam march over [a, b] (closed: from ``start`` once round and closing onto its own first joints)."""
-    m = _March(curve, a, b, tol, max_sweep, sag, quantizer, budget, start)
+    m = _March(curve, a, b, tolerance_mm, max_sweep, sag, quantizer, budget, start)
     W = budget.beam
     level = _start_states(m, closed, budget)
     m.expand(level, budget.offsets)
@@ -367,7 +367,7 @@ def march(curve, a, b, tol, quantizer, max_sweep, sag, closed, budget, start) ->
     if best is None:
         # the march's own limit on a valid curve and tolerance (the spec checks the tolerance against the post's
         # decimals), so a fault of camcam's: exit 1, as README's exit statuses put fit failures
-        raise FitError(f"cannot fit the curve on t ∈ [{a:g}, {b:g}] within {tol:g} mm: the march found no printed "
+        raise FitError(f"cannot fit the curve on t ∈ [{a:g}, {b:g}] within {tolerance_mm:g} mm: the march found no printed "
                        f"arc spline")
     _, st, e1, e2, saved, _ = best
     elems, starts = [e2, e1], [st.i, st.i]  # the closing biarc's second arc counts with the first

@@ -43,12 +43,12 @@ def _point_polyline(ep: np.ndarray, a: np.ndarray, e: np.ndarray, e2: np.ndarray
     return np.hypot(*(rel - v[..., None] * e).transpose(3, 0, 1, 2)).min(axis=2)
 
 
-def lines_deviation(piece, t0: float, ts, tol: float) -> np.ndarray:
+def lines_deviation(piece, t0: float, ts, tolerance_mm: float) -> np.ndarray:
     """The chords from t0 to each of ``ts`` (k,): their two-sided sampled deviation, (k,) mm.
 
     Two-sided on samples: the 41 curve points on [t0, t] to the chord, and the
     chord's 9 points to the polyline through 81 curve points, for a batch of
-    candidate ends at once.  Where the first part alone is over ``tol`` the
+    candidate ends at once.  Where the first part alone is over ``tolerance_mm`` the
     chord fails either way, and that part is returned (the second is not
     measured); a chord of length 0 is ``inf`` (it never fits).
 
@@ -83,7 +83,7 @@ def lines_deviation(piece, t0: float, ts, tol: float) -> np.ndarray:
     u = np.where(L2[:, None] > 0, np.clip(np.einsum("knj,kj->kn", cp - q0, d) / safe[:, None], 0.0, 1.0), 0.0)
     dev = np.hypot(*(cp - q0 - u[..., None] * d[:, None]).transpose(2, 0, 1)).max(axis=1)
     dev[~(np.hypot(d[:, 0], d[:, 1]) > 0)] = np.inf  # as dev's caller: a chord of length 0 never fits
-    both = dev <= tol
+    both = dev <= tolerance_mm
     if both.any():
         w = np.linspace(0.0, 1.0, 9)[None, :, None]
         ep = ((1 - w) * q0 + w * q1[:, None])[both]  # (k', 9, 2): Line.points(9)
@@ -93,12 +93,12 @@ def lines_deviation(piece, t0: float, ts, tol: float) -> np.ndarray:
     return dev
 
 
-def lines_fit(piece, t0: float, ts, tol: float) -> np.ndarray:
-    """Whether the chord from t0 to each of ``ts`` (k,) is within ``tol`` two-sided, (k,) bool.
+def lines_fit(piece, t0: float, ts, tolerance_mm: float) -> np.ndarray:
+    """Whether the chord from t0 to each of ``ts`` (k,) is within ``tolerance_mm`` two-sided, (k,) bool.
 
     The verdict of :func:`lines_deviation`.
     """
-    return lines_deviation(piece, t0, ts, tol) <= tol
+    return lines_deviation(piece, t0, ts, tolerance_mm) <= tolerance_mm
 
 
 #: Expansion steps judged at once by :func:`greedy` (with the rest of the piece in the first batch).  A
@@ -111,8 +111,8 @@ GREEDY_BATCH = 4
 GREEDY_TIGHT = 5e-4
 
 
-def greedy(t0, b, dev_many, tol, guess):
-    """A near-longest chord end t1 in (t0, b] within ``tol``: expansion from ``guess``, then regula falsi.
+def greedy(t0, b, dev_many, tolerance_mm, guess):
+    """A near-longest chord end t1 in (t0, b] within ``tolerance_mm``: expansion from ``guess``, then regula falsi.
 
     ``dev_many(t0, ts)`` measures a batch of candidate ends (:func:`lines_deviation`).
     ``b`` itself if it fits; otherwise the expansion (by 1.6 from ``guess``, its
@@ -129,7 +129,7 @@ def greedy(t0, b, dev_many, tol, guess):
     bisection to 1e-6 of the span before, with 4–6 times fewer candidates.
     """
     span = b - t0
-    lo, g_lo, hi, g_hi = t0, -tol, None, None  # a chord of length 0 deviates by nothing
+    lo, g_lo, hi, g_hi = t0, -tolerance_mm, None, None  # a chord of length 0 deviates by nothing
     step = min(guess, span)
     first = True
     while hi is None:  # expansion
@@ -139,16 +139,16 @@ def greedy(t0, b, dev_many, tol, guess):
             s *= 1.6
         if first:  # the whole rest of the piece is judged with the first steps, in one batch: the answer if it fits
             dev = dev_many(t0, np.concatenate([[b], t0 + np.array(steps, float)]))
-            if dev[0] <= tol:
+            if dev[0] <= tolerance_mm:
                 return b
-            g_b, dev, first = float(dev[0]) - tol, dev[1:], False
+            g_b, dev, first = float(dev[0]) - tolerance_mm, dev[1:], False
         else:
             dev = dev_many(t0, t0 + np.array(steps)) if steps else np.zeros(0)
         for s, d in zip(steps, dev.tolist()):
-            if d <= tol:
-                lo, g_lo, step = t0 + s, d - tol, s * 1.6
+            if d <= tolerance_mm:
+                lo, g_lo, step = t0 + s, d - tolerance_mm, s * 1.6
             else:
-                hi, g_hi, step = t0 + s, d - tol, s
+                hi, g_hi, step = t0 + s, d - tolerance_mm, s
                 break
         else:
             if len(steps) < GREEDY_BATCH:  # the next step reaches b
@@ -158,22 +158,22 @@ def greedy(t0, b, dev_many, tol, guess):
         if step < span * 1e-9:
             return t0 + step * 2
         d = float(dev_many(t0, np.array([t0 + step]))[0])
-        if d <= tol:
-            lo, g_lo = t0 + step, d - tol
+        if d <= tolerance_mm:
+            lo, g_lo = t0 + step, d - tolerance_mm
         else:
-            hi, g_hi = t0 + step, d - tol
+            hi, g_hi = t0 + step, d - tolerance_mm
     # Illinois: when the same end is replaced twice running, the other end's value counts half in the next
     # secant (s_lo, s_hi: the values the secant uses; g_lo, g_hi stay the measured ones)
     s_lo, s_hi, last = g_lo, g_hi, 0
     for _ in range(60):
-        if g_lo >= -GREEDY_TIGHT * tol or hi - lo <= 1e-6 * span:
+        if g_lo >= -GREEDY_TIGHT * tolerance_mm or hi - lo <= 1e-6 * span:
             break
         if np.isfinite(s_hi):
             t = lo + (hi - lo) * (-s_lo) / (s_hi - s_lo)
             t = min(max(t, lo + 1e-3 * (hi - lo)), hi - 1e-3 * (hi - lo))  # never on an end
         else:  # a chord of length 0 (inf) at hi: no slope to follow
             t = 0.5 * (lo + hi)
-        g = float(dev_many(t0, np.array([t]))[0]) - tol
+        g = float(dev_many(t0, np.array([t]))[0]) - tolerance_mm
         if g <= 0:
             lo, g_lo, s_lo = t, g, g
             if last == -1:
