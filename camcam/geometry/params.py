@@ -30,6 +30,7 @@ class CamSpec:
     max_pressure_angle_deg: float | None = None  # design check limit; None: 30° translating, 35° oscillating
     min_curvature_radius_mm: float | None = None  # design check limit; None: half the roller radius (0 for a flat face)
     design_limits: str = "warn"  # "warn": a design limit missed is a warning (WARN); "fail": it fails the run (exit 3)
+    material: str | None = None  # the part's material as the shop names it (the setup sheet states it)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -66,8 +66,11 @@ Block = Union[Figure, KeyValues, DataTable, Paragraph, Code, VerdictBlock]
 
 @dataclass(frozen=True)
 class Section:
+    """A titled part of the page; ``sheet``: printed on page 1 with the other sheet sections, alone there."""
+
     title: str
     blocks: tuple[Block, ...]
+    sheet: bool = False
 
 
 _STYLE = """
@@ -82,9 +85,12 @@ pre{background:#f6f8fa;border:1px solid #ddd;padding:.6em;font-size:.85em;overfl
 .verdict{font-size:1.5em;font-weight:700;padding:.4em .8em;border-radius:4px;color:#fff;display:inline-block}
 .verdict.pass{background:#176b2c}.verdict.warn{background:#b36b00}.verdict.fail{background:#b3191f}
 @page{size:A4;margin:12mm}
-@media print{body{max-width:none;margin:0;padding:0;font-size:10pt}h2{page-break-after:avoid}
-figure,tr{page-break-inside:avoid}table{font-size:8pt}td,th{padding:.1em .3em}
-pre{white-space:pre-wrap;word-break:break-all;font-size:7.5pt}figure img{max-height:240mm}}
+@media print{body{max-width:none;margin:0;padding:0;font-size:10pt}h2{page-break-after:avoid;break-after:avoid}
+figure,tr{page-break-inside:avoid;break-inside:avoid}table{font-size:8pt}td,th{padding:.1em .3em}
+pre{white-space:pre-wrap;word-break:break-all;font-size:7.5pt}figure img{max-height:120mm;max-width:100%}
+.sheet{page-break-after:always;break-after:page}.sheet h1{font-size:13pt;margin:0}.sheet .sub{margin:0 0 .3em}
+.sheet h2{font-size:11pt;margin:.5em 0 .2em}.sheet table{font-size:7.5pt;margin:.2em 0}.sheet p{margin:.2em 0}
+.sheet .verdict{font-size:12pt;padding:.15em .5em}}
 """
 
 
@@ -130,15 +136,20 @@ def render_html(title: str, subtitle: str, sections: Sequence[Section]) -> str:
     True
     """
     e = html.escape
+    sheet = any(s.sheet for s in sections)
     parts = [
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
         f"<title>{e(title)}</title><style>{_STYLE}</style></head><body>",
+        *(['<div class="sheet">'] if sheet else []),
         f"<h1>{e(title)}</h1><p class=\"sub\">{e(subtitle)}</p>",
     ]
-    for s in sections:
+    for i, s in enumerate(sections):
         parts.append(f"<section><h2>{e(s.title)}</h2>")
         parts.extend(_block(b) for b in s.blocks)
         parts.append("</section>")
+        if sheet and s.sheet and not (i + 1 < len(sections) and sections[i + 1].sheet):
+            parts.append("</div>")  # the sheet ends: the print breaks the page here
+            sheet = False
     parts.append("</body></html>\n")
     return "\n".join(parts)

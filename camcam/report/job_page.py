@@ -187,9 +187,10 @@ def job_report(name: str, spec, program: MotionProgram, svaj: bytes | Pending, b
         analysis = report_analysis(name, built, machining, inspection_step_deg, render)
     files: dict = dict(analysis.files)
     figures: dict = dict(analysis.figures)
-    sections = [Section("Verdict", (VerdictBlock(verdict),))] if verdict is not None else []
+    # the verdict and the setup are the setup sheet: printed alone on page 1 (report/html.py)
+    sections = [Section("Verdict", (VerdictBlock(verdict),), sheet=True)] if verdict is not None else []
     if machining is not None and built is not None:
-        sections.append(Section("Setup", setup_blocks(built, machining, spec.machining)))
+        sections.append(Section("Setup", setup_blocks(built, machining, spec.machining), sheet=True))
     sections.append(Section("Job", (KeyValues(_job_rows(name, spec, built, machining)),)))
     sections.append(Section("Motion (design)", (Figure(svaj, "Displacement, velocity, acceleration and jerk over the revolution; dashed: segment boundaries."),)))
     if built is not None:

@@ -1,6 +1,6 @@
 """The setup sheet: what the machinist needs at the machine, from the values the stages returned.
 
-Blank, work zero, angular datum, tool (T, length offset, diameter, flute
+Blank (size and material), work zero, angular datum, tool (T, length offset, diameter, flute
 length), the passes (the program's :class:`~camcam.toolpath.path.Pass` records),
 work offset, coolant and cycle time.  The report puts it right after the
 verdict.
@@ -20,18 +20,35 @@ from camcam.report.html import DataTable, KeyValues
 __all__ = ["setup_blocks"]
 
 
+def _blank_rows(built, r: MachiningResult) -> list[tuple[str, str]]:
+    """The blank's size (what goes into the vice or chuck) and the part's material."""
+    spec = built.spec
+    if r.blank is not None:
+        b = r.blank
+        size = (f"{b.describe()}, {spec.thickness + b.top_z_mm:g} mm thick"
+                + (f" ({b.top_z_mm:g} mm face stock above Z0)" if b.top_z_mm > 0 else ""))
+    elif r.rotary:
+        size = (f"round bar turned to Ø{2 * built.cam.base_radius:g} × {built.cam.length:g} mm (the cam's cylinder; "
+                f"the program cuts only the groove)")
+    else:
+        size = "not modelled for this job"
+    material = spec.material or "not stated (give [cam] material)"
+    return [("blank", size), ("material", material)]
+
+
 def _blank_and_zero(built, r: MachiningResult) -> list[tuple[str, str]]:
     spec, cam = built.spec, built.cam
     v = built.mesh_parts.vertices
     if r.rotary:
         return [("part", f"cylinder Ø{2 * cam.base_radius:g} × {cam.length:g} mm"
-                 + (f", bore Ø{spec.bore:g} mm" if spec.bore else "")),
+                 + (f", bore Ø{spec.bore:g} mm" if spec.bore else "")), *_blank_rows(built, r),
                 ("work zero", "X0 on the cam's left end face, Y0 Z0 on the cam axis; A turns the part about +X "
                               "(A0 = cam angle 0)")]
     r_max = float(np.hypot(v[:, 0], v[:, 1]).max())
     what = "cam" if spec.kind == "disc" else "grooved disc"
     rows = [("part", f"{what} Ø{2 * r_max:.2f} × {spec.thickness:g} mm (largest radius {r_max:.3f} mm)"
              + (f", bore Ø{spec.bore:g} mm (not machined by this program)" if spec.bore else "")),
+            *_blank_rows(built, r),
             ("work zero", f"X0 Y0 on the cam axis (the bore centre), Z0 on the top face; the part lies below, "
                           f"Z −{spec.thickness:g} … 0 (the STL and the DXF share this frame)")]
     return rows

@@ -14,6 +14,7 @@ max_pressure_angle_deg = 30.0  # design check limit (default 30° translating, 3
 min_curvature_radius_mm = 5.0  # design check limit: the profile's smallest convex radius (default half the
                                # roller radius, 0 for a flat face)
 design_limits = "warn"         # a design limit missed: "warn" (WARN verdict, exit 0) or "fail" (FAIL, exit 3)
+material = "C45 steel"        # the part's material, free text for the setup sheet (default: not stated)
 ```
 """
 
@@ -52,7 +53,9 @@ def read_cam(t: Table) -> CamSpec:
     max_pa = t.number("max_pressure_angle_deg", None, minimum=0.0, maximum=90.0, inclusive=False, unit="degrees")
     min_rho = t.number("min_curvature_radius_mm", None, minimum=0.0, unit="mm")
     limits = t.string("design_limits", "warn", choices=DESIGN_LIMITS)
+    material = t.string("material", None)
+    t.check("material", material is None or material.strip() != "", "expected the material's name, got an empty string")
     t.done()
     return CamSpec(kind=kind, base_radius=base, bore=bore, rotation=rotation, thickness=thickness, groove_depth=groove,
                    outer_radius=outer, length=length, max_pressure_angle_deg=max_pa, min_curvature_radius_mm=min_rho,
-                   design_limits=limits)
+                   design_limits=limits, material=material.strip() if material else None)

@@ -34,9 +34,12 @@ def test_report_opens_with_verdict_then_setup(run_dir):
     assert titles[:3] == ["Verdict", "Setup", "Job"]
     assert '<p class="verdict pass">PASS</p>' in html
     setup = html.split("<h2>Setup</h2>")[1].split("<h2>Job</h2>")[0]
-    for label in ("part", "work zero", "angular datum", "work offset", "tool", "tool length offset", "coolant",
-                  "cycle time (estimate)"):
+    for label in ("part", "blank", "material", "work zero", "angular datum", "work offset", "tool",
+                  "tool length offset", "coolant", "cycle time (estimate)"):
         assert f"<td>{label}</td>" in setup
+    # issue 47: the blank's size (the sample's [stock] Ø125 bar, the cam's 12 mm) and [cam] material
+    assert "<td>blank</td><td>round blank Ø125 mm, centred on the cam axis, 12 mm thick</td>" in setup
+    assert "<td>material</td><td>C45 steel</td>" in setup
     assert "H1 (G43 in the program)" in setup and "flute length ≥ 12 mm" in setup
     # the passes table, in cutting order: roughing from the blank, then finish and spring at full depth
     rows = re.findall(r"<tr><td>(\d+/\d+)</td><td>(\w+)</td><td>profile</td><td>([-\d.]+)</td>", setup)
@@ -107,6 +110,58 @@ def _lost(html_file: Path, pdf: Path) -> dict:
 def _print(html: Path, pdf: Path) -> None:
     subprocess.run(["timeout", "120", "chromium", "--headless", "--no-sandbox", "--disable-gpu", "--no-pdf-header-footer",
                     f"--print-to-pdf={pdf}", html.as_uri()], capture_output=True, timeout=150, check=True)
+
+
+def _page_texts(pdf: Path) -> list[str]:
+    pages = int(re.search(r"Pages:\s+(\d+)", subprocess.run(["pdfinfo", str(pdf)], capture_output=True, text=True,
+                                                             check=True, timeout=60).stdout).group(1))
+    return [subprocess.run(["pdftotext", "-layout", "-f", str(i), "-l", str(i), str(pdf), "-"], capture_output=True,
+                           text=True, check=True, timeout=60).stdout for i in range(1, pages + 1)]
+
+
+def _ink_bottom(pdf: Path, tmp_path: Path) -> list[float]:
+    """Per page, how far down the page (0 top, 1 bottom edge) the lowest printed pixel lies (poppler's pdftoppm)."""
+    import numpy as np
+
+    subprocess.run(["pdftoppm", "-gray", "-r", "20", str(pdf), str(tmp_path / "ink")], check=True, timeout=60)
+    out = []
+    for f in sorted(tmp_path.glob("ink-*.pgm"), key=lambda p: int(p.stem.split("-")[1])):
+        head, data = f.read_bytes(), None
+        w, h = map(int, head.split(b"\n")[1].split())  # P5 / width height / 255 / pixels, as pdftoppm writes it
+        data = np.frombuffer(head[-w * h:], dtype=np.uint8).reshape(h, w)
+        rows = np.nonzero((data < 200).any(axis=1))[0]
+        out.append((rows.max() + 1) / h if len(rows) else 0.0)
+    return out
+
+
+def _check_printed_sheet(html_file: Path, pdf: Path, tmp_path: Path) -> list[str]:
+    """Issue 47: the setup sheet (verdict + setup) is page 1 alone; no later page is (almost) blank."""
+    _print(html_file, pdf)
+    pages = _page_texts(pdf)
+    first = pages[0]
+    assert first.index("PASS" if "PASS" in first else "WARN") < first.index("Setup") < first.index("cycle time")
+    assert "plan" in first  # the passes table's header: the last block of the setup ends on page 1
+    assert pages[1].lstrip().startswith("Job")  # the rest starts on page 2, not under the sheet
+    # (almost) no text: under 100 printed characters (a figure's caption alone has over 100)
+    assert all(len(re.sub(r"\s", "", t)) >= 100 for t in pages), [len(re.sub(r"\s", "", t)) for t in pages]
+    # a page the next block skipped (a figure moved on whole) would end in its top half: every page but the
+    # last is printed below its middle (the bottom margin is 12 mm of 297, so a full page reaches ~0.96)
+    bottoms = _ink_bottom(pdf, tmp_path)
+    assert len(bottoms) == len(pages) and all(b > 0.5 for b in bottoms[:-1]), bottoms
+    return pages
+
+
+@pytest.mark.skipif(shutil.which("chromium") is None or shutil.which("pdftotext") is None,
+                    reason="chromium or poppler-utils (pdftotext, pdfinfo) missing")
+def test_printed_setup_sheet_is_page_one_and_no_page_is_blank(run_dir, tmp_path):
+    pages = _check_printed_sheet(run_dir / "disc-translating-roller-report.html", tmp_path / "disc.pdf", tmp_path)
+    # the whole report is not one page: the inspection table's 36 rows, four plots and the program's first
+    # 24 lines need six; the sheet is one, the rest follows without forced breaks
+    assert len(pages) <= 6, len(pages)
+    barrel = tmp_path / "barrel"
+    assert main(["run", str(ROOT / "samples" / "cylindrical-translating.toml"), "-o", str(barrel)]) == 0
+    assert len(_check_printed_sheet(barrel / "cylindrical-translating-report.html", tmp_path / "barrel.pdf",
+                                    tmp_path / "barrel")) <= 4
 
 
 @pytest.mark.skipif(shutil.which("chromium") is None or shutil.which("pdftotext") is None,
