@@ -128,6 +128,8 @@ class MachiningSpec:
     accept_out_of_tolerance: bool = False
     setup: ProgramSetup = ProgramSetup()
     flute_length_mm: float = 0.0  # the tool's cutting length (barrel cams' 3-D check)
+    holder_diameter_mm: float | None = None  # the tool holder's diameter (with stick_out_mm: the holder check)
+    stick_out_mm: float | None = None  # tool tip to the holder's face
     a_axis: str = "right-hand"  # barrel cams: a positive A turns the part by the right-hand rule about +X
     axes: int = 3  # 3 (disc), 4 (barrel: X A) or 5 (barrel, oscillating roller: X Y Z A B, tool on the roller axis)
     stepover: float = 0.4

@@ -86,7 +86,9 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
         ("work offset", f"{setup.work_offset}: {offset_words}"),
         ("tool", f"T{tool}, Ø{r.tool_diameter_mm:g} mm flat end mill, "
                  + (flute_text(r.reach) if r.reach is not None
-                    else f"flute length ≥ {depth:g} mm (deepest pass {depth:g} mm below the top)")),
+                    else f"flute length ≥ {depth:g} mm (deepest pass {depth:g} mm below the top)")
+                 + (f"; holder Ø{machining.holder_diameter_mm:g} mm at stick-out {machining.stick_out_mm:g} mm "
+                    f"(clear of the blank at every move)" if machining.stick_out_mm is not None else "")),
         ("tool length offset", post.length_offset_text(tool)),
         ("spindle", f"{spindle_rpm:g} rev/min clockwise"),
         ("coolant", f"{setup.coolant} ({post.coolant_word(setup.coolant)} on, {post.coolant_off} off)"),

@@ -14,6 +14,8 @@ work_offset = "G54"        # G54 … G59, printed in the post's words
 coolant = "flood"          # "flood", "mist" or "off"
 program_number = 1234      # only for posts that print one (Fanuc, Haas)
 flute_length = 32.0        # mm, the tool's cutting length (default: twice its diameter)
+holder_diameter = 40.0     # mm, the tool holder (with stick_out: every move is checked to keep it off the blank)
+stick_out = 45.0           # mm, the tool tip to the holder's face
 a_axis = "right-hand"      # barrel cams: a positive A turns the part by the right-hand rule about +X
                            # ("left-hand": the machine's positive A turns the part the other way)
 accept_out_of_tolerance = false  # true: a FAIL verdict only warns (exit 0)
@@ -142,6 +144,12 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
     accept = t.boolean("accept_out_of_tolerance", False)
     flute = t.number("flute_length", 2.0 * tool, minimum=0.0, inclusive=False, unit="mm")
     a_axis = t.string("a_axis", "right-hand", choices=("right-hand", "left-hand"))
+    holder = t.number("holder_diameter", None, minimum=0.0, inclusive=False, unit="mm")
+    stick_out = t.number("stick_out", None, minimum=0.0, inclusive=False, unit="mm")
+    for key, given, other in (("holder_diameter", holder, "stick_out"), ("stick_out", stick_out, "holder_diameter")):
+        if given is not None:
+            t.check(key, holder is not None and stick_out is not None,
+                    f"{given:g} mm needs [machining] {other} too: the holder is checked against the blank with both")
     axes = default_axes(cam_kind, follower_kind)
     if t.has("axes"):
         if cam_kind != "cylindrical":
@@ -170,4 +178,5 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
                          safe_z_mm=safe, clearance_z_mm=clearance, lead_radius_mm=lead,
                          finish_allowance_mm=allowance, spring_pass=spring, tool_number=tool_number,
                          accept_out_of_tolerance=accept, setup=setup, flute_length_mm=flute, a_axis=a_axis,
-                         stepover=stepover, ramp_angle_deg=ramp, bore=bore, axes=axes)
+                         stepover=stepover, ramp_angle_deg=ramp, bore=bore, axes=axes,
+                         holder_diameter_mm=holder, stick_out_mm=stick_out)

@@ -47,6 +47,7 @@ from camcam.post.readback import read_poses
 from camcam.toolpath.poses import CylinderTool
 from camcam.verdict import Check
 from camcam.verify.groove_checks import five_axis_check, groove_check
+from camcam.verify.holder import check_holder
 from camcam.verify.reach import ToolReach, tool_reach
 
 if TYPE_CHECKING:
@@ -76,7 +77,14 @@ class JobChecks:
 
 def check_job(result: MachiningResult, built: BuiltCam, m: MachiningSpec, workers: int = 1) -> JobChecks:
     """Every figure of ``result``'s printed program (see the module notes), measured by ``workers`` processes
-    where the work splits (the same figures for any count)."""
+    where the work splits (the same figures for any count).
+
+    Raises
+    ------
+    SpecError
+        The spec's tool holder would hit the blank (:func:`camcam.verify.holder.check_holder`).
+    """
+    check_holder(result, built, m)
     if result.groove_plan is not None:
         return _barrel_checks(result, built, m, workers)
     if result.blank is not None:
