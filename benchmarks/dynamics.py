@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import argparse
 import os
-import resource
 import statistics
 import subprocess
 import sys
@@ -22,18 +21,10 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from speed import timed  # noqa: E402  (a script beside this one: one whole process's wall and CPU seconds)
+
 TARGET = 0.10
-
-
-def _timed(argv: list[str], env: dict) -> tuple[float, float]:
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    r = subprocess.run(argv, capture_output=True, text=True, env=env, cwd=ROOT)
-    wall = time.perf_counter() - t0
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if r.returncode not in (0, 3):
-        raise SystemExit(f"{' '.join(argv)} failed ({r.returncode}): {r.stderr.strip()[-300:]}")
-    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def without_dynamics(spec: Path, out_dir: Path) -> Path:
@@ -79,7 +70,7 @@ def main() -> None:
         for _ in range(args.repeat):
             for k, pair in enumerate(pairs):
                 for j, p in enumerate(pair):
-                    w, c = _timed(cli + [str(p), "-o", str(out / f"o{k}-{j}"), "--force"], env)
+                    w, c = timed(cli + [str(p), "-o", str(out / f"o{k}-{j}"), "--force"], env)
                     wall[p].append(w)
                     cpu[p].append(c)
     print("\n| sample | run s | without [dynamics] s | added s | added share | CPU added s | analyse_dynamics s | met |")

@@ -49,7 +49,7 @@ RUN_LIMITS = {"disc": 1.7, "cylindrical": 2.5}
 FINE_TOLERANCE_MM = 0.001
 
 
-def _timed(argv: list[str], env: dict) -> tuple[float, float]:
+def timed(argv: list[str], env: dict) -> tuple[float, float]:
     """(wall s, CPU s) of one whole process; raises if it fails."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
@@ -114,7 +114,7 @@ def main() -> None:
         cpu: dict[str, list[float]] = {label: [] for label, _, _ in jobs}
         for _ in range(args.repeat):
             for label, _, argv in jobs:
-                w, c = _timed(argv, env)
+                w, c = timed(argv, env)
                 wall[label].append(w)
                 cpu[label].append(c)
     med = {k: statistics.median(v) for k, v in wall.items()}
