@@ -375,3 +375,15 @@ def test_the_tolerance_keeps_one_name():
                         for a in node.args.posonlyargs + node.args.args + node.args.kwonlyargs
                         if a.arg in ("tol", "tol_mm", "tolerance", "delta", "delta_mm")]
     assert not bad, "\n".join(bad)
+
+
+def test_no_test_folder_shadows_the_standard_library():
+    """A folder of tests/ named like a standard-library module shadows it for every script run from tests/
+    (sys.path[0] is the script's folder): tests/inspect/ made numpy's ``import inspect`` load it, and
+    tests/make_sample_checksums.py's runs ended in an internal fault (2026-12-07)."""
+    import sys
+
+    tests = PACKAGE.parent / "tests"
+    bad = sorted(p.name for p in tests.iterdir() if p.is_dir() and p.name in sys.stdlib_module_names)
+    bad += sorted(p.stem for p in tests.glob("*.py") if p.stem in sys.stdlib_module_names)
+    assert not bad, bad

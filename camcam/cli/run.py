@@ -93,7 +93,7 @@ def run(args) -> int:
                 print(f"NC: {c['line_blocks']} line + {c['arc_blocks']} arc blocks (lower bound {c['lower_bound_blocks']:.1f}), "
                       f"{what} {c['max_deviation_mm']:.4f} mm of {c['tolerance_mm']:g} mm{where} on the printed program")
                 if "cycle_time" in c["machining"]:
-                    from camcam.post.timing import CycleTime
+                    from camcam.verify.cycle_time import CycleTime
 
                     ct = {k: v for k, v in c["machining"]["cycle_time"].items() if k != "total_s"}
                     print(f"cycle time {CycleTime(**ct).describe()}, rapids at "

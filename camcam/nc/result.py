@@ -12,7 +12,7 @@ from camcam.toolpath.path import Pass, Toolpath
 from camcam.verdict import Check
 
 if TYPE_CHECKING:  # what camcam.verify measures on the printed program (camcam.verify.job_checks)
-    from camcam.post.timing import CycleTime
+    from camcam.verify.cycle_time import CycleTime
     from camcam.verify.groove3d import GrooveMeasurement
     from camcam.verify.reach import ToolReach
     from camcam.verify.removal import RemovalReport
@@ -29,7 +29,13 @@ class Program:
     line_blocks: int
     arc_blocks: int
     rapid_blocks: int
-    cycle_time: CycleTime | None = None  # the writer's estimate (:mod:`camcam.post.timing`)
+    #: every move as printed, in order: ("rapid", start, end), ("line", start, end, feed mm/min, A0°, A1°),
+    #: ("inverse", start, end, F 1/min, A0°, A1°), ("arc", start, end, centre, ccw, feed mm/min),
+    #: ("tool change", seconds); positions in mm from the printed numbers (:mod:`camcam.post.gcode`)
+    printed_moves: tuple = ()
+    #: the cycle time of the printed moves (:func:`camcam.verify.cycle_time.cycle_time`), set by the job's
+    #: checks (:func:`camcam.verify.with_checks`)
+    cycle_time: CycleTime | None = None
 
 
 def deviation_checks(contours, tolerance_mm: float) -> tuple[Check, ...]:

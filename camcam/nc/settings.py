@@ -90,6 +90,7 @@ class PostDialect(Protocol):
     inverse_time: bool
     five_axis: bool  # has tool-centre-point control (5-axis programs)
     five_axis_feed_note: str  # what the F word of a 5-axis move means (header comment of a 5-axis program)
+    rapid_mm_min: float  # the rapid traverse rate the cycle time assumes
 
     def tcp_comment(self, tool_number: int) -> str:
         """The blocks that switch tool-centre-point control on (header comment of a 5-axis program)."""

@@ -4,8 +4,9 @@ Coordinates are printed from integers on the 10^−d grid, so the same input
 gives the same bytes.  After the post's header come the generator line
 (camcam's version and the spec's file name, no date), the work offset, the
 tool length offset and coolant on (:class:`~camcam.nc.settings.ProgramSetup`);
-coolant off precedes the footer.  The writer times every move it prints
-(:mod:`camcam.post.timing`).  Arcs print X/Y and I/J (incremental or absolute) or R,
+coolant off precedes the footer.  The writer records every move it prints,
+from the printed numbers (``Program.printed_moves``, timed by
+:mod:`camcam.verify.cycle_time`).  Arcs print X/Y and I/J (incremental or absolute) or R,
 or Heidenhain's CC/C pair.  A 4-axis path (``rotary``) is printed in inverse
 time (G93): every feed move carries F = feed / move length (1/min).  A 5-axis
 path (``five_axis``: X Y Z = tool tip, A, B) sits between the post's
@@ -23,7 +24,6 @@ from camcam.errors import InputError, PostError
 from camcam.nc.result import Program
 from camcam import __version__
 from camcam.nc.settings import ProgramSetup
-from camcam.post.timing import MoveTimer
 from camcam.post.template import parse_template
 from camcam.post.text import encode_comment
 from camcam.toolpath.arcsweep import printed_sweep_rad
@@ -74,7 +74,7 @@ class _Writer:
         self.feed = None
         self.counts = {"line": 0, "arc": 0, "rapid": 0}
         self.count = post.quantizer.count
-        self.timer = MoveTimer(post.rapid_mm_min)
+        self.log: list[tuple] = []  # the moves as printed (Program.printed_moves)
 
     def where(self) -> tuple[float, float, float]:
         """The printed position in mm (an axis never stated counts as 0, as rs274 starts)."""
@@ -141,7 +141,7 @@ class _Writer:
             if w:
                 self.emit("G0 " + " ".join(w))
                 self.counts["rapid"] += 1
-                self.timer.rapid(before, self.where())
+                self.log.append(("rapid", before, self.where()))
             return
         if isinstance(m, Feed):
             w = self.axes(m.x, m.y, m.z) + self.rotary_words(m)
@@ -150,12 +150,12 @@ class _Writer:
             if rotary:
                 inv = m.feed_mm_min / max(m.length_mm, 10.0**-d)
                 w.append(self.f_word(inv))
-                self.timer.inverse_time(before, self.where(), self.per_mm(self.count(inv)), a_before, self.a_now())
+                self.log.append(("inverse", before, self.where(), self.per_mm(self.count(inv)), a_before, self.a_now()))
             else:
                 if m.feed_mm_min != self.feed:
                     w.append(self.f_word(m.feed_mm_min))
                     self.feed = m.feed_mm_min
-                self.timer.line(before, self.where(), self.per_mm(self.count(m.feed_mm_min)))
+                self.log.append(("line", before, self.where(), self.per_mm(self.count(m.feed_mm_min)), 0.0, 0.0))
             self.emit("G1 " + " ".join(w))
             self.counts["line"] += 1
             return
@@ -175,8 +175,8 @@ class _Writer:
         if m.feed_mm_min != self.feed:
             w.append(self.f_word(m.feed_mm_min))
             self.feed = m.feed_mm_min
-        self.timer.arc(before, self.where(), (self.per_mm(cx), self.per_mm(cy)), m.ccw,
-                       self.per_mm(self.count(m.feed_mm_min)))
+        self.log.append(("arc", before, self.where(), (self.per_mm(cx), self.per_mm(cy)), m.ccw,
+                       self.per_mm(self.count(m.feed_mm_min))))
         self.emit(("G3 " if m.ccw else "G2 ") + " ".join(w))
         self.counts["arc"] += 1
 
@@ -218,8 +218,8 @@ class _Writer:
             self.pos[0], self.pos[1] = ex, ey
             self.emit(f"C X{self.n(ex, True)} Y{self.n(ey, True)} DR{'+' if m.ccw else '-'} R0 {self.f_word(m.feed_mm_min)}")
             self.counts["arc"] += 1
-            self.timer.arc(before, self.where(), (self.per_mm(cx), self.per_mm(cy)), m.ccw,
-                           self.per_mm(self.count(m.feed_mm_min)))
+            self.log.append(("arc", before, self.where(), (self.per_mm(cx), self.per_mm(cy)), m.ccw,
+                           self.per_mm(self.count(m.feed_mm_min))))
             return False
         words = []
         for i, (name, v) in enumerate(zip("XYZ", (m.x, m.y, m.z))):
@@ -238,9 +238,9 @@ class _Writer:
         self.emit(f"L {' '.join(words)} R0 {f}" + (f" {first_words}" if first_words else ""))
         self.counts["rapid" if rapid else "line"] += 1
         if rapid:
-            self.timer.rapid(before, self.where())
+            self.log.append(("rapid", before, self.where()))
         else:  # under M128 F is the tool tip's feed along its path in the part (A turning with it)
-            self.timer.line(before, self.where(), self.per_mm(self.count(m.feed_mm_min)), a_before, self.a_now())
+            self.log.append(("line", before, self.where(), self.per_mm(self.count(m.feed_mm_min)), a_before, self.a_now()))
         return True
 
 
@@ -256,8 +256,8 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: P
     G1 X10 F300
     >>> p.text.splitlines()[5:8]
     ['G54', 'G43 H1', 'M8']
-    >>> round(p.cycle_time.total_s, 4)  # 10 s tool change + 5 mm rapid at 5 m/min + 10 mm at 300 mm/min
-    12.06
+    >>> [m[0] for m in p.printed_moves]  # timed by camcam.verify.cycle_time
+    ['tool change', 'rapid', 'line']
     """
     if toolpath.five_axis and not post.five_axis:
         raise InputError(f"post {post.name}: has no 5-axis mode (tool-centre-point control); use axes = 4 "
@@ -289,7 +289,7 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: P
         body += lines((post.tool_length_offset,))
     coolant_on, coolant_off = post.coolant_word(setup.coolant), post.coolant_off
     if post.tool_change:
-        w.timer.tool_change(post.tool_change_s)
+        w.log.append(("tool change", post.tool_change_s))
     tcp_on = lines(post.tcp_on) if toolpath.five_axis else []
     tcp_off = lines(post.tcp_off) if toolpath.five_axis else []
     if post.dialect == "heidenhain":
@@ -330,4 +330,4 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: P
             out.append(line)
     return Program(text="\n".join(out) + "\n", extension=post.extension, line_blocks=w.counts["line"],
                    arc_blocks=w.counts["arc"], rapid_blocks=w.counts["rapid"],
-                   cycle_time=w.timer.result())
+                   printed_moves=tuple(w.log))

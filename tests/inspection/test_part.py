@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 
 from camcam.errors import InputError
 from camcam.inspect import parse_measured
-from tests.inspect.conftest import (BUMP, NOISE, ROTATION, SHIFT, TOLERANCE, defect_for, inspect, make_part)
+from tests.inspection.conftest import (BUMP, NOISE, ROTATION, SHIFT, TOLERANCE, defect_for, inspect, make_part)
 
 KINDS = ("cmm", "dial", "barrel")
 MODES = ("none", "rotation", "rigid")
@@ -142,7 +142,7 @@ def test_kind_must_match_the_cam():
         inspect("barrel", part, "none")
     dial, _ = make_part("dial", defect_for("none"), seed=7)
     with pytest.raises(InputError, match="--probe-radius"):
-        from tests.inspect.conftest import built
+        from tests.inspection.conftest import built
         from camcam.inspect import InspectOptions, inspect_part
         spec, prog, b = built("disc-translating-roller.toml")
         inspect_part(b, spec.cam, spec.follower, prog, dial, InspectOptions(tolerance_mm=TOLERANCE))

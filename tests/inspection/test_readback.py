@@ -9,7 +9,7 @@ from camcam.inspect import InspectOptions, MeasuredPart, inspect_part
 from camcam.nc import machine_program
 from camcam.toolpath.elements import element_points
 from camcam.toolpath.outline import part_outline
-from tests.inspect.conftest import built
+from tests.inspection.conftest import built
 
 #: Points every 0.05 mm along the outline: between two of them the deviation (a smooth function along an
 #: element, whose second derivative is at most the curvature difference of element and profile, < 1/5 mm⁻¹

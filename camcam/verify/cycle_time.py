@@ -1,12 +1,14 @@
 """Cycle time of a printed program: the sum of its moves at the rates the program states.
 
-Every move is timed from the numbers as printed (the controller's view):
+The writer records every move it prints, from the printed numbers
+(``Program.printed_moves``, :mod:`camcam.post.gcode`); :func:`cycle_time` times
+them here, as the controller reads them:
 
-* a feed move (``G1``/``G2``/``G3``, Heidenhain ``L``/``C`` with F) takes its
-  path length over the modal feed; an arc's length is r · sweep (helical: the
-  hypotenuse with the Z travel); a move that turns A (Heidenhain's 5-axis ``L``
-  under M128, whose F is the tool tip's feed) is as long as the tip's path in
-  the part, which turns with A (:func:`part_path_mm`);
+* a feed move (a line or an arc with F, in any dialect) takes its path length
+  over the modal feed; an arc's length is r · sweep (helical: the hypotenuse
+  with the Z travel); a move that turns A at a tool-tip feed (a 5-axis line of
+  a dialect without inverse time, under tool-centre-point control) is as long
+  as the tip's path in the part, which turns with A (:func:`part_path_mm`);
 * an inverse-time move (``G93``, every 4- and 5-axis move of the G-code posts)
   takes 1/F minutes, F as printed (rs274's canonical feed rates say the same:
   the move's XYZ length × F), and its length counts the tip's path in the part;
@@ -22,6 +24,10 @@ first move) is taken as the work zero, as LinuxCNC's interpreter does.
 
 Examples
 --------
+>>> moves = (("tool change", 10.0), ("rapid", (0.0, 0.0, 0.0), (0.0, 0.0, 5.0)),
+...          ("line", (0.0, 0.0, 5.0), (10.0, 0.0, 5.0), 300.0, 0.0, 0.0))
+>>> round(cycle_time(moves, rapid_mm_min=5000.0).total_s, 4)  # 10 s + 5 mm at 5 m/min + 10 mm at 300 mm/min
+12.06
 >>> t = CycleTime(feed_s=60.0, rapid_s=3.0, tool_change_s=10.0, feed_mm=400.0, rapid_mm=250.0, moves=5)
 >>> t.total_s
 73.0
@@ -34,7 +40,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["CycleTime", "MoveTimer", "part_path_mm"]
+__all__ = ["CycleTime", "MoveTimer", "cycle_time", "part_path_mm"]
 
 #: Simpson intervals of a move's tip path in the part (even).
 PATH_INTERVALS = 16
@@ -101,7 +107,7 @@ class CycleTime:
 
 
 class MoveTimer:
-    """Accumulates move times as the writer prints them (positions in mm, as printed)."""
+    """Accumulates move times, one printed move after the other (positions in mm, as printed)."""
 
     def __init__(self, rapid_mm_min: float):
         self.rapid_mm_min = rapid_mm_min
@@ -146,3 +152,14 @@ class MoveTimer:
     def result(self) -> CycleTime:
         return CycleTime(feed_s=60.0 * self.feed_min, rapid_s=60.0 * self.rapid_min, tool_change_s=self.tool_change_s,
                          feed_mm=self.feed_mm, rapid_mm=self.rapid_mm, moves=self.moves)
+
+
+def cycle_time(printed_moves, rapid_mm_min: float) -> CycleTime:
+    """The cycle time of ``printed_moves`` (``Program.printed_moves``: the moves as the writer printed them, in
+    order), rapids at ``rapid_mm_min`` (the post's)."""
+    timer = MoveTimer(rapid_mm_min)
+    timed = {"rapid": timer.rapid, "line": timer.line, "inverse": timer.inverse_time, "arc": timer.arc,
+             "tool change": timer.tool_change}
+    for kind, *args in printed_moves:
+        timed[kind](*args)
+    return timer.result()
