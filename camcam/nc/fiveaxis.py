@@ -58,7 +58,7 @@ from camcam.toolpath.budget import DEFAULT_FIVE_AXIS_BUDGET, FiveAxisBudget
 from camcam.toolpath.contours import CutContour, SegmentBlocks
 from camcam.toolpath.deviation import Deviation
 from camcam.toolpath.elements import Line
-from camcam.toolpath.path import Feed, Pass, Rapid, Toolpath, depth_levels
+from camcam.toolpath.path import Feed, Pass, Rapid, Toolpath, depth_levels, shortest_rotation
 from camcam.toolpath.quantizer import Quantizer
 
 __all__ = ["ToolPose", "FivePath", "fit_five_axis", "machine_five_axis", "frame_comments", "tool_axis", "part_pose"]
@@ -352,8 +352,10 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int
     # highest.  Its Z is the lowest tip Z it prints (issue 43: the table said the final pass's tip radius less
     # the raise, so the first pass read 5.57 mm below the last where the program cuts it 5.57 mm above)
     raises = [(n - 1 - k) * step for k in range(n)]
-    passes = with_markers(tuple(Pass(0, "slot", _lowest_tip_z(nodes, h, post.quantizer),
-                                     tuple(_pass_moves(nodes, h, m, outer, r_t))) for h in raises), [LABEL])
+    passes = tuple(Pass(0, "slot", _lowest_tip_z(nodes, h, post.quantizer), tuple(_pass_moves(nodes, h, m, outer, r_t)))
+                   for h in raises)
+    # A turns back in a G0 at the safe height, or counts on where the controller has no rotary G0 (issue 47)
+    passes = with_markers(passes if post.rotary_rapid else shortest_rotation(passes), [LABEL])
     comments = frame_comments(m.a_axis, pose.sign, post.tcp_comment(m.tool_number)) + (
         f"tool D{m.tool_diameter_mm:g} flat end mill = the roller; the cut reaches {path.cut_length_mm:.2f} mm "
         f"up the tool from its tip",

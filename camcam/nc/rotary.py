@@ -51,7 +51,7 @@ from camcam.nc.tools import SAME_TOOL_MM, groove_passes
 from camcam.toolpath.budget import DEFAULT_BUDGET, DEFAULT_GROOVE_BUDGET, FitBudget, GrooveBudget
 from camcam.toolpath.contours import CutContour, OffsetCurve, fit_printed
 from camcam.toolpath.elements import Line
-from camcam.toolpath.path import join_toolpaths, rotary_toolpath
+from camcam.toolpath.path import join_toolpaths, rotary_toolpath, shortest_rotation
 from camcam.toolpath.poses import A_AXIS_SENSE
 from camcam.toolpath.quantizer import Quantizer
 
@@ -197,7 +197,7 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
         pts = np.stack([pts[:, 1], turn * pts[:, 0]], axis=-1)  # (x, turn·u): A = turn·θ
         try:
             paths.append(rotary_toolpath(pts, cam.base_radius, cs, title, developed_radius_mm=rho_d,
-                                         contour=k, kind=kind))
+                                         contour=k, kind=kind, rotary_rapid=post.rotary_rapid))
         except InputError as err:
             raise GeometryError(f"{name} {label}: {err}") from None
         contours.append(CutContour(label=label, curve=curve, fit=fit, printed=path, deviation=dev, offset_mm=offset,
@@ -208,8 +208,11 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
                      f"corner",)
     joined = join_toolpaths(title, paths)
     # every pass opens with a comment naming it (pass 1/4: slot, groove centre, Z45.0), as a disc's do
+    # A turns back to each pass's start in a G0 at the safe height, or counts on (the shortest way) where the
+    # controller takes no rotary word in G0 (issue 47)
+    passes = joined.passes if post.rotary_rapid else shortest_rotation(joined.passes)
     toolpath = dataclasses.replace(joined, comments=comments,
-                                   passes=with_markers(joined.passes, [c.label for c in contours]))
+                                   passes=with_markers(passes, [c.label for c in contours]))
     # printed without the 3-D check: camcam.verify.job_checks measures this program and adds its result to the
     # header (the same moves)
     program = post.write_program(toolpath, name, m.setup)

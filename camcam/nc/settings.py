@@ -89,6 +89,7 @@ class PostDialect(Protocol):
     max_arc_sweep_deg: float
     inverse_time: bool
     five_axis: bool  # has tool-centre-point control (5-axis programs)
+    rotary_rapid: bool  # moves its rotary axes in G0 (a barrel pass's A unwind; else the shortest way, A counting on)
     five_axis_feed_note: str  # what the F word of a 5-axis move means (header comment of a 5-axis program)
     rapid_mm_min: float  # the rapid traverse rate the cycle time assumes
 

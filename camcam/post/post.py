@@ -48,6 +48,11 @@ Keys (all required unless a default is given):
 ``coolant_off``
 ``rapid_mm_min``              rapid traverse rate for the cycle-time estimate (default 5000)
 ``tool_change_s``             seconds per tool change for the estimate (default 10)
+``rotary_rapid``              the controller moves its rotary axes in G0 (default true): a
+                              barrel program turns A back to each pass's start in a G0 at
+                              the safe height; false: A never turns back, each pass starts
+                              at the equivalent (mod 360) of its start angle nearest where
+                              the last one ended (the shortest way, A counting on)
 ============================  =====================================================
 
 Text that reaches the program goes through the post's comment encoder
@@ -132,6 +137,7 @@ class Post:
     coolant_off: str = "M9"
     rapid_mm_min: float = 5000.0
     tool_change_s: float = 10.0
+    rotary_rapid: bool = True
 
     @property
     def uses_program_number(self) -> bool:
@@ -215,7 +221,8 @@ def parse_post(data: dict, name: str) -> Post:
              "line_number_step": int, "max_line_number": int, "comment": str, "tool_change": bool, "inverse_time": bool,
              "header": list, "footer": list, "program_number": int, "five_axis": bool, "tcp_on": list,
              "tcp_off": list, "tool_length_offset": str, "work_offsets": list, "coolant_flood": str,
-             "coolant_mist": str, "coolant_off": str, "rapid_mm_min": (int, float), "tool_change_s": (int, float)}
+             "coolant_mist": str, "coolant_off": str, "rapid_mm_min": (int, float), "tool_change_s": (int, float),
+             "rotary_rapid": bool}
     required = {"description", "extension", "units", "decimals", "arc_format", "max_arc_sweep_deg", "header", "footer"}
     for key in data:
         if key not in types:

@@ -10,7 +10,7 @@ the A axis for 4-axis cylindrical cams (inverse-time feeds are the writer's job)
 from __future__ import annotations
 
 import math
-from dataclasses import KW_ONLY, dataclass
+from dataclasses import KW_ONLY, dataclass, replace
 
 import numpy as np
 
@@ -19,7 +19,7 @@ from camcam.toolpath.elements import Arc, Line, element_tangent
 
 __all__ = ["Rapid", "Feed", "ArcMove", "Comment", "Pass", "PASS_KINDS", "Toolpath", "CutSettings", "contour_toolpath",
            "offset_elements", "rotary_toolpath", "slot_toolpath", "depth_levels", "join_toolpaths",
-           "lead_pass_moves", "contour_moves"]
+           "lead_pass_moves", "contour_moves", "shortest_rotation"]
 
 
 @dataclass(frozen=True)
@@ -153,6 +153,30 @@ def join_toolpaths(title: str, paths) -> Toolpath:
     return Toolpath(title, passes, first.spindle_rpm, tool_number=first.tool_number,
                     tool_diameter_mm=first.tool_diameter_mm, rotary=first.rotary,
                     comments=comments, opening=first.opening, closing=paths[-1].closing)
+
+
+def shortest_rotation(passes) -> tuple:
+    """Rotary ``passes`` with A counting on: each pass's A words shifted by the whole turns that put its first
+    A nearest to where the last pass left A, so that no move turns A back (for a controller that takes no
+    rotary word in G0, :attr:`camcam.post.post.Post.rotary_rapid`).  A pass's rapids keep no A word.
+
+    Examples
+    --------
+    >>> one = Pass(0, "slot", 40.0, (Rapid(20.0, 0.0, None), Feed(None, None, 40.0, 50.0, a_deg=0.0),
+    ...                              Feed(20.0, None, 40.0, 300.0, a_deg=360.0), Rapid(None, None, 75.0)))
+    >>> [m.a_deg for p in shortest_rotation((one, one)) for m in p.moves if isinstance(m, Feed)]
+    [0.0, 360.0, 360.0, 720.0]
+    """
+    out, last = [], None
+    for p in passes:
+        first = next((m.a_deg for m in p.moves if getattr(m, "a_deg", None) is not None), None)
+        shift = 0.0 if last is None or first is None else 360.0 * round((last - first) / 360.0)
+        moves = tuple(replace(m, a_deg=None) if isinstance(m, Rapid) else
+                      replace(m, a_deg=m.a_deg + shift) if getattr(m, "a_deg", None) is not None else m
+                      for m in p.moves)
+        out.append(replace(p, moves=moves))
+        last = next((m.a_deg for m in reversed(moves) if getattr(m, "a_deg", None) is not None), last)
+    return tuple(out)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -356,13 +380,19 @@ def contour_toolpath(elements, cs: CutSettings, title: str = "camcam", contour: 
 
 
 def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "camcam",
-                    developed_radius_mm: float | None = None, contour: int = 0, kind: str = "slot") -> Toolpath:
+                    developed_radius_mm: float | None = None, contour: int = 0, kind: str = "slot",
+                    rotary_rapid: bool = True) -> Toolpath:
     """4-axis moves from a developed polyline: x stays X, y/radius becomes A (degrees).
 
     ``points_xy`` is (n, 2) on the developed plane at ``developed_radius_mm``
     (default ``radius_mm``; y = arc length there); each pass is one ``G1 X A``
     move per chord at the pass depth (Z = radius − depth from the axis, the
     blank's surface at ``radius_mm``); inverse-time lengths are the developed chords.
+
+    A pass opens at the safe height with a rapid over its start, A turning there in the same G0
+    (``rotary_rapid``; else A is left where it is: :func:`shortest_rotation`), a rapid down to
+    the clearance plane and the plunge at the plunge feed (issue 47: the unwind from the last
+    pass's A360 was a 10 s feed move, ``G1 Z52 A0 F6``).
     """
     pts = np.asarray(points_xy, float)
     if radius_mm <= 0:
@@ -376,8 +406,9 @@ def rotary_toolpath(points_xy, radius_mm: float, cs: CutSettings, title: str = "
     plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
     passes = []
     for z in levels:
-        moves = [Rapid(float(pts[0, 0]), 0.0, None),  # Y0: the tool axis through the cam axis
-                 Feed(None, None, radius_mm + cs.clearance_z_mm, plunge, a_deg=float(a[0]), length_mm=cs.safe_z_mm),
+        moves = [Rapid(float(pts[0, 0]), 0.0, None,  # Y0: the tool axis through the cam axis
+                       a_deg=float(a[0]) if rotary_rapid else None),
+                 Rapid(None, None, radius_mm + cs.clearance_z_mm),
                  Feed(None, None, z, plunge, a_deg=float(a[0]), length_mm=cs.clearance_z_mm + radius_mm - z)]
         for k in range(1, len(pts)):
             moves.append(Feed(float(pts[k, 0]), None, z, cs.feed_mm_min, a_deg=float(a[k]),
