@@ -73,6 +73,9 @@ def run(args) -> int:
             print(f"best: design {b['design']}: {axes}{laws}")
             print(f"  outer radius {e['outer_radius_mm']:.4f} mm, max pressure angle {e['max_pressure_angle_deg']:.4f}°, "
                   f"min radius of curvature {e['min_curvature_radius_mm']:.4f} mm (exact geometry)")
+            if "jump_rpm" in e:
+                jump = "never separates" if e["jump_rpm"] in ("inf", float("inf")) else f"jump speed {e['jump_rpm']:.1f} rpm"
+                print(f"  max contact stress {e['max_contact_stress_mpa']:.2f} MPa, {jump} ([dynamics], as camcam run)")
         for p in written:
             print(f"wrote {p}")
     if result.best is None:

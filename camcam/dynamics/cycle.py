@@ -23,12 +23,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from camcam.dynamics.cyclewise import Sampled, bracket_grid, gauss_span, piece_minimum, section_root
-from camcam.dynamics.forces import (cam_pieces, check_friction, coefficients, contact_length_mm, first_root, forces,
-                                    forces_of, is_grooved)
+from camcam.dynamics.forces import (cam_pieces, check_friction, coefficients, contact_length_mm, first_root,
+                                    follower_lever_m, forces, forces_of, is_grooved, train_terms)
+from camcam.geometry.jetcurve import LiftJet, program_breaks
 from camcam.dynamics.train import DynamicsSpec, contact_modulus_mpa
 from camcam.errors import SpecError
 
-__all__ = ["Dynamics", "analyse_dynamics", "jump_speed", "GRID_STEP_DEG"]
+__all__ = ["Dynamics", "analyse_dynamics", "jump_speed", "program_jump_speed", "GRID_STEP_DEG"]
 
 #: The step of the arrays a :class:`Dynamics` holds (the plot's and the table's), degrees.
 GRID_STEP_DEG = 0.5
@@ -39,16 +40,29 @@ def jump_speed(built, d: DynamicsSpec, grid_coefficients=None) -> tuple[float, f
     ``grid_coefficients``: the coefficients on every piece's :func:`bracket_grid`, when the caller has them."""
     if is_grooved(built):
         return math.inf, math.nan
-    pieces = cam_pieces(built)
-
-    def w(t, i):
-        k = coefficients(built, d, t, i, radii=False)
-        return first_root(k.inertia, k.damping, k.static)
-
     sampled = None
     if grid_coefficients is not None:
         sampled = Sampled([k.theta for k in grid_coefficients],
                           [first_root(k.inertia, k.damping, k.static) for k in grid_coefficients])
+    return program_jump_speed(built.cam.program, d, follower_lever_m(built, d), cam_pieces(built), sampled)
+
+
+def program_jump_speed(program, d: DynamicsSpec, lever_m: float, pieces=None, sampled=None) -> tuple[float, float]:
+    """:func:`jump_speed` of an open cam from its motion program alone: the separation speed depends on the
+    lift, the train and the lever w, not on the cam's size (the contact force is Q times a positive gain).
+    ``pieces``: the motion segments in rad (default :func:`~camcam.geometry.jetcurve.program_breaks`); the
+    sizing sweep's per-design jump speed (:mod:`camcam.sizing.contact`)."""
+    osc = program.unit == "deg"
+    jet = LiftJet(program, math.pi / 180.0 if osc else 1e-3)
+    if pieces is None:
+        br = program_breaks(program)
+        pieces = list(zip(br[:-1], br[1:]))
+
+    def w(t, i):
+        q = jet(t, 2, i)
+        a, b, c, _, _ = train_terms(d, osc, lever_m, t, q.d[0], q.d[1], q.d[2])
+        return first_root(a, b, c)
+
     omega, theta, _ = piece_minimum(w, pieces, sampled)
     return omega, theta
 

@@ -55,7 +55,7 @@ from camcam.geometry.analysis import convex_curvature, flat_radius
 from camcam.geometry.jetcurve import LiftJet
 
 __all__ = ["Coefficients", "coefficients", "Forces", "forces", "forces_of", "hertz_line_mpa", "check_friction", "first_root", "is_grooved", "cam_pieces",
-           "external_load", "damping_coefficient", "follower_lever_m", "contact_length_mm", "lift_flank"]
+           "external_load", "damping_coefficient", "damping_of", "train_terms", "follower_lever_m", "contact_length_mm", "lift_flank"]
 
 
 def is_grooved(built) -> bool:
@@ -103,14 +103,35 @@ def follower_lever_m(built, d: DynamicsSpec) -> float:
 
 def damping_coefficient(built, d: DynamicsSpec) -> float:
     """c_g: N·s/m (translating) or N·m·s/rad (oscillating, a damper c at the load arm: c·a²)."""
-    w = follower_lever_m(built, d)
+    return damping_of(d, _oscillating(built), follower_lever_m(built, d))
+
+
+def damping_of(d: DynamicsSpec, oscillating: bool, lever_m):
+    """:func:`damping_coefficient` for the lever w (a number, or an array: one per design of a sizing sweep)."""
+    w = lever_m
     if d.damping_n_s_per_m is not None:
         return d.damping_n_s_per_m * w * w
     if d.damping_ratio is not None:
         k = d.spring_rate_n_per_mm * 1000.0 * w * w  # N/m, or N·m/rad at the pivot
-        mass = d.inertia_kgm2 if _oscillating(built) else d.mass_kg
-        return 2.0 * d.damping_ratio * math.sqrt(k * mass)
+        mass = d.inertia_kgm2 if oscillating else d.mass_kg
+        return 2.0 * d.damping_ratio * np.sqrt(k * mass)
     return 0.0
+
+
+def train_terms(d: DynamicsSpec, oscillating: bool, lever_m, theta, q0, q1, q2):
+    """(inertia, damping, static, x mm, F_ext) of Q = inertia·ω² + damping·ω + static at cam angles θ (rad),
+    from the lift q, q′, q″ (m or rad, per rad of cam angle); ``lever_m`` w a number, or an array that
+    broadcasts against q (one per design: the sizing sweep, :mod:`camcam.sizing.contact`)."""
+    w = lever_m
+    if oscillating:
+        x = q0 * w * 1000.0  # the arc at the load arm, mm
+        mass = d.inertia_kgm2
+    else:
+        x = q0 * 1000.0
+        mass = d.mass_kg
+    ext = external_load(d, theta)
+    static = w * (d.preload_n + d.spring_rate_n_per_mm * x + ext)
+    return mass * q2, damping_of(d, oscillating, w) * q1, static, x, ext
 
 
 def external_load(d: DynamicsSpec, theta) -> np.ndarray:
@@ -171,16 +192,7 @@ def coefficients(built, d: DynamicsSpec, theta, piece: int | None = None, radii:
     # the program's own lift (the spring's deflection is counted from lift 0), q in m or rad
     q = LiftJet(program, math.pi / 180.0 if osc else 1e-3)(theta, 2, piece)
     w = follower_lever_m(built, d)
-    if osc:
-        x = q.d[0] * w * 1000.0  # the arc at the load arm, mm
-        mass = d.inertia_kgm2
-    else:
-        x = q.d[0] * 1000.0
-        mass = d.mass_kg
-    ext = external_load(d, theta)
-    static = w * (d.preload_n + d.spring_rate_n_per_mm * x + ext)
-    inertia = mass * q.d[2]
-    damping = damping_coefficient(built, d) * q.d[1]
+    inertia, damping, static, x, ext = train_terms(d, osc, w, theta, q.d[0], q.d[1], q.d[2])
     sg = cam.sigma
     r = cam.roller_radius
     mu = d.friction

@@ -5,6 +5,7 @@ Everything of the sweep is here, in the order it runs:
 - ``samples``: one motion program evaluated once on the cam-angle grid the sweep shares;
 - ``grid``: the designs (swept axes × law choices), numbered and cut in chunks;
 - ``kernels``: the closed-form figures of a block of designs (each follower kind's ``size_figures``);
+- ``contact``: the ``[size]`` dynamics constraints (contact stress, jump speed) with the ``[dynamics]`` train;
 - ``sweep``: the sweep itself (:func:`run_sweep`), on a :mod:`camcam.dask_batch` executor;
 - ``exact_check``: one design's figures by the full geometry, the check of the best candidates;
 - ``chart``: the sizing chart (PNG);

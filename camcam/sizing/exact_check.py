@@ -32,6 +32,10 @@ class ExactFigures:
     undercut: bool
     outer_radius_mm: float
     problem: str = ""
+    # with the [size] dynamics constraints: the figures of `camcam run`'s dynamics stage (analyse_dynamics)
+    max_contact_stress_mpa: float = math.nan
+    jump_rpm: float = math.nan  # inf: never separates
+    dynamics_problem: str = ""  # the one line `camcam run` would stop with (a locked guide, a spring too weak)
 
     @property
     def valid(self) -> bool:
@@ -62,8 +66,11 @@ def outer_radius(cam: DiscCam, per_piece: int = 720) -> float:
     return best
 
 
-def exact_figures(kind: str, program: MotionProgram, params: dict[str, float], rotation: str) -> ExactFigures:
-    """Figures of one design by the full geometry.
+def exact_figures(kind: str, program: MotionProgram, params: dict[str, float], rotation: str,
+                  dynamics=None) -> ExactFigures:
+    """Figures of one design by the full geometry; ``dynamics`` (a
+    (:class:`~camcam.sizing.contact.SweepDynamics`, ``[cam]`` spec) pair) adds the contact stress and the
+    jump speed by :func:`camcam.dynamics.cycle.analyse_dynamics`, as `camcam run` computes them.
 
     Examples
     --------
@@ -90,8 +97,27 @@ def exact_figures(kind: str, program: MotionProgram, params: dict[str, float], r
                             undercut=True, outer_radius_mm=nan)
     an = analyse(cam)
     concave = an.profile.min_concave_radius.value if an.profile.min_concave_radius is not None else math.inf
-    return ExactFigures(max_pressure_angle_deg=an.max_pressure_angle_deg.value,
+    extra = _dynamics_figures(cam, an, params, dynamics) if dynamics is not None else {}
+    return ExactFigures(**extra,max_pressure_angle_deg=an.max_pressure_angle_deg.value,
                         max_pressure_angle_at_deg=an.max_pressure_angle_deg.angle_deg,
                         min_curvature_radius_mm=an.profile.min_radius_mm,
                         min_curvature_radius_at_deg=an.profile.angle_deg, min_concave_radius_mm=concave, undercut=False,
                         outer_radius_mm=outer_radius(cam))
+
+
+def _dynamics_figures(cam: DiscCam, an, params: dict[str, float], dynamics) -> dict:
+    """The contact stress and jump speed of one design, by the dynamics stage of `camcam run`."""
+    from dataclasses import replace
+
+    from camcam.dynamics.cycle import analyse_dynamics
+    from camcam.errors import SpecError
+    from camcam.geometry.build import BuiltCam
+
+    contact, cam_spec = dynamics
+    built = BuiltCam(cam=cam, analysis=an, mesh_parts=None, spec=replace(cam_spec, base_radius=params["base_radius"]))
+    try:
+        dyn = analyse_dynamics(built, contact.rpm, contact.spec)
+    except SpecError as err:
+        return {"max_contact_stress_mpa": math.inf, "jump_rpm": 0.0, "dynamics_problem": str(err)}
+    return {"max_contact_stress_mpa": dyn.max_contact_stress_mpa,
+            "jump_rpm": math.inf if dyn.jump_rpm is None else dyn.jump_rpm}

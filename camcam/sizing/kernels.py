@@ -19,9 +19,12 @@ FIGURES = ("valid", "max_pressure_angle_deg", "min_curvature_radius_mm", "min_co
            "outer_radius_mm", "pressure_angle_bound_deg", "curvature_radius_bound_mm")
 
 
-def block_figures(kind: str, ps: ProgramSamples, sigma: int, params: dict) -> dict:
-    """The figures of one block of designs of follower ``kind``; ``params`` maps axis names to arrays."""
+def block_figures(kind: str, ps: ProgramSamples, sigma: int, params: dict, contact=None) -> dict:
+    """The figures of one block of designs of follower ``kind``; ``params`` maps axis names to arrays;
+    ``contact`` (:class:`camcam.sizing.contact.SweepDynamics`) adds ``max_contact_stress_mpa``."""
     cls = follower_kind(kind)
     if cls.size_axes is None:
         raise ValueError(f"no closed form for a {kind} follower")
-    return cls.size_figures(ps, sigma, params)
+    if contact is None:
+        return cls.size_figures(ps, sigma, params)
+    return cls.size_figures(ps, sigma, params, contact)

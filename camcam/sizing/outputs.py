@@ -68,12 +68,14 @@ def table_bytes(cols: dict[str, np.ndarray], rows: np.ndarray, fmt: str) -> byte
 def _design(result: SizingResult, number: int) -> dict:
     params, laws = result.grid.design(number)
     t = result.table
+    extra = ("max_contact_stress_mpa", "jump_rpm") if _dynamic(result) else ()
     return {
         "design": number,
         **{f"{k}_mm": v for k, v in params.items()},
         "laws": {f"segment {k}": v for k, v in laws.items()},
         "grid": {c: t[c][number] for c in ("max_pressure_angle_deg", "min_curvature_radius_mm", "min_concave_radius_mm",
-                                           "outer_radius_mm", "pressure_angle_bound_deg", "curvature_radius_bound_mm")},
+                                           "outer_radius_mm", "pressure_angle_bound_deg", "curvature_radius_bound_mm",
+                                           *extra)},
     }
 
 
@@ -93,8 +95,17 @@ def _constraints(result: SizingResult) -> list[tuple[str, str]]:
         rows.append(("tool fits every concave part", f"concave radius ≥ tool radius {lim.tool_radius_mm:g} mm"))
     else:
         rows.append(("tool fits every concave part", "not checked ([machining] absent or [size] tool_check = false)"))
+    if lim.max_contact_stress_mpa is not None:
+        rows.append(("max contact stress", f"≤ {lim.max_contact_stress_mpa:g} MPa (Hertz, [dynamics] train at "
+                                           f"{result.programs[0].rpm:g} rpm)"))
+    if lim.min_jump_rpm is not None:
+        rows.append(("min jump speed", f"≥ {lim.min_jump_rpm:g} rpm ([dynamics] train)"))
     rows.append(("objective", "smallest outer radius" if result.objective == "outer-radius" else "smallest max pressure angle"))
     return rows
+
+
+def _dynamic(result: SizingResult) -> bool:
+    return "jump_rpm" in result.table
 
 
 def _fmt(v: float, unit: str, digits: int = 4) -> str:
@@ -150,6 +161,9 @@ def sizing_files(result: SizingResult, spec_data: dict, name: str, table_format:
             "min_curvature_radius_mm": ex.min_curvature_radius_mm, "min_curvature_radius_at_deg": ex.min_curvature_radius_at_deg,
             "min_concave_radius_mm": ex.min_concave_radius_mm, "outer_radius_mm": ex.outer_radius_mm,
         }
+        if _dynamic(result):  # as `camcam run` computes them (camcam.dynamics.cycle.analyse_dynamics)
+            d["exact"]["max_contact_stress_mpa"] = ex.max_contact_stress_mpa
+            d["exact"]["jump_rpm"] = ex.jump_rpm
         d["spec"] = f"{name}-best.toml"
         summary["best"] = d
         params, laws = result.grid.design(b)
@@ -166,18 +180,25 @@ def sizing_files(result: SizingResult, spec_data: dict, name: str, table_format:
             ("max pressure angle", f"{ex.max_pressure_angle_deg:.4f}° at cam angle {ex.max_pressure_angle_at_deg:.2f}°"),
             ("min radius of curvature", f"{ex.min_curvature_radius_mm:.4f} mm at cam angle {ex.min_curvature_radius_at_deg:.2f}°"),
             ("smallest concave radius", _fmt(ex.min_concave_radius_mm, " mm")),
+            *((("max contact stress", _fmt(ex.max_contact_stress_mpa, " MPa", 2)),
+               ("jump speed", "never separates" if ex.jump_rpm == math.inf else _fmt(ex.jump_rpm, " rpm", 1)))
+              if _dynamic(result) else ()),
             ("spec", f"{name}-best.toml (camcam run takes it as is)"),
         ]
     files[f"{name}-best.json"] = to_json(summary) + "\n"
     header = ["#", "design", *[a.replace("_", " ") + " (mm)" for a, _ in result.grid.axes],
               *[f"law seg {k}" for k in result.grid.segments], "outer radius (mm)", "max pressure angle (°)",
               "min radius of curvature (mm)", "smallest concave radius (mm)"]
+    if _dynamic(result):
+        header += ["max contact stress (MPa)", "jump speed (rpm)"]
     rows = []
     for i, number in enumerate(result.ranked[:TOP]):
         params, laws = result.grid.design(int(number))
         rows.append((str(i + 1), str(int(number)), *[f"{params[a]:g}" for a, _ in result.grid.axes], *laws.values(),
                      _fmt(cols["outer_radius_mm"][number], ""), _fmt(cols["max_pressure_angle_deg"][number], ""),
-                     _fmt(cols["min_curvature_radius_mm"][number], ""), _fmt(cols["min_concave_radius_mm"][number], "")))
+                     _fmt(cols["min_curvature_radius_mm"][number], ""), _fmt(cols["min_concave_radius_mm"][number], ""),
+                     *((_fmt(cols["max_contact_stress_mpa"][number], "", 2), _fmt(cols["jump_rpm"][number], "", 1))
+                       if _dynamic(result) else ())))
     verdict = (f"{n:,} designs, {result.ranked.size:,} feasible on the grid; best: design {result.best}"
                if result.best is not None else f"{n:,} designs, none meets every constraint")
     sections = [

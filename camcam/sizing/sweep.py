@@ -27,7 +27,7 @@ True
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -36,13 +36,15 @@ from camcam.geometry.disc import SIGMA
 from camcam.motion.catalog import make_law
 from camcam.motion.program import MotionProgram
 from camcam.dask_batch.engine import Executor
+from camcam.sizing.contact import SweepDynamics
 from camcam.sizing.exact_check import ExactFigures, exact_figures
 from camcam.sizing.grid import Chunk, DesignGrid
 from camcam.sizing.kernels import FIGURES, block_figures
 from camcam.sizing.samples import ProgramSamples, sample_program
 from camcam.spec.size import SizeSpec
 
-__all__ = ["SweepContext", "Limits", "SizingResult", "evaluate_chunk", "run_sweep", "combo_program", "MAX_EXACT_CHECKS"]
+__all__ = ["SweepContext", "Limits", "SizingResult", "evaluate_chunk", "run_sweep", "combo_program", "MAX_EXACT_CHECKS",
+           "LIMIT_RTOL"]
 
 #: Exact checks (each a full analysis, ~1 s) before the search for the best gives up.
 MAX_EXACT_CHECKS = 60
@@ -54,6 +56,9 @@ TIE = 1e-9
 #: analyses (~1e-14), so that a limit met with equality (ρ = R_b on a dwell) is met.
 LIMIT_ATOL = 1e-9
 
+#: The dynamics limits (MPa, rpm) are met within this, relative: the float noise of their chains (~1e-15).
+LIMIT_RTOL = 1e-9
+
 
 @dataclass(frozen=True)
 class SweepContext:
@@ -63,6 +68,7 @@ class SweepContext:
     sigma: int
     grid: DesignGrid
     samples: tuple[ProgramSamples, ...]
+    contact: SweepDynamics | None = field(default=None, kw_only=True)  # the [size] dynamics constraints' train
 
 
 #: Designs evaluated together inside a chunk: (32 × ~3600 samples) arrays stay in cache, about
@@ -76,7 +82,7 @@ def evaluate_chunk(chunk: Chunk, ctx: SweepContext) -> dict[str, np.ndarray]:
     parts = []
     for a in range(chunk.start, chunk.stop, BLOCK):
         params = ctx.grid.params(chunk.combo, a, min(a + BLOCK, chunk.stop))
-        parts.append(block_figures(ctx.kind, ctx.samples[chunk.combo], ctx.sigma, params))
+        parts.append(block_figures(ctx.kind, ctx.samples[chunk.combo], ctx.sigma, params, ctx.contact))
     return {k: np.concatenate([p[k] for p in parts]) for k in parts[0]}
 
 
@@ -89,13 +95,24 @@ class Limits:
     min_curvature_radius_rollers: float | None
     tool_radius_mm: float | None
     bore_mm: float = 0.0  # the bore must fit inside the base circle minus the roller (as `camcam run` requires)
+    max_contact_stress_mpa: float | None = None  # with the [dynamics] train at the spec's rpm
+    min_jump_rpm: float | None = None
 
     @classmethod
     def of(cls, size: SizeSpec, bore_mm: float = 0.0) -> "Limits":
         return cls(max_pressure_angle_deg=size.max_pressure_angle_deg,
                    min_curvature_radius_mm=size.min_curvature_radius_mm,
                    min_curvature_radius_rollers=size.min_curvature_radius_rollers, tool_radius_mm=size.tool_radius_mm,
-                   bore_mm=bore_mm)
+                   bore_mm=bore_mm, max_contact_stress_mpa=size.max_contact_stress_mpa, min_jump_rpm=size.min_jump_rpm)
+
+    def stress_ok(self, stress):
+        """Contact stress within its limit; relative 1e-9: the float noise of the Hertz chain (~1e-15), so a
+        limit met with equality is met."""
+        return np.asarray(stress) <= self.max_contact_stress_mpa * (1 + LIMIT_RTOL)
+
+    def jump_ok(self, jump_rpm):
+        """Jump speed at least the limit, relative 1e-9 as :mod:`camcam.dynamics.checks` holds overspeed × rpm."""
+        return np.asarray(jump_rpm) >= self.min_jump_rpm * (1 - LIMIT_RTOL)
 
     def bore_fits(self, base_radius, roller_radius):
         return np.asarray(base_radius) - np.asarray(roller_radius) >= self.bore_mm / 2 - LIMIT_ATOL
@@ -105,7 +122,7 @@ class Limits:
             return self.min_curvature_radius_rollers * np.asarray(roller_radius, float)
         return self.min_curvature_radius_mm
 
-    def feasible(self, valid, undercut, pa, rho, concave, roller_radius, base_radius) -> np.ndarray:
+    def feasible(self, valid, undercut, pa, rho, concave, roller_radius, base_radius, stress=None, jump_rpm=None) -> np.ndarray:
         """Element-wise: every constraint met (NaN figures never are)."""
         with np.errstate(invalid="ignore"):
             ok = np.asarray(valid, bool) & ~np.asarray(undercut, bool) & (np.asarray(rho) > 0)
@@ -115,6 +132,10 @@ class Limits:
             ok &= np.asarray(rho) >= self.curvature_limit(roller_radius) - LIMIT_ATOL
             if self.tool_radius_mm is not None:
                 ok &= np.asarray(concave) >= self.tool_radius_mm - LIMIT_ATOL
+            if self.max_contact_stress_mpa is not None:
+                ok &= self.stress_ok(stress)
+            if self.min_jump_rpm is not None:
+                ok &= self.jump_ok(jump_rpm)
         return ok
 
     def failures(self, ex: ExactFigures, roller_radius: float, base_radius: float = math.inf) -> list[str]:
@@ -133,6 +154,13 @@ class Limits:
             out.append(f"radius of curvature {ex.min_curvature_radius_mm:.4f} mm < {lim:g} mm")
         if self.tool_radius_mm is not None and not ex.min_concave_radius_mm >= self.tool_radius_mm - LIMIT_ATOL:
             out.append(f"smallest concave radius {ex.min_concave_radius_mm:.4f} mm < tool radius {self.tool_radius_mm:g} mm")
+        if (self.max_contact_stress_mpa is not None or self.min_jump_rpm is not None) and ex.dynamics_problem:
+            out.append(ex.dynamics_problem)
+            return out
+        if self.max_contact_stress_mpa is not None and not self.stress_ok(ex.max_contact_stress_mpa):
+            out.append(f"contact stress {ex.max_contact_stress_mpa:.4f} MPa > {self.max_contact_stress_mpa:g} MPa")
+        if self.min_jump_rpm is not None and not self.jump_ok(ex.jump_rpm):
+            out.append(f"jump speed {ex.jump_rpm:.4f} rpm < {self.min_jump_rpm:g} rpm")
         return out
 
 
@@ -173,7 +201,7 @@ def combo_program(motion, unit: str, segments: tuple[int, ...], laws: tuple[str,
     return replace(motion, segments=tuple(segs)).program(unit)
 
 
-def _table(grid: DesignGrid, blocks: list[dict], chunks: list[Chunk], feasible_fn) -> dict[str, np.ndarray]:
+def _table(grid: DesignGrid, blocks: list[dict], chunks: list[Chunk], feasible_fn, jump=None) -> dict[str, np.ndarray]:
     n = len(grid)
     cols: dict[str, np.ndarray] = {"design": np.arange(n)}
     combo_of = np.repeat(np.arange(len(grid.combos)), grid.per_combo)
@@ -182,17 +210,33 @@ def _table(grid: DesignGrid, blocks: list[dict], chunks: list[Chunk], feasible_f
         cols[f"law_segment_{seg}"] = names[combo_of]
     for name, _ in grid.axes:
         cols[f"{name}_mm"] = np.empty(n)
-    for name in FIGURES:
+    figures = FIGURES + (("max_contact_stress_mpa",) if "max_contact_stress_mpa" in blocks[0] else ())
+    for name in figures:
         cols[name] = np.empty(n, bool if name in ("valid", "undercut") else float)
     for chunk, block in zip(chunks, blocks):
         lo = chunk.combo * grid.per_combo + chunk.start
         hi = chunk.combo * grid.per_combo + chunk.stop
         for name, vals in grid.params(chunk.combo, chunk.start, chunk.stop).items():
             cols[f"{name}_mm"][lo:hi] = vals
-        for name in FIGURES:
+        for name in figures:
             cols[name][lo:hi] = block[name]
+    if jump is not None:
+        cols["jump_rpm"] = jump(cols)
     cols["feasible"] = feasible_fn(cols)
     return cols
+
+
+def _jump_column(contact: SweepDynamics, programs, grid: DesignGrid, cols) -> np.ndarray:
+    """Each design's exact jump speed (rpm): one :func:`~camcam.dynamics.cycle.program_jump_speed` per law
+    combination and lever (the arm length, for an oscillating roller without load_arm_mm), spread over the rows."""
+    combo = cols["design"] // grid.per_combo
+    arm = cols["arm_length_mm"] if contact.oscillating and contact.spec.load_arm_mm is None else np.zeros(combo.size)
+    out = np.empty(combo.size)
+    keys = np.stack([combo.astype(float), arm], axis=1)
+    uniq, inverse = np.unique(keys, axis=0, return_inverse=True)
+    values = [contact.jump_rpm(programs[int(c)], a if contact.oscillating else None) for c, a in uniq]
+    out[:] = np.asarray(values)[inverse.ravel()]
+    return out
 
 
 def run_sweep(spec, executor: Executor) -> SizingResult:
@@ -204,7 +248,8 @@ def run_sweep(spec, executor: Executor) -> SizingResult:
         raise SpecError("size", "the sweep is empty")
     programs = tuple(combo_program(spec.motion, spec.unit, grid.segments, c) for c in grid.combos)
     samples = tuple(sample_program(p, size.samples) for p in programs)
-    ctx = SweepContext(kind, SIGMA[rotation], grid, samples)
+    contact = SweepDynamics.of(spec) if size.dynamic else None
+    ctx = SweepContext(kind, SIGMA[rotation], grid, samples, contact=contact)
     chunks = grid.chunks()
     blocks = executor.map(evaluate_chunk, chunks, what=f"{len(grid):,} designs", ctx=ctx)
     limits = Limits.of(size, spec.cam.bore)
@@ -212,9 +257,10 @@ def run_sweep(spec, executor: Executor) -> SizingResult:
     def feasible(c):
         rr = c["roller_radius_mm"] if "roller_radius_mm" in c else np.zeros(len(c["design"]))
         return limits.feasible(c["valid"], c["undercut"], c["max_pressure_angle_deg"], c["min_curvature_radius_mm"],
-                               c["min_concave_radius_mm"], rr, c["base_radius_mm"])
+                               c["min_concave_radius_mm"], rr, c["base_radius_mm"], c.get("max_contact_stress_mpa"),
+                               c.get("jump_rpm"))
 
-    table = _table(grid, blocks, chunks, feasible)
+    table = _table(grid, blocks, chunks, feasible, None if contact is None else lambda c: _jump_column(contact, programs, grid, c))
     obj_col = "outer_radius_mm" if size.objective == "outer-radius" else "max_pressure_angle_deg"
     feas = np.flatnonzero(table["feasible"])
     key_obj = np.round(table[obj_col][feas] / TIE) * TIE
@@ -230,7 +276,7 @@ def run_sweep(spec, executor: Executor) -> SizingResult:
             break
         params, laws = grid.design(int(number))
         combo = int(number) // grid.per_combo
-        ex = exact_figures(kind, programs[combo], params, rotation)
+        ex = exact_figures(kind, programs[combo], params, rotation, contact and (contact, spec.cam))
         checked.append((int(number), ex))
         if limits.failures(ex, params.get("roller_radius", 0.0), params["base_radius"]):
             continue

@@ -20,7 +20,7 @@ from camcam.errors import SpecError
 from camcam.inputs import os_reason, read_limited
 from camcam.spec.reader import Table, fmt
 from camcam.spec.report import DEFAULT_REPORT, ReportSpec, read_report
-from camcam.spec.size import SizeSpec, read_size
+from camcam.spec.size import SizeSpec, check_size_dynamics, read_size
 from camcam.spec.stock import DEFAULT_STOCK, StockSpec, read_stock
 
 if TYPE_CHECKING:
@@ -117,6 +117,8 @@ def parse_spec(data: dict, source: Path) -> Spec:
     size_spec = read_size(size_t, cam, follower, motion_spec, machining_spec) if size_t is not None else None
     dynamics_t = root.table("dynamics", None)
     dynamics = _reader("dynamics", "read_dynamics")(dynamics_t, cam, follower) if dynamics_t is not None else None
+    if size_spec is not None:
+        check_size_dynamics(size_spec, dynamics)
     inspection_t = root.table("inspection", None)
     inspection = _reader("inspection", "read_inspection")(inspection_t) if inspection_t is not None else None
     root.done()

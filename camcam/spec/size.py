@@ -14,7 +14,13 @@ min_curvature_radius_rollers = 0.5 # ... or as a multiple of the roller radius (
 tool_check = true                  # the [machining] tool fits the smallest concave radius
 objective = "outer-radius"         # or "pressure-angle"
 samples = 3600                     # cam-angle samples per revolution for the sweep
+max_contact_stress_mpa = 900       # optional: Hertz stress at [motion] rpm, with the [dynamics] train
+min_jump_rpm = 500                 # optional: the follower stays on the cam up to this speed
 ```
+
+The two dynamics constraints need a ``[dynamics]`` table with a given spring (not ``spring = "size"``);
+the sweep evaluates them per design (:mod:`camcam.sizing.contact`) and the exact check as ``camcam run``
+does.
 
 An axis the table leaves out keeps the value of ``[cam]`` / ``[follower]``.
 The axes of each kind are its ``size_axes`` in the follower registry
@@ -35,7 +41,8 @@ from camcam.geometry.followers import FOLLOWERS, follower_kind
 from camcam.motion.catalog import LAWS
 from camcam.spec.reader import Table, fmt
 
-__all__ = ["SizeAxis", "LawChoice", "SizeSpec", "read_size", "MAX_DESIGNS", "OBJECTIVES", "sized_followers"]
+__all__ = ["SizeAxis", "LawChoice", "SizeSpec", "read_size", "check_size_dynamics", "MAX_DESIGNS", "OBJECTIVES",
+           "sized_followers"]
 
 #: The largest sweep `camcam size` runs: about two minutes on one core at the default
 #: samples; a larger one is almost always a step typed too small.
@@ -79,6 +86,13 @@ class SizeSpec:
     tool_radius_mm: float | None
     objective: str
     samples: int
+    max_contact_stress_mpa: float | None = None  # needs [dynamics] (camcam.sizing.contact)
+    min_jump_rpm: float | None = None
+
+    @property
+    def dynamic(self) -> bool:
+        """A dynamics constraint is given (the sweep needs the [dynamics] train)."""
+        return self.max_contact_stress_mpa is not None or self.min_jump_rpm is not None
 
     @property
     def design_count(self) -> int:
@@ -197,10 +211,25 @@ def read_size(t: Table, cam, follower, motion, machining) -> SizeSpec:
     objective = t.string("objective", "outer-radius", choices=OBJECTIVES)
     t.check("objective", roller or objective != "pressure-angle", "a flat face's pressure angle is zero throughout")
     samples = t.integer("samples", 3600, minimum=360, maximum=100_000)
+    stress = t.number("max_contact_stress_mpa", None, minimum=0.0, maximum=1e5, inclusive=False, unit="MPa")
+    jump = t.number("min_jump_rpm", None, minimum=0.0, maximum=1e6, inclusive=False, unit="rpm")
     t.done()
     spec = SizeSpec(axes=tuple(axes), laws=tuple(sorted(choices, key=lambda c: c.segment)), max_pressure_angle_deg=pa,
                     min_curvature_radius_mm=rho, min_curvature_radius_rollers=rollers, tool_radius_mm=tool,
-                    objective=objective, samples=samples)
+                    objective=objective, samples=samples, max_contact_stress_mpa=stress, min_jump_rpm=jump)
     if spec.design_count > MAX_DESIGNS:
         raise SpecError("size", f"the sweep has {spec.design_count:,} designs; it is capped at {MAX_DESIGNS:,}: use coarser steps")
     return spec
+
+
+def check_size_dynamics(size: SizeSpec, dynamics) -> None:
+    """The dynamics constraints need the ``[dynamics]`` train, with a spring given (one line, exit 2)."""
+    if not size.dynamic:
+        return
+    key = "size.max_contact_stress_mpa" if size.max_contact_stress_mpa is not None else "size.min_jump_rpm"
+    if dynamics is None:
+        raise SpecError(key, "needs a [dynamics] table: the follower's mass or inertia, spring, roller_width_mm "
+                        "and materials give the contact force and the jump speed")
+    if dynamics.size_spring:
+        raise SpecError(key, 'needs a given spring: [dynamics] spring = "size" sizes one per design to hold up to '
+                        "overspeed × rpm; give spring_rate_n_per_mm and preload_n")

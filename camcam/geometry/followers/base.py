@@ -119,8 +119,9 @@ class FollowerKind(ABC):
         raise ValueError(f"no sizing for a {cls.kind} follower")
 
     @staticmethod
-    def size_figures(ps, sigma: int, params: dict) -> dict:
-        """Closed-form figures of a block of designs (:mod:`camcam.sizing.kernels`); a kind without
+    def size_figures(ps, sigma: int, params: dict, contact=None) -> dict:
+        """Closed-form figures of a block of designs (:mod:`camcam.sizing.kernels`; ``contact``: the sweep's
+        dynamics, :class:`camcam.sizing.contact.SweepDynamics`, adds ``max_contact_stress_mpa``); a kind without
         :attr:`size_axes` is never sized, and refuses."""
         raise ValueError("no closed-form sizing kernel for this follower kind")
 

@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["grid_bound", "local_bound", "roller_figures", "blank_invalid"]
+__all__ = ["grid_bound", "local_bound", "roller_figures", "blank", "blank_invalid"]
 
 
 def grid_bound(f: np.ndarray, inner: np.ndarray) -> np.ndarray:
@@ -81,6 +81,11 @@ def roller_figures(kc: np.ndarray, ratio: np.ndarray, rr: np.ndarray, ps, outer:
         "curvature_radius_bound_mm": rho_bound,
     }
     return blank_invalid(out, valid)
+
+
+def blank(v: np.ndarray, valid: np.ndarray) -> np.ndarray:
+    """``v`` with NaN in the rows of designs that cannot be built."""
+    return np.where(valid, v, np.nan)
 
 
 def blank_invalid(out: dict, valid: np.ndarray) -> dict:

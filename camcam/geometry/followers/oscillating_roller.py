@@ -90,13 +90,14 @@ class OscillatingRoller(FollowerKind):
         return cls(params["roller_radius"], params["pivot_distance"], params["arm_length"])
 
     @staticmethod
-    def size_figures(ps, sigma: int, params: dict) -> dict:
+    def size_figures(ps, sigma: int, params: dict, contact=None) -> dict:
         return OscillatingRoller.figures(ps, sigma, params["base_radius"], params["pivot_distance"], params["arm_length"],
-                                         params["roller_radius"])
+                                         params["roller_radius"], contact)
 
     @staticmethod
-    def figures(ps, sigma: int, base_radius, pivot_distance, arm_length, roller_radius) -> dict:
-        """Figures of oscillating-roller designs; the program's samples are the swing in radians."""
+    def figures(ps, sigma: int, base_radius, pivot_distance, arm_length, roller_radius, contact=None) -> dict:
+        """Figures of oscillating-roller designs; the program's samples are the swing in radians; ``contact``:
+        the sweep's dynamics (:class:`camcam.sizing.contact.SweepDynamics`), which adds ``max_contact_stress_mpa``."""
         rb, a, L, rr = (np.asarray(v, float) for v in (base_radius, pivot_distance, arm_length, roller_radius))
         rp = rb + rr
         valid = (np.abs(a - L) < rp) & (rp < a + L)
@@ -120,7 +121,13 @@ class OscillatingRoller(FollowerKind):
         # tan φ = (T·u)/(σ T×u), u = (sin β, −cos β); the denominator stays > 0 on a working cam
         ratio = (tx * sb - ty * cb) / (sigma * (-tx * cb - ty * sb))
         outer = np.sqrt(px * px + py * py).max(axis=1) - rr
-        return closedform.roller_figures(kc, ratio, rr, ps, outer, valid)
+        out = closedform.roller_figures(kc, ratio, rr, ps, outer, valid)
+        if contact is not None:  # the outward normal n = σJT/|T| against u: cos φ = n·u, sin φ = n×u
+            T = np.sqrt(T2)
+            out["max_contact_stress_mpa"] = closedform.blank(contact.max_stress(
+                ps, cos_phi=sigma * (-tx * cb - ty * sb) / T, sin_phi=sigma * (ty * cb - tx * sb) / T,
+                relative_radius_mm=rr[:, None] * (1.0 - rr[:, None] * kc), roller=True, arm_length_mm=L), valid)
+        return out
 
     def start_angle(self, base_radius: float) -> float:
         """Arm angle β₀ (from +X, about the pivot) at lift 0."""

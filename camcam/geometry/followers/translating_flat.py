@@ -37,12 +37,14 @@ class TranslatingFlat(FollowerKind):
         return cls(0.0)  # the offset moves the contact along the face, not the profile
 
     @staticmethod
-    def size_figures(ps, sigma: int, params: dict) -> dict:
-        return TranslatingFlat.figures(ps, sigma, params["base_radius"])
+    def size_figures(ps, sigma: int, params: dict, contact=None) -> dict:
+        return TranslatingFlat.figures(ps, sigma, params["base_radius"], contact)
 
     @staticmethod
-    def figures(ps, sigma: int, base_radius) -> dict:
-        """Figures of translating flat-faced designs: ρ = R_b + s + s″, no pressure angle, no concave part."""
+    def figures(ps, sigma: int, base_radius, contact=None) -> dict:
+        """Figures of translating flat-faced designs: ρ = R_b + s + s″, no pressure angle, no concave part;
+        ``contact``: the sweep's dynamics (:class:`camcam.sizing.contact.SweepDynamics`), which adds
+        ``max_contact_stress_mpa`` (flat on a curve: R′ = ρ)."""
         rb = np.asarray(base_radius, float)
         n = rb.size
         rho_prog = ps.s + ps.s2
@@ -60,6 +62,10 @@ class TranslatingFlat(FollowerKind):
             "pressure_angle_bound_deg": np.zeros(n),
             "curvature_radius_bound_mm": np.full(n, d_rho),
         }
+        if contact is not None:
+            one = np.ones((n, ps.theta.size))
+            out["max_contact_stress_mpa"] = contact.max_stress(ps, cos_phi=one, sin_phi=0.0 * one,
+                                                               relative_radius_mm=rb[:, None] + rho_prog, roller=False)
         return out
 
     def check(self, base_radius: float) -> None:

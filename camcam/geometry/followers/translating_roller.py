@@ -68,12 +68,14 @@ class TranslatingRoller(FollowerKind):
         return cls(params["roller_radius"], params["offset"])
 
     @staticmethod
-    def size_figures(ps, sigma: int, params: dict) -> dict:
-        return TranslatingRoller.figures(ps, sigma, params["base_radius"], params["offset"], params["roller_radius"])
+    def size_figures(ps, sigma: int, params: dict, contact=None) -> dict:
+        return TranslatingRoller.figures(ps, sigma, params["base_radius"], params["offset"], params["roller_radius"],
+                                         contact)
 
     @staticmethod
-    def figures(ps, sigma: int, base_radius, offset, roller_radius) -> dict:
-        """Figures of translating-roller designs (arrays of equal length)."""
+    def figures(ps, sigma: int, base_radius, offset, roller_radius, contact=None) -> dict:
+        """Figures of translating-roller designs (arrays of equal length); ``contact``: the sweep's dynamics
+        (:class:`camcam.sizing.contact.SweepDynamics`), which adds ``max_contact_stress_mpa``."""
         rb, e, rr = (np.asarray(a, float) for a in (base_radius, offset, roller_radius))
         rp = rb + rr
         valid = np.abs(e) < rp
@@ -84,7 +86,13 @@ class TranslatingRoller(FollowerKind):
         T2 = Y * Y + q * q
         kc = (T2 + ps.s1 * q - Y * ps.s2) / (T2 * np.sqrt(T2))
         outer = np.sqrt(e * e + (y0 + ps.lift_max) ** 2) - rr
-        return closedform.roller_figures(kc, q / Y, rr, ps, outer, valid)
+        out = closedform.roller_figures(kc, q / Y, rr, ps, outer, valid)
+        if contact is not None:  # cos φ = Y/|T|, sin φ = −σq/|T| (the contact normal against the stem's +Y)
+            T = np.sqrt(T2)
+            out["max_contact_stress_mpa"] = closedform.blank(contact.max_stress(
+                ps, cos_phi=Y / T, sin_phi=-sigma * q / T, relative_radius_mm=rr[:, None] * (1.0 - rr[:, None] * kc),
+                roller=True), valid)
+        return out
 
     def check(self, base_radius: float) -> None:
         rp = base_radius + self.roller_radius
