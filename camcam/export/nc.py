@@ -10,6 +10,7 @@ import numpy as np
 from camcam.export.dxf import Circle, ExactCurve, Polyline, Text, contour_dxf
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
+from camcam.geometry.mesh import keyway_corners
 from camcam.nc.bore import bore_curve
 from camcam.nc.result import MachiningResult
 from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
@@ -128,6 +129,12 @@ def _disc_extras(built: BuiltCam, r: MachiningResult) -> dict:
     extras["BASE-CIRCLE"] = [Circle((0.0, 0.0), cam.base_radius)]
     if spec.bore > 0:
         extras["BORE"] = [Circle((0.0, 0.0), spec.bore / 2)]
+    if spec.keyway is not None:  # the part's angular datum (issue 47): the walls and bottom, as the mesh has them
+        k = spec.keyway
+        corners = keyway_corners(spec.bore / 2, k)
+        label = corners[1:3].mean(axis=0) * (1 + 3.0 / (spec.bore / 2 + k.depth))
+        extras["KEYWAY"] = [Polyline(tuple(map(tuple, corners.tolist()))),
+                            Text(f"keyway {k.width:g} x {k.depth:g}", tuple(map(float, label)), 2.0)]
     angles = np.radians([0.0, 90.0, 180.0, 270.0])
     if cam.pitch is not None:
         extras["PITCH"] = [Polyline(tuple(map(tuple, cam.pitch.polyline(180))), True)]

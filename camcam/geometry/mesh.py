@@ -7,7 +7,9 @@ second in a band, so shared edges match and run opposite ways: the mesh is
 closed and consistently wound by construction; it is turned inside out if its
 volume comes out negative.
 
-* disc cam: the profile ring, extruded to ``thickness``, with a bore;
+* disc cam: the profile ring, extruded to ``thickness``, with a bore (and its keyway: the bore's ring is
+  the bore-and-keyway outline, star-shaped about the centre, sampled at the profile ring's polar angles with
+  the sample nearest each of the keyway's four corners moved onto it);
 * face-groove cam: a disc of ``outer_radius`` with the groove (between the two
   flanks) cut ``groove_depth`` deep into the top face;
 * cylindrical cam: a cylinder with the groove cut, walls sampled on the exact
@@ -31,7 +33,7 @@ if TYPE_CHECKING:
     import trimesh
 
 __all__ = ["MeshParts", "disc_parts", "groove_parts", "cylinder_parts", "disc_mesh", "groove_mesh", "cylinder_mesh",
-           "ring_points"]
+           "ring_points", "bore_outline", "keyway_corners"]
 
 #: Points per analytic piece of a curve in the mesh rings.
 POINTS_PER_PIECE = 180
@@ -119,29 +121,73 @@ def _circle(radius: float, phi: np.ndarray) -> np.ndarray:
     return radius * np.column_stack([np.cos(phi), np.sin(phi)])
 
 
-def _annulus_prism(b: _Builder, outer: np.ndarray, inner_r: float, phi: np.ndarray, z0: float, z1: float) -> None:
+def keyway_corners(bore_r: float, keyway) -> np.ndarray:
+    """The keyway's four corners (mm, drawing frame) in order round the bore: where its wall leaves the bore,
+    its bottom's two corners, where its other wall meets the bore."""
+    a = math.radians(keyway.angle_deg)
+    u, v = np.array([math.cos(a), math.sin(a)]), np.array([-math.sin(a), math.cos(a)])
+    h = keyway.width / 2
+    s = math.sqrt(bore_r * bore_r - h * h)
+    far = bore_r + keyway.depth
+    return np.array([s * u - h * v, far * u - h * v, far * u + h * v, s * u + h * v])
+
+
+def bore_outline(bore_r: float, phi: np.ndarray, keyway=None) -> np.ndarray:
+    """Points of the bore (with ``keyway``: bore and keyway) at the polar angles ``phi``; a keyway's corners
+    replace the samples nearest them (one sample each: :class:`GeometryError` when two share one)."""
+    if keyway is None:
+        return _circle(bore_r, phi)
+    a = math.radians(keyway.angle_deg)
+    th = np.angle(np.exp(1j * (phi - a)))  # relative to the keyway's centre line, in (−π, π]
+    h = keyway.width / 2
+    r = np.full(len(phi), bore_r)
+    c, s = np.cos(th), np.abs(np.sin(th))
+    inside = (c > 0) & (s * bore_r <= h)
+    with np.errstate(divide="ignore"):
+        r[inside] = np.minimum((bore_r + keyway.depth) / c[inside], np.where(s[inside] > 0, h / s[inside], np.inf))
+    pts = r[:, None] * np.column_stack([np.cos(phi), np.sin(phi)])
+    corners = keyway_corners(bore_r, keyway)
+    idx = [int(np.argmin(np.abs(np.angle(np.exp(1j * (phi - math.atan2(p[1], p[0]))))))) for p in corners]
+    if len(set(idx)) < 4:
+        raise GeometryError(f"cam.keyway: {keyway.width:g} mm is too narrow for the mesh's {len(phi)} points round "
+                            f"the bore")
+    pts[idx] = corners
+    return pts
+
+
+def _annulus_prism(b: _Builder, outer: np.ndarray, inner_r: float, phi: np.ndarray, z0: float, z1: float,
+                   keyway=None) -> None:
     o0, o1 = b.add(_xy(outer, z0)), b.add(_xy(outer, z1))
     b.faces.append(_band(o0, o1))
     if inner_r > 0:
-        i0, i1 = b.add(_xy(_circle(inner_r, phi), z0)), b.add(_xy(_circle(inner_r, phi), z1))
+        hole = bore_outline(inner_r, phi, keyway)
+        i0, i1 = b.add(_xy(hole, z0)), b.add(_xy(hole, z1))
         b.faces += [_band(o1, i1), _band(i1, i0), _band(i0, o0)]
     else:
         c0, c1 = b.add([0.0, 0.0, z0]), b.add([0.0, 0.0, z1])
         b.faces += [_fan(o0, c0[0], first=False), _fan(o1, c1[0])]
 
 
-def disc_parts(cam, thickness: float, bore: float, per_piece: int = POINTS_PER_PIECE) -> MeshParts:
-    """The disc cam extruded from z = 0 to ``thickness`` with a bore of diameter ``bore``."""
+def _reach(bore: float, keyway) -> float:
+    """The farthest the bore (and its keyway) reaches from the centre."""
+    return bore / 2 if keyway is None else float(np.hypot(*keyway_corners(bore / 2, keyway).T).max())
+
+
+def disc_parts(cam, thickness: float, bore: float, per_piece: int = POINTS_PER_PIECE, keyway=None) -> MeshParts:
+    """The disc cam extruded from z = 0 to ``thickness`` with a bore of diameter ``bore`` (and its ``keyway``)."""
     _, pts = ring_points(cam.profile, per_piece)
     phi = _polar(pts, "profile")
     if bore / 2 >= np.hypot(pts[:, 0], pts[:, 1]).min():
         raise GeometryError(f"cam.bore {bore:g} mm does not fit inside the profile")
+    if _reach(bore, keyway) >= np.hypot(pts[:, 0], pts[:, 1]).min():
+        raise GeometryError(f"cam.keyway: it reaches radius {_reach(bore, keyway):.3g} mm, outside the profile")
     b = _Builder()
-    _annulus_prism(b, pts, bore / 2, phi, 0.0, thickness)
+    _annulus_prism(b, pts, bore / 2, phi, 0.0, thickness, keyway)
     return b.parts()
 
 
-def groove_parts(cam, thickness: float, bore: float, outer_radius: float, per_piece: int = POINTS_PER_PIECE) -> MeshParts:
+def groove_parts(cam, thickness: float, bore: float, outer_radius: float, per_piece: int = POINTS_PER_PIECE,
+                 keyway=None) -> MeshParts:
     """A face-groove cam: disc of ``outer_radius``, groove ``cam.groove_depth`` deep in the top face."""
     h = cam.groove_depth
     if not h < thickness:
@@ -153,6 +199,9 @@ def groove_parts(cam, thickness: float, bore: float, outer_radius: float, per_pi
         raise GeometryError(f"cam.outer_radius {outer_radius:g} mm does not contain the groove")
     if bore / 2 >= np.hypot(inner[:, 0], inner[:, 1]).min():
         raise GeometryError(f"cam.bore {bore:g} mm does not fit inside the groove's inner flank")
+    if _reach(bore, keyway) >= np.hypot(inner[:, 0], inner[:, 1]).min():
+        raise GeometryError(f"cam.keyway: it reaches radius {_reach(bore, keyway):.3g} mm, outside the groove's "
+                            f"inner flank")
     zg = thickness - h
     b = _Builder()
     rim = _circle(outer_radius, po)
@@ -161,7 +210,7 @@ def groove_parts(cam, thickness: float, bore: float, outer_radius: float, per_pi
     i_g, i_t = b.add(_xy(inner, zg)), b.add(_xy(inner, thickness))
     b.faces += [_band(c0, c1), _band(c1, o_t), _band(o_t, o_g), _band(o_g, i_g), _band(i_g, i_t)]
     if bore > 0:
-        core = _circle(bore / 2, pi)
+        core = bore_outline(bore / 2, pi, keyway)
         h0, h1 = b.add(_xy(core, 0.0)), b.add(_xy(core, thickness))
         b.faces += [_band(i_t, h1), _band(h1, h0), _band(h0, c0)]
     else:

@@ -10,9 +10,19 @@ from dataclasses import dataclass
 
 from camcam.geometry.followers import FOLLOWER_KINDS, follower_kind
 
-__all__ = ["CamSpec", "FollowerSpec", "CAM_KINDS", "FOLLOWER_KINDS"]
+__all__ = ["CamSpec", "Keyway", "FollowerSpec", "CAM_KINDS", "FOLLOWER_KINDS"]
 
 CAM_KINDS = ("disc", "disc-groove", "cylindrical")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Keyway:
+    """A keyway in a disc cam's bore (mm, degrees): ``width`` across, ``depth`` from the bore's surface on its
+    centre line, that centre line at ``angle_deg`` from +X in the drawing (cam angle 0)."""
+
+    width: float
+    depth: float
+    angle_deg: float = 90.0
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -31,6 +41,7 @@ class CamSpec:
     min_curvature_radius_mm: float | None = None  # design check limit; None: half the roller radius (0 for a flat face)
     design_limits: str = "warn"  # "warn": a design limit missed is a warning (WARN); "fail": it fails the run (exit 3)
     material: str | None = None  # the part's material as the shop names it (the setup sheet states it)
+    keyway: Keyway | None = None  # a keyway in the bore (disc kinds): the part's angular datum
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -61,9 +61,14 @@ def _datum(built) -> str:
     # a face groove's cam has no follower of its own: X0 (its offset is the inner cam's, cam.cam.follower)
     where = follower_kind(cam.kind).datum_note(getattr(getattr(cam, "follower", None), "offset", 0.0))
     turn = "counter-clockwise" if cam.rotation == "ccw" else "clockwise"
+    k = built.spec.keyway
+    clamp = ("Clamp the part with its keyway or dowel where the drawing puts it relative to that line" if k is None
+             else f"Clamp the part by its keyway, {k.width:g} mm wide and {k.depth:g} mm deep in the Ø"
+                  f"{built.spec.bore:g} mm bore, its centre line at {k.angle_deg % 360:g}° from +X, "
+                  f"{(k.angle_deg - ang) % 360:.2f}° counter-clockwise from the cam-angle-0 line (DXF layer KEYWAY)")
     return (f"program and drawing show the cam at cam angle 0: {where}; the cam-angle-0 contact point lies at "
-            f"{ang:.2f}° from +X (DXF layer ANGLE-ZERO, X0 Y0 through that point). Clamp the part with its "
-            f"keyway or dowel where the drawing puts it relative to that line; in service the cam turns {turn}.")
+            f"{ang:.2f}° from +X (DXF layer ANGLE-ZERO, X0 Y0 through that point). {clamp}; in service the cam "
+            f"turns {turn}.")
 
 
 def setup_blocks(built, r: MachiningResult, machining) -> tuple:

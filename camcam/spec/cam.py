@@ -15,12 +15,16 @@ min_curvature_radius_mm = 5.0  # design check limit: the profile's smallest conv
                                # roller radius, 0 for a flat face)
 design_limits = "warn"         # a design limit missed: "warn" (WARN verdict, exit 0) or "fail" (FAIL, exit 3)
 material = "C45 steel"        # the part's material, free text for the setup sheet (default: not stated)
+keyway = { width = 4.0, depth = 1.8, angle = 90.0 }  # disc kinds: a keyway in the bore, mm; its centre line at
+                               # angle degrees from +X in the drawing (default 90: +Y); the part's angular datum
 ```
 """
 
 from __future__ import annotations
 
-from camcam.geometry.params import CAM_KINDS, CamSpec
+import math
+
+from camcam.geometry.params import CAM_KINDS, CamSpec, Keyway
 from camcam.spec.reader import Table
 
 __all__ = ["CamSpec", "read_cam", "CAM_KINDS", "MIN_PART_MM", "DESIGN_LIMITS"]
@@ -55,7 +59,27 @@ def read_cam(t: Table) -> CamSpec:
     limits = t.string("design_limits", "warn", choices=DESIGN_LIMITS)
     material = t.string("material", None)
     t.check("material", material is None or material.strip() != "", "expected the material's name, got an empty string")
+    keyway = _keyway(t, kind, bore, base)
     t.done()
     return CamSpec(kind=kind, base_radius=base, bore=bore, rotation=rotation, thickness=thickness, groove_depth=groove,
                    outer_radius=outer, length=length, max_pressure_angle_deg=max_pa, min_curvature_radius_mm=min_rho,
-                   design_limits=limits, material=material.strip() if material else None)
+                   design_limits=limits, material=material.strip() if material else None, keyway=keyway)
+
+
+def _keyway(t: Table, kind: str, bore: float, base: float) -> Keyway | None:
+    k = t.table("keyway", None)
+    if k is None:
+        return None
+    if kind == "cylindrical":
+        raise t.error("keyway", "applies to disc cams (a barrel cam's datum is its A0 line)")
+    if bore <= 0:
+        raise t.error("keyway", "needs a bore (cam.bore)")
+    width = k.number("width", minimum=MIN_PART_MM, unit="mm")
+    depth = k.number("depth", minimum=MIN_PART_MM, unit="mm")
+    angle = k.number("angle", 90.0, minimum=-360.0, maximum=360.0, unit="degrees")
+    k.done()
+    k.check("width", width < bore, f"{width:g} mm must be narrower than the bore ({bore:g} mm)")
+    corner = math.hypot(width / 2, bore / 2 + depth)
+    k.check("depth", corner < base, f"{depth:g} mm puts the keyway's corners at radius {corner:.3g} mm, outside the "
+                                    f"base circle ({base:g} mm)")
+    return Keyway(width=width, depth=depth, angle_deg=angle)
