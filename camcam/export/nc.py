@@ -135,6 +135,11 @@ def _disc_extras(built: BuiltCam, r: MachiningResult) -> dict:
         label = corners[1:3].mean(axis=0) * (1 + 3.0 / (spec.bore / 2 + k.depth))
         extras["KEYWAY"] = [Polyline(tuple(map(tuple, corners.tolist()))),
                             Text(f"keyway {k.width:g} x {k.depth:g}", tuple(map(float, label)), 2.0)]
+    if spec.dowel is not None:  # or a dowel hole through the disc, as the mesh has it
+        d = spec.dowel
+        c = np.array(d.centre)
+        extras["DOWEL"] = [Circle(tuple(map(float, c)), d.diameter / 2),
+                           Text(f"dowel D{d.diameter:g}", tuple(map(float, c + d.diameter / 2 + 1.0)), 2.0)]
     angles = np.radians([0.0, 90.0, 180.0, 270.0])
     if cam.pitch is not None:
         extras["PITCH"] = [Polyline(tuple(map(tuple, cam.pitch.polyline(180))), True)]

@@ -84,7 +84,7 @@ def build_cam(c: CamSpec, f: FollowerSpec, program: MotionProgram) -> BuiltCam:
     disc = DiscCam(disc_follower(f), program, c.base_radius, c.rotation)
     if c.kind == "disc":
         check_undercut(disc)
-        return BuiltCam(disc, analyse(disc), disc_parts(disc, c.thickness, c.bore, keyway=c.keyway), c)
+        return BuiltCam(disc, analyse(disc), disc_parts(disc, c.thickness, c.bore, keyway=c.keyway, dowel=c.dowel), c)
     cam = GrooveCam(disc, c.groove_depth)
     check_undercut(cam)
     return BuiltCam(cam, analyse(cam), groove_parts(cam, c.thickness, c.bore, groove_outer_radius(cam, c),

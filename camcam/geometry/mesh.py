@@ -9,7 +9,9 @@ volume comes out negative.
 
 * disc cam: the profile ring, extruded to ``thickness``, with a bore (and its keyway: the bore's ring is
   the bore-and-keyway outline, star-shaped about the centre, sampled at the profile ring's polar angles with
-  the sample nearest each of the keyway's four corners moved onto it);
+  the sample nearest each of the keyway's four corners moved onto it; with a dowel hole through it the top
+  and bottom faces are GEOS's constrained Delaunay triangulation of the face with its holes, which uses
+  the rings' own points only, so every edge still has its twin in a wall band);
 * face-groove cam: a disc of ``outer_radius`` with the groove (between the two
   flanks) cut ``groove_depth`` deep into the top face;
 * cylindrical cam: a cylinder with the groove cut, walls sampled on the exact
@@ -173,8 +175,42 @@ def _reach(bore: float, keyway) -> float:
     return bore / 2 if keyway is None else float(np.hypot(*keyway_corners(bore / 2, keyway).T).max())
 
 
-def disc_parts(cam, thickness: float, bore: float, per_piece: int = POINTS_PER_PIECE, keyway=None) -> MeshParts:
-    """The disc cam extruded from z = 0 to ``thickness`` with a bore of diameter ``bore`` (and its ``keyway``)."""
+#: Points round a dowel hole in the mesh.
+DOWEL_POINTS = 72
+
+
+def _faces_with_holes(b: _Builder, outer: np.ndarray, holes: list[np.ndarray], like: np.ndarray) -> None:
+    """Top and bottom faces of a prism whose rings ``outer`` and ``holes`` (index arrays of b's vertices, a pair
+    per ring: bottom, top) have their walls already: each face's triangles wound as ``like`` (a top-face triangle
+    of the band convention) and the bottom's the other way."""
+    import shapely
+    from shapely.geometry import Polygon
+
+    verts = np.concatenate(b.vertices)
+    for level, sign in ((1, 1.0), (0, -1.0)):
+        rings = [verts[outer[level]]] + [verts[h[level]] for h in holes]
+        index = {tuple(p[:2]): int(i) for ring, ids in zip(rings, [outer[level]] + [h[level] for h in holes])
+                 for p, i in zip(ring, ids)}
+        poly = Polygon(rings[0][:, :2], [r[:, :2] for r in rings[1:]])
+        tris = np.array([[index[tuple(c)] for c in g.exterior.coords[:3]]
+                         for g in shapely.constrained_delaunay_triangles(poly).geoms])
+        p = verts[tris][:, :, :2]
+        u, v = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+        area = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+        want = sign * np.sign(like)
+        b.faces.append(np.where((np.sign(area) == want)[:, None], tris, tris[:, ::-1]))
+
+
+def _signed_top(outer: np.ndarray, inner: np.ndarray) -> float:
+    """The XY winding of the band convention's first top-face triangle (o[0], o[1], i[1])."""
+    (ux, uy), (vx, vy) = outer[1] - outer[0], inner[1] - outer[0]
+    return float(ux * vy - uy * vx)
+
+
+def disc_parts(cam, thickness: float, bore: float, per_piece: int = POINTS_PER_PIECE, keyway=None,
+               dowel=None) -> MeshParts:
+    """The disc cam extruded from z = 0 to ``thickness`` with a bore of diameter ``bore`` (and its ``keyway``, a
+    ``dowel`` hole through it)."""
     _, pts = ring_points(cam.profile, per_piece)
     phi = _polar(pts, "profile")
     if bore / 2 >= np.hypot(pts[:, 0], pts[:, 1]).min():
@@ -182,7 +218,34 @@ def disc_parts(cam, thickness: float, bore: float, per_piece: int = POINTS_PER_P
     if _reach(bore, keyway) >= np.hypot(pts[:, 0], pts[:, 1]).min():
         raise GeometryError(f"cam.keyway: it reaches radius {_reach(bore, keyway):.3g} mm, outside the profile")
     b = _Builder()
-    _annulus_prism(b, pts, bore / 2, phi, 0.0, thickness, keyway)
+    if dowel is None:
+        _annulus_prism(b, pts, bore / 2, phi, 0.0, thickness, keyway)
+        return b.parts()
+    cx, cy = dowel.centre
+    r_d = dowel.diameter / 2
+    turn = 1.0 if phi[-1] > phi[0] else -1.0  # the hole's ring runs round its centre as the bore's round the axis
+    ring = np.column_stack([cx, cy]) + _circle(r_d, turn * np.linspace(0, 2 * math.pi, DOWEL_POINTS, endpoint=False))
+    from shapely.geometry import Point, Polygon
+
+    if not Polygon(pts).contains(Point(cx, cy).buffer(r_d)) or Point(cx, cy).distance(
+            Polygon(bore_outline(bore / 2, phi, keyway) if bore > 0 else [(0, 0), (0, 0), (0, 0)])) <= r_d:
+        raise GeometryError(f"cam.dowel: the Ø{dowel.diameter:g} mm hole at radius {dowel.radius:g} mm does not fit "
+                            f"between the bore and the profile")
+    o0, o1 = b.add(_xy(pts, 0.0)), b.add(_xy(pts, thickness))
+    b.faces.append(_band(o0, o1))
+    holes = []
+    if bore > 0:
+        hole = bore_outline(bore / 2, phi, keyway)
+        i0, i1 = b.add(_xy(hole, 0.0)), b.add(_xy(hole, thickness))
+        b.faces.append(_band(i1, i0))
+        holes.append((i0, i1))
+        like = _signed_top(pts, hole)
+    else:
+        like = _signed_top(pts, 0.5 * pts)
+    d0, d1 = b.add(_xy(ring, 0.0)), b.add(_xy(ring, thickness))
+    b.faces.append(_band(d1, d0))
+    holes.append((d0, d1))
+    _faces_with_holes(b, (o0, o1), holes, like)
     return b.parts()
 
 

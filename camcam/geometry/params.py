@@ -6,11 +6,12 @@ from a spec file; :func:`camcam.geometry.build.build_cam` takes them.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from camcam.geometry.followers import FOLLOWER_KINDS, follower_kind
 
-__all__ = ["CamSpec", "Keyway", "FollowerSpec", "CAM_KINDS", "FOLLOWER_KINDS"]
+__all__ = ["CamSpec", "Keyway", "Dowel", "FollowerSpec", "CAM_KINDS", "FOLLOWER_KINDS"]
 
 CAM_KINDS = ("disc", "disc-groove", "cylindrical")
 
@@ -23,6 +24,21 @@ class Keyway:
     width: float
     depth: float
     angle_deg: float = 90.0
+
+
+@dataclass(frozen=True, kw_only=True)
+class Dowel:
+    """A dowel hole through a disc cam (mm, degrees): ``diameter``, its centre at ``radius`` from the cam's centre
+    on the line at ``angle_deg`` from +X in the drawing (cam angle 0)."""
+
+    diameter: float
+    radius: float
+    angle_deg: float = 90.0
+
+    @property
+    def centre(self) -> tuple[float, float]:
+        a = math.radians(self.angle_deg)
+        return (self.radius * math.cos(a), self.radius * math.sin(a))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -42,6 +58,7 @@ class CamSpec:
     design_limits: str = "warn"  # "warn": a design limit missed is a warning (WARN); "fail": it fails the run (exit 3)
     material: str | None = None  # the part's material as the shop names it (the setup sheet states it)
     keyway: Keyway | None = None  # a keyway in the bore (disc kinds): the part's angular datum
+    dowel: Dowel | None = None  # a dowel hole through a disc cam: the part's angular datum
 
 
 @dataclass(frozen=True, kw_only=True)

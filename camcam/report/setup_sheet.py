@@ -61,11 +61,16 @@ def _datum(built) -> str:
     # a face groove's cam has no follower of its own: X0 (its offset is the inner cam's, cam.cam.follower)
     where = follower_kind(cam.kind).datum_note(getattr(getattr(cam, "follower", None), "offset", 0.0))
     turn = "counter-clockwise" if cam.rotation == "ccw" else "clockwise"
-    k = built.spec.keyway
-    clamp = ("Clamp the part with its keyway or dowel where the drawing puts it relative to that line" if k is None
-             else f"Clamp the part by its keyway, {k.width:g} mm wide and {k.depth:g} mm deep in the Ø"
-                  f"{built.spec.bore:g} mm bore, its centre line at {k.angle_deg % 360:g}° from +X, "
-                  f"{(k.angle_deg - ang) % 360:.2f}° counter-clockwise from the cam-angle-0 line (DXF layer KEYWAY)")
+    k, d = built.spec.keyway, built.spec.dowel
+    clamp = "; ".join(
+        ([f"Clamp the part by its keyway, {k.width:g} mm wide and {k.depth:g} mm deep in the Ø"
+          f"{built.spec.bore:g} mm bore, its centre line at {k.angle_deg % 360:g}° from +X, "
+          f"{(k.angle_deg - ang) % 360:.2f}° counter-clockwise from the cam-angle-0 line (DXF layer KEYWAY)"]
+         if k is not None else [])
+        + ([f"Locate the part on its dowel hole, Ø{d.diameter:g} mm through the cam, its centre at radius "
+            f"{d.radius:g} mm, {d.angle_deg % 360:g}° from +X, {(d.angle_deg - ang) % 360:.2f}° counter-clockwise "
+            f"from the cam-angle-0 line (DXF layer DOWEL)"] if d is not None else [])) or (
+        "Clamp the part with its keyway or dowel where the drawing puts it relative to that line")
     return (f"program and drawing show the cam at cam angle 0: {where}; the cam-angle-0 contact point lies at "
             f"{ang:.2f}° from +X (DXF layer ANGLE-ZERO, X0 Y0 through that point). {clamp}; in service the cam "
             f"turns {turn}.")

@@ -17,6 +17,8 @@ design_limits = "warn"         # a design limit missed: "warn" (WARN verdict, ex
 material = "C45 steel"        # the part's material, free text for the setup sheet (default: not stated)
 keyway = { width = 4.0, depth = 1.8, angle = 90.0 }  # disc kinds: a keyway in the bore, mm; its centre line at
                                # angle degrees from +X in the drawing (default 90: +Y); the part's angular datum
+dowel = { diameter = 6.0, radius = 20.0, angle = 90.0 }  # disc cams: or a dowel hole through the cam, its centre
+                               # at radius mm from the cam centre on the line at angle degrees from +X
 ```
 """
 
@@ -24,7 +26,7 @@ from __future__ import annotations
 
 import math
 
-from camcam.geometry.params import CAM_KINDS, CamSpec, Keyway
+from camcam.geometry.params import CAM_KINDS, CamSpec, Dowel, Keyway
 from camcam.spec.reader import Table
 
 __all__ = ["CamSpec", "read_cam", "CAM_KINDS", "MIN_PART_MM", "DESIGN_LIMITS"]
@@ -60,10 +62,12 @@ def read_cam(t: Table) -> CamSpec:
     material = t.string("material", None)
     t.check("material", material is None or material.strip() != "", "expected the material's name, got an empty string")
     keyway = _keyway(t, kind, bore, base)
+    dowel = _dowel(t, kind, bore, base, keyway)
     t.done()
     return CamSpec(kind=kind, base_radius=base, bore=bore, rotation=rotation, thickness=thickness, groove_depth=groove,
                    outer_radius=outer, length=length, max_pressure_angle_deg=max_pa, min_curvature_radius_mm=min_rho,
-                   design_limits=limits, material=material.strip() if material else None, keyway=keyway)
+                   design_limits=limits, material=material.strip() if material else None, keyway=keyway,
+                   dowel=dowel)
 
 
 def _keyway(t: Table, kind: str, bore: float, base: float) -> Keyway | None:
@@ -83,3 +87,21 @@ def _keyway(t: Table, kind: str, bore: float, base: float) -> Keyway | None:
     k.check("depth", corner < base, f"{depth:g} mm puts the keyway's corners at radius {corner:.3g} mm, outside the "
                                     f"base circle ({base:g} mm)")
     return Keyway(width=width, depth=depth, angle_deg=angle)
+
+
+def _dowel(t: Table, kind: str, bore: float, base: float, keyway: Keyway | None) -> Dowel | None:
+    d = t.table("dowel", None)
+    if d is None:
+        return None
+    if kind != "disc":
+        raise t.error("dowel", f"applies to disc cams (kind = \"disc\"), not {kind}")
+    diameter = d.number("diameter", minimum=MIN_PART_MM, unit="mm")
+    radius = d.number("radius", minimum=0.0, inclusive=False, unit="mm")
+    angle = d.number("angle", 90.0, minimum=-360.0, maximum=360.0, unit="degrees")
+    d.done()
+    inner = bore / 2 if keyway is None else math.hypot(keyway.width / 2, bore / 2 + keyway.depth)
+    d.check("radius", radius - diameter / 2 > inner, f"{radius:g} mm puts the Ø{diameter:g} mm hole into the bore "
+                                                     f"(it reaches radius {inner:.3g} mm)")
+    d.check("radius", radius + diameter / 2 < base, f"{radius:g} mm puts the Ø{diameter:g} mm hole outside the base "
+                                                    f"circle ({base:g} mm)")
+    return Dowel(diameter=diameter, radius=radius, angle_deg=angle)

@@ -1,5 +1,5 @@
-"""Issue 47: a disc cam's [cam] keyway is its angular datum: drawn in the DXF (layer KEYWAY), cut into the
-STL's bore (still watertight), and named on the setup sheet relative to the cam-angle-0 line."""
+"""Issue 47: a disc cam's [cam] keyway or dowel is its angular datum: drawn in the DXF (layers KEYWAY, DOWEL),
+cut into the STL (still watertight), and named on the setup sheet relative to the cam-angle-0 line."""
 
 import html
 import math
@@ -80,3 +80,35 @@ def _nobore(tmp_path: Path) -> Path:
     path = _spec(tmp_path, "{ width = 4.0, depth = 1.8 }")
     path.write_text(path.read_text().replace("bore = 12.0\n", ""))
     return path
+
+
+def test_dowel_hole_through_a_watertight_mesh_the_drawing_and_the_sheet(tmp_path):
+    path = tmp_path / "dowel.toml"
+    text = (ROOT / "samples" / "disc-translating-roller.toml").read_text()
+    path.write_text(text.replace("[cam]\n", "[cam]\ndowel = { diameter = 6.0, radius = 22.0, angle = 60.0 }\n"
+                                 "keyway = { width = 4.0, depth = 1.8 }\n", 1))
+    spec = load_spec(path)
+    m = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit)).mesh
+    assert m.is_watertight and m.is_winding_consistent and m.euler_number == -2  # two holes: bore, dowel
+    out = tmp_path / "out"
+    assert main(["run", str(path), "-o", str(out)]) == 0
+    doc = ezdxf.readfile(out / "disc-translating-roller.dxf")
+    assert not doc.audit().has_errors
+    (circle,) = [e for e in doc.modelspace() if e.dxf.layer == "DOWEL" and e.dxftype() == "CIRCLE"]
+    # written as doubles: 22·(cos 60°, sin 60°) to 1e-9
+    assert circle.dxf.radius == 3.0 and np.allclose(tuple(circle.dxf.center)[:2], (11.0, 22 * math.sqrt(3) / 2),
+                                                     atol=1e-9)
+    stl = trimesh.load(out / "disc-translating-roller.stl")
+    assert stl.is_watertight and stl.euler_number == -2
+    page = html.unescape((out / "disc-translating-roller-report.html").read_text())
+    assert "Clamp the part by its keyway" in page
+    assert re.search(r"Locate the part on its dowel hole, Ø6 mm through the cam, its centre at radius 22 mm, 60° "
+                     r"from \+X, [\d.]+° counter-clockwise from the cam-angle-0 line \(DXF layer DOWEL\)", page)
+
+
+def test_dowel_must_fit_between_the_bore_and_the_base_circle(tmp_path):
+    path = tmp_path / "dowel.toml"
+    text = (ROOT / "samples" / "disc-translating-roller.toml").read_text()
+    path.write_text(text.replace("[cam]\n", "[cam]\ndowel = { diameter = 6.0, radius = 8.0 }\n", 1))
+    with pytest.raises(SpecError, match=r"cam\.dowel\.radius: 8 mm puts the Ø6 mm hole into the bore"):
+        load_spec(path)
