@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from camcam.lifttable.badpoints import DEFAULT_MIN_SIZE, DEFAULT_THRESHOLD, BadPointReport, find_bad_points
 from camcam.lifttable.fairing import DEFAULT_MAX_ITERATIONS, DEFAULT_METHOD, DEFAULT_XI, FairingResult, fair
 from camcam.lifttable.interpolate import interpolate
-from camcam.lifttable.table_law import table_law
+from camcam.lifttable.table_motion import table_law
 from camcam.lifttable.roughness import Roughness, difference_quotients
 from camcam.lifttable.table import LiftTable
 from camcam.motion.law import MotionLaw

@@ -94,7 +94,7 @@ class MotionSpec:
     def program(self, unit: str = "mm") -> MotionProgram:
         """The motion program; with ``strict`` a jump at a join raises :class:`MotionError`."""
         if self.lift_table is not None:
-            from camcam.lifttable.table_law import table_program
+            from camcam.lifttable.table_motion import table_program
 
             program = table_program(self.lift_table.fitted.law, self.rpm, unit)
             if self.strict:
@@ -125,7 +125,7 @@ def _load_table(t: Table, key: str, base_dir: Path) -> tuple[Path, LiftTable]:
 def _read_table_law(t: Table, base_dir: Path) -> tuple[MotionLaw, float]:
     """A rise-only table as a segment law: (normalised law, the table's rise)."""
     from camcam.lifttable.interpolate import FITS
-    from camcam.lifttable.table_law import table_law
+    from camcam.lifttable.table_motion import table_law
 
     _, table = _load_table(t, "table", base_dir)
     t.check("table", not table.full_revolution, "a full-revolution table goes in [motion] lift_table, not in a segment")

@@ -11,7 +11,7 @@ import pytest
 from camcam.lifttable.badpoints import find_bad_points
 from camcam.lifttable.fairing import midpoint_fairing, smoothing_fairing
 from camcam.lifttable.interpolate import interpolate
-from camcam.lifttable.table_law import table_law, table_program
+from camcam.lifttable.table_motion import table_law, table_program
 from camcam.lifttable.process import FairingOptions, fit_table
 from tests.lifttable.conftest import make_table
 from make_noisy_lift import SPIKES

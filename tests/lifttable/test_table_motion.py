@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 from camcam.lifttable.bspline import chord_bspline
 from camcam.lifttable.interpolate import interpolate
-from camcam.lifttable.table_law import table_law
+from camcam.lifttable.table_motion import table_law
 from camcam.lifttable.table import LiftTable
 
 ANG = np.arange(0.0, 361.0, 6.0)
