@@ -45,7 +45,7 @@ from camcam.errors import PostError
 from camcam.nc.result import MachiningResult
 from camcam.nc.settings import DEFAULT_STOCK, MachiningSpec, StockSpec
 from camcam.post.readback import read_poses
-from camcam.toolpath.poses import CylinderTool
+from camcam.toolpath.poses import CylinderTool, ToolPoses
 from camcam.verdict import Check
 from camcam.verify.cycle_time import cycle_time
 from camcam.verify.groove_checks import five_axis_check, groove_check
@@ -66,14 +66,16 @@ class JobChecks:
 
     ``checks`` join the job's own (in this order); ``removal`` is a disc or
     face-groove job's material check, ``groove`` and ``reach`` a barrel
-    job's 3-D figure and tool reach; ``header`` the comment lines the
-    program's header gains (the 3-D check's result).
+    job's 3-D figure and tool reach, measured on ``poses`` (read from the
+    program); ``header`` the comment lines the program's header gains (the
+    3-D check's result).
     """
 
     checks: tuple[Check, ...] = ()
     removal: RemovalReport | None = None
     groove: GrooveMeasurement | None = None
     reach: ToolReach | None = None
+    poses: ToolPoses | None = None
     header: tuple[str, ...] = ()
 
 
@@ -113,7 +115,7 @@ def _barrel_checks(result: MachiningResult, built: BuiltCam, m: MachiningSpec, w
         check = groove_check(cam, m, groove, result.smallest_tool_mm, reach.flute_needed_mm)
     verdict = "within" if check.ok else "OUT OF TOLERANCE"
     header = (f"3-D groove check of this program: {groove.max_deviation_mm:.4f} mm, {verdict} {m.tolerance_mm:g} mm",)
-    return JobChecks(checks=(check, reach.check()), groove=groove, reach=reach, header=header)
+    return JobChecks(checks=(check, reach.check()), groove=groove, reach=reach, poses=poses, header=header)
 
 
 def with_checks(result: MachiningResult, checks: JobChecks, m: MachiningSpec) -> MachiningResult:
@@ -130,7 +132,7 @@ def with_checks(result: MachiningResult, checks: JobChecks, m: MachiningSpec) ->
     if checks.header:
         toolpath = replace(toolpath, comments=toolpath.comments + checks.header)
         program = result.post.write_program(toolpath, result.name, m.setup)
-        before = read_poses(result.program.text, result.post, m.a_axis)
+        before = checks.poses  # what the checks measured, read from the program before the header
         again = read_poses(program.text, result.post, m.a_axis)
         if not (np.array_equal(again.tip_mm, before.tip_mm) and np.array_equal(again.a_deg, before.a_deg)
                 and np.array_equal(again.b_deg, before.b_deg)):
