@@ -324,7 +324,7 @@ def _pass_moves(nodes: np.ndarray, raise_mm: float, m: MachiningSpec, outer: flo
     return moves
 
 
-def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str, workers: int = 1) -> MachiningResult:
+def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> MachiningResult:
     """The 5-axis program of a cylindrical cam with an oscillating roller (see the module notes)."""
     cam, post = built.cam, m.post
     r_t = m.tool_diameter_mm / 2

@@ -128,7 +128,7 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
         if m.axes == 5:
             from camcam.nc.fiveaxis import machine_five_axis
 
-            return machine_five_axis(built, m, name, workers)
+            return machine_five_axis(built, m, name)  # one pass: nothing to share (its 3-D check is verify's)
         from camcam.nc.rotary import machine_cylindrical
 
         return machine_cylindrical(built, m, name, workers)
