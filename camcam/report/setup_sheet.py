@@ -15,7 +15,8 @@ import numpy as np
 from camcam.geometry.followers import follower_kind
 from camcam.nc.result import MachiningResult
 from camcam.verify.reach import flute_text
-from camcam.report.html import DataTable, KeyValues
+from camcam.report.html import DataTable, Drawing, KeyValues
+from camcam.report.setup_picture import setup_picture
 
 __all__ = ["setup_blocks"]
 
@@ -77,7 +78,8 @@ def _datum(built) -> str:
 
 
 def setup_blocks(built, r: MachiningResult, machining) -> tuple:
-    """KeyValues of the setup and a table of the passes, in cutting order (``machining``: the spec's table)."""
+    """The part on the machine (a drawing), KeyValues of the setup and a table of the passes, in cutting order
+    (``machining``: the spec's table)."""
     post, setup, spindle_rpm = r.post, machining.setup, machining.spindle_rpm
     tool = r.toolpath.tool_number
     passes = r.toolpath.passes
@@ -111,4 +113,5 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
                       tuple((f"{i + 1}/{n}", p.kind, r.contours[p.contour].label, f"{p.z:g}",
                              f"{machining.feed_mm_min:g}", f"{spindle_rpm:g}", p.note) for i, p in enumerate(passes)),
                       "The passes in cutting order (each opens with a comment naming it in the program).")
-    return (KeyValues(tuple(rows)), table)
+    picture = setup_picture(built, r, machining)
+    return (Drawing(picture.svg, picture.caption), KeyValues(tuple(rows)), table)
