@@ -137,6 +137,7 @@ class MachiningSpec:
     stepover: float = 0.4
     ramp_angle_deg: float = 3.0
     bore: bool = False
+    dowel: bool = False  # cut the cam's dowel hole as a helical bore (camcam.nc.bore)
 
     @property
     def stepover_mm(self) -> float:

@@ -55,7 +55,7 @@ def _blank_and_zero(built, r: MachiningResult) -> list[tuple[str, str]]:
     return rows
 
 
-def _datum(built) -> str:
+def _datum(built, r: MachiningResult) -> str:
     cam = built.cam
     p0 = cam.profile.evaluate(np.array([cam.profile.t_start]))[0]
     ang = math.degrees(math.atan2(p0[1], p0[0])) % 360.0
@@ -66,11 +66,17 @@ def _datum(built) -> str:
     clamp = "; ".join(
         ([f"Clamp the part by its keyway, {k.width:g} mm wide and {k.depth:g} mm deep in the Ø"
           f"{built.spec.bore:g} mm bore, its centre line at {k.angle_deg % 360:g}° from +X, "
-          f"{(k.angle_deg - ang) % 360:.2f}° counter-clockwise from the cam-angle-0 line (DXF layer KEYWAY)"]
+          f"{(k.angle_deg - ang) % 360:.2f}° counter-clockwise from the cam-angle-0 line (DXF layer KEYWAY), not "
+          f"cut by this program (an end mill would leave its radius in the keyway's square corners: broach or "
+          f"wire-erode it after the bore)"]
          if k is not None else [])
         + ([f"Locate the part on its dowel hole, Ø{d.diameter:g} mm through the cam, its centre at radius "
             f"{d.radius:g} mm, {d.angle_deg % 360:g}° from +X, {(d.angle_deg - ang) % 360:.2f}° counter-clockwise "
-            f"from the cam-angle-0 line (DXF layer DOWEL)"] if d is not None else [])) or (
+            f"from the cam-angle-0 line (DXF layer DOWEL)" + (
+                ", cut by this program as a helical bore ([machining] dowel = true)"
+                if r.blank is not None and r.blank.dowel is not None else
+                ", not cut by this program (drill and ream it, or set [machining] dowel = true with a tool of at "
+                "least half its diameter)")] if d is not None else [])) or (
         "Clamp the part with its keyway or dowel where the drawing puts it relative to that line")
     return (f"program and drawing show the cam at cam angle 0: {where}; the cam-angle-0 contact point lies at "
             f"{ang:.2f}° from +X (DXF layer ANGLE-ZERO, X0 Y0 through that point). {clamp}; in service the cam "
@@ -87,7 +93,7 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
     depth = max((top - p.z for p in passes), default=0.0) if not r.rotary else machining.depth_mm
     rows = _blank_and_zero(built, r)
     if not r.rotary:
-        rows.append(("angular datum", _datum(built)))
+        rows.append(("angular datum", _datum(built, r)))
     else:
         rows.append(("angular datum", "A0 is cam angle 0: the developed drawing's u = 0 line (DXF layer ANGLE-ZERO)"))
     number = setup.program_number if setup.program_number is not None else post.program_number
