@@ -31,7 +31,8 @@ class Program:
     rapid_blocks: int
     #: every move as printed, in order: ("rapid", start, end), ("line", start, end, feed mm/min, A0°, A1°),
     #: ("inverse", start, end, F 1/min, A0°, A1°), ("arc", start, end, centre, ccw, feed mm/min),
-    #: ("tool change", seconds); positions in mm from the printed numbers (:mod:`camcam.post.gcode`)
+    #: ("tool change", seconds), ("comment", text) (a pass's name between its moves); positions in mm from
+    #: the printed numbers (:mod:`camcam.post.gcode`)
     printed_moves: tuple = ()
     #: the cycle time of the printed moves (:func:`camcam.verify.cycle_time.cycle_time`), set by the job's
     #: checks (:func:`camcam.verify.with_checks`)
