@@ -104,6 +104,13 @@ class MotionTime:
                 f"{self.max_accel_mm_s2:g} mm/s², {self.max_accel_deg_s2:g} °/s², "
                 f"junction deviation {self.junction_deviation_mm:g} mm)")
 
+    @classmethod
+    def from_dict(cls, data: dict) -> "MotionTime":
+        """The :meth:`as_dict` form read back (a report's ``machining.motion_time``)."""
+        return cls(passes=tuple(PassTime(label=p["pass"], feed_only_s=p["feed_only_s"], model_s=p["model_s"])
+                                for p in data["passes"]),
+                   **{k: data[k] for k in ("max_accel_mm_s2", "max_accel_deg_s2", "junction_deviation_mm")})
+
     def as_dict(self) -> dict:
         return {"total_s": self.total_s, "feed_only_s": self.feed_only_s, "max_accel_mm_s2": self.max_accel_mm_s2,
                 "max_accel_deg_s2": self.max_accel_deg_s2, "junction_deviation_mm": self.junction_deviation_mm,
