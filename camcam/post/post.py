@@ -54,6 +54,10 @@ Keys (all required unless a default is given):
 ``junction_deviation_mm``     GRBL's junction deviation ($11), mm (default 0.01): the cornering
                               speed rule of the motion model; each bundled post says where its
                               three values come from
+``lookahead_blocks``          blocks the controller plans over (GRBL: its 16-block buffer); default
+                              0: the model plans over the whole program
+``arc_tolerance_mm``          the controller cuts arcs into chords within it (GRBL's $12); default 0:
+                              arcs interpolated as arcs
 ``rotary_rapid``              the controller moves its rotary axes in G0 (default true): a
                               barrel program turns A back to each pass's start in a G0 at
                               the safe height; false: A never turns back, each pass starts
@@ -146,6 +150,8 @@ class Post:
     max_accel_mm_s2: float = 500.0
     max_accel_deg_s2: float = 500.0
     junction_deviation_mm: float = 0.01
+    lookahead_blocks: int = 0
+    arc_tolerance_mm: float = 0.0
     rotary_rapid: bool = True
 
     @property
@@ -232,7 +238,7 @@ def parse_post(data: dict, name: str) -> Post:
              "tcp_off": list, "tool_length_offset": str, "work_offsets": list, "coolant_flood": str,
              "coolant_mist": str, "coolant_off": str, "rapid_mm_min": (int, float), "tool_change_s": (int, float),
              "rotary_rapid": bool, "max_accel_mm_s2": (int, float), "max_accel_deg_s2": (int, float),
-             "junction_deviation_mm": (int, float)}
+             "junction_deviation_mm": (int, float), "lookahead_blocks": int, "arc_tolerance_mm": (int, float)}
     required = {"description", "extension", "units", "decimals", "arc_format", "max_arc_sweep_deg", "header", "footer"}
     for key in data:
         if key not in types:
@@ -289,6 +295,11 @@ def parse_post(data: dict, name: str) -> Post:
         v = data.get(key, default)
         if not (math.isfinite(v) and low <= v <= high):
             fail(key, f"expected {low:g} to {high:g}, got {v}")
+    if not (data.get("lookahead_blocks", 0) == 0 or 3 <= data["lookahead_blocks"] <= 100_000):
+        fail("lookahead_blocks", f"expected 0 (the whole program) or 3 to 100000, got {data['lookahead_blocks']}")
+    tol = data.get("arc_tolerance_mm", 0.0)
+    if not (tol == 0.0 or (math.isfinite(tol) and 1e-4 <= tol <= 1.0)):
+        fail("arc_tolerance_mm", f"expected 0 (arcs interpolated) or 0.0001 to 1, got {tol}")
     lines = {(key, i): line for key in ("header", "footer", "tcp_on", "tcp_off") for i, line in enumerate(data.get(key, ()))}
     for key in ("tool_length_offset", "coolant_flood", "coolant_mist", "coolant_off"):
         if data.get(key):
@@ -332,7 +343,7 @@ def parse_post(data: dict, name: str) -> Post:
     if not 1 <= pn <= pn_limit:
         fail("program_number", f"expected 1 to {pn_limit} (the digits the header prints it with), got {pn}")
     floats = ("max_arc_sweep_deg", "max_radius_error_mm", "rapid_mm_min", "tool_change_s", "max_accel_mm_s2",
-              "max_accel_deg_s2", "junction_deviation_mm")
+              "max_accel_deg_s2", "junction_deviation_mm", "arc_tolerance_mm")
     fields = {k: (tuple(v) if isinstance(v, list) else (float(v) if k in floats else v)) for k, v in data.items()}
     fields.setdefault("work_offsets", _DEFAULT_OFFSETS[dialect])
     return Post(name=name, **fields)

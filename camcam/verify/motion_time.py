@@ -3,7 +3,7 @@
 :mod:`camcam.verify.cycle_time` runs every move at its programmed rate from end to end; a machine
 cannot: it accelerates out of each stop, slows for corners and stops at the end.  :func:`motion_time`
 times the same printed moves (``Program.printed_moves``) with the planner GRBL 1.1 publishes
-(gnea/grbl ``grbl/planner.c``), with an unlimited look-ahead:
+(gnea/grbl ``grbl/planner.c``), with the post's machine limits:
 
 * **blocks.**  Each move is a block in axis space (X Y Z in mm, A in degrees, one norm over all four as
   GRBL's ``plan_buffer_line`` takes it): its length M (an arc: r · sweep, helical with its Z travel),
@@ -11,14 +11,16 @@ times the same printed moves (``Program.printed_moves``) with the planner GRBL 1
   duration T₀ as :mod:`~camcam.verify.cycle_time` gives it (M / F; a ``G93`` move 1/F min; a rapid its
   length at ``rapid_mm_min``) and nominal speed v = M / T₀ (GRBL: ``programmed_rate *= millimeters``
   in inverse time), held to ``rapid_mm_min`` on each linear axis, as GRBL holds a feed to its axes'
-  rates (an arc: its mean largest axis share max(|cos φ|, |sin φ|) over :data:`ARC_SAMPLES` points).
+  rates (an arc: by its mean largest axis share, the mean of max(|cos φ|, |sin φ|) over its sweep, exact).
 * **acceleration.**  Each axis has its own limit, ``max_accel_mm_s2`` for X Y Z, ``max_accel_deg_s2``
   for A; a line's acceleration along its path is the largest the slowest axis allows,
   a = minᵢ aᵢ / |uᵢ| (GRBL's ``limit_value_by_axis_maximum``): a move that turns A is limited by the
-  rotary share of its motion.  An arc, whose direction turns through every axis share, takes the
-  linear limit a itself (the worst along it), and its speed is held to the centripetal limit
-  v² ≤ a · r (the normal acceleration of a circle at v); GRBL has no such limit, but cuts an arc into
-  chords whose junctions (below) allow v² ≈ a · r · δ / tol, about 5 a · r at its defaults.
+  rotary share of its motion.  An arc, whose direction turns through every axis share, takes the linear
+  limit over its mean largest share (a_arc), and its speed is held to the centripetal limit
+  v² ≤ a_arc · r (the normal acceleration of a circle at v); a controller that cuts arcs into chords (``arc_tolerance_mm``,
+  GRBL's ``mc_arc``: floor(½ · sweep · r / sqrt(tol · (2r − tol))) chords) holds it instead to the
+  junction speed between its chords (below, at their deflection sweep / chords), about 5 a · r at GRBL's
+  defaults.
 * **junctions.**  The speed where block k−1 (exit vector e) meets block k (entry vector s) is at most
   v_j² = a_j · δ · sin(θ/2) / (1 − sin(θ/2)), δ the ``junction_deviation_mm``, cos θ = −e · s (θ is
   π less the turn: 180° straight on, where v_j is unlimited; 0° a reversal, where it is 0), a_j the
@@ -29,14 +31,19 @@ times the same printed moves (``Program.printed_moves``) with the planner GRBL 1
   pass (decelerate over each block to the next entry: w_k = min(J_k, w_{k+1} + 2 a_k M_k)) and a
   forward pass (accelerate: u_{k+1} = min(w_{k+1}, u_k + 2 a_k M_k)) allow, over the whole program at
   once: in squared speeds both recurrences are running minima of prefix sums (``np.minimum.accumulate``),
-  exact.  GRBL plans over 16 buffered blocks; where its look-ahead is short the controller is slower
-  than this model (``tests/verify/grbl_planner.py`` transcribes GRBL with its buffer).
+  exact.  A controller that plans over ``lookahead_blocks`` buffered blocks (GRBL: 16, its newest block
+  planned to a stop) cannot enter a block faster than it can stop within the next B − 2 controller
+  blocks (an arc counts its chords; GRBL runs block k with k + 1 … k + 14 planned behind it): entry² ≤
+  2 · Σ aᵢ Mᵢ over them, and an arc of more chords than that is held to it within.  Because the
+  backward recurrence is a running minimum, this cap is exactly the plan of each window (a stop at its
+  end, every limit within it) while the forward pass is the controller's, which runs its blocks in
+  order (``tests/verify/grbl_planner.py`` transcribes GRBL with its buffer as the reference).
 * **profile.**  Each block accelerates at a from its entry speed, cruises at v and decelerates to its
   exit speed, or, when too short to reach v, peaks at v_p² = a · M + (v₀² + v₁²) / 2: a trapezoid or a
   triangle, timed in closed form.
 
 Every block then takes at least T₀, so the model's figure is never below the feed-only one, and equals it
-as the accelerations grow without bound.  A rapid's A turn (not in the printed move) is not timed, as in
+as the accelerations grow without bound (for feeds within the rapid rate).  A rapid's A turn (not in the printed move) is not timed, as in
 the feed-only figure.  Passes: the writer records each pass's opening comment (``pass i/n: kind, …``);
 :class:`MotionTime` holds both figures per pass (the moves before the first pass — the tool change and
 the approach — count as ``start``).
@@ -60,9 +67,6 @@ import numpy as np
 from camcam.verify.cycle_time import part_path_mm
 
 __all__ = ["MotionTime", "PassTime", "motion_time", "profile_time_s", "junction_speed_sqr", "pass_label"]
-
-#: Points along an arc averaging its largest axis share (the rapid-rate cap of a feed on it).
-ARC_SAMPLES = 16
 
 #: GRBL's ``junction_cos_theta`` beyond which a join is straight on (no limit) or a reversal (a stop).
 _STRAIGHT_COS = 0.999999
@@ -187,6 +191,15 @@ def junction_speed_sqr(exit_vec, entry_vec, accel_axes, deviation_mm):
     return np.where(cos_t < -_STRAIGHT_COS, np.inf, np.where(cos_t > _STRAIGHT_COS, 0.0, v2))
 
 
+def _share_integral(phi):
+    """∫₀^φ max(|cos t|, |sin t|) dt: √2 per quarter turn, sin ψ + sin 45° within one (ψ = φ to the nearest
+    multiple of 90°).  An arc's direction turns as its radius does, so the mean of max(|cos|, |sin|) over
+    its sweep is its mean largest linear axis share."""
+    k = np.floor((phi + np.pi / 4) / (np.pi / 2))
+    psi = phi - k * (np.pi / 2)
+    return np.sqrt(2.0) * k + np.sin(psi) + np.sqrt(0.5)
+
+
 def _arc_geometry(start, end, centre, ccw):
     """Radius (mean of the two ends', as the controller's check allows), sweep and start/end angles (radians)
     of XY arcs, rows of ``start``, ``end`` (X Y Z), ``centre`` (X Y) and ``ccw`` (as
@@ -272,14 +285,39 @@ def _blocks(printed_moves, rapid_mm_min: float):
             vec[arc] = t
         length[arc] = m
         radius[arc] = r
-        phase = a0[:, None] + sign[:, None] * sweep[:, None] * (np.arange(ARC_SAMPLES) + 0.5) / ARC_SAMPLES
-        arc_share[arc] = np.maximum(np.abs(np.cos(phase)), np.abs(np.sin(phase))).mean(axis=1) * planar / m
+        with np.errstate(divide="ignore", invalid="ignore"):
+            mean = np.abs(_share_integral(a0 + sign * sweep) - _share_integral(a0)) / sweep
+        arc_share[arc] = np.maximum(np.where(sweep > 0, mean, 1.0) * planar, np.abs(dz)) / m
         nominal_s[arc] = m / table[arc, 1] * 60.0
     keep = length > 0.0
     return (delta[keep], length[keep], unit_in[keep], unit_out[keep], nominal_s[keep], radius[keep], arc_share[keep],
             np.asarray(stop_before, dtype=bool).reshape(n)[keep], np.asarray(segment_of, dtype=int).reshape(n)[keep],
             labels, changes, np.bincount(np.asarray(segment_of, dtype=int).reshape(n), weights=nominal_s,
                                          minlength=len(labels)))
+
+
+def _chords(length, dz, radius, tolerance_mm):
+    """Controller blocks per move: 1, or an arc's chords when the controller cuts arcs at ``tolerance_mm``
+    (GRBL's ``mc_arc``: floor(½ · sweep · r / sqrt(tol · (2r − tol))), at least one)."""
+    chords = np.ones(len(length))
+    arc = radius > 0.0
+    if tolerance_mm > 0.0 and arc.any():
+        r = radius[arc]
+        planar = np.sqrt(np.maximum(length[arc] ** 2 - dz[arc] ** 2, 0.0))
+        chords[arc] = np.maximum(np.floor(0.5 * planar / np.sqrt(tolerance_mm * (2 * r - tolerance_mm))), 1.0)
+    return chords
+
+
+def _arc_speed_sqr(length, dz, radius, chords, accel, post):
+    """The squared speed an arc is held to (arcs only meaningful): the centripetal a · r; where the controller
+    cuts arcs into chords, the junction speed between them instead (GRBL's rule at the chords' deflection
+    sweep / chords, a the arc's own)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        if post.arc_tolerance_mm <= 0.0:
+            return accel * radius
+        planar = np.sqrt(np.maximum(length ** 2 - dz ** 2, 0.0))
+        half = np.cos(0.5 * planar / radius / chords)  # sin(θ/2) of GRBL's θ = π − deflection
+        return np.where(chords > 1, accel * post.junction_deviation_mm * half / (1.0 - half), np.inf)
 
 
 def motion_time(printed_moves, post) -> MotionTime:
@@ -296,13 +334,14 @@ def motion_time(printed_moves, post) -> MotionTime:
         with np.errstate(divide="ignore"):
             accel = 1.0 / np.max(np.abs(delta / length[:, None]) / axes, axis=1)
         arc = radius > 0.0
-        accel[arc] = a_lin
+        accel[arc] = a_lin / arc_share[arc]
         v = length / nominal_s
         # no feed beyond the rapid rate on any linear axis (GRBL's plan_compute_profile_nominal_speed)
         with np.errstate(divide="ignore"):
             v = np.minimum(v, post.rapid_mm_min / 60.0 / np.max(np.abs(delta[:, :3] / length[:, None]), axis=1))
-        v[arc] = np.minimum(length[arc] / nominal_s[arc], np.minimum(np.sqrt(a_lin * radius[arc]),
-                                                                      post.rapid_mm_min / 60.0 / arc_share[arc]))
+        v[arc] = np.minimum(length[arc] / nominal_s[arc], post.rapid_mm_min / 60.0 / arc_share[arc])
+        chords = _chords(length, delta[:, 2], radius, post.arc_tolerance_mm)
+        v[arc] = np.minimum(v[arc], np.sqrt(_arc_speed_sqr(length, delta[:, 2], radius, chords, accel, post)[arc]))
         # squared entry limits: junction rule, both nominal speeds, rest after a stop; the end at rest
         limit = np.zeros(n + 1)
         limit[1:n] = junction_speed_sqr(unit_out[:-1], unit_in[1:], axes, post.junction_deviation_mm)
@@ -310,6 +349,15 @@ def motion_time(printed_moves, post) -> MotionTime:
         limit[:n][stop_before] = 0.0
         reach = 2.0 * accel * length
         prefix = np.concatenate(([0.0], np.cumsum(reach)))
+        if post.lookahead_blocks:
+            # the controller plans the blocks after an entry to a stop at its buffer's end: entry² ≤ 2 a × the
+            # distance of the next lookahead_blocks − 2 controller blocks (arcs count their chords)
+            count = np.concatenate(([0.0], np.cumsum(chords)))
+            ahead = np.interp(count[:n] + post.lookahead_blocks - 2, count, prefix) - prefix[:n]
+            limit[:n] = np.minimum(limit[:n], ahead)
+            inside = chords > post.lookahead_blocks - 2  # a long arc: every chord's window lies in it
+            v[inside] = np.minimum(v[inside], np.sqrt(reach[inside] / chords[inside] * (post.lookahead_blocks - 2)))
+            limit[1:n] = np.minimum(limit[1:n], np.minimum(v[:-1], v[1:]) ** 2)
         # backward: w_k = min(J_k, w_{k+1} + c_k)  ⇔  w_k + S_k = min_{j ≥ k} (J_j + S_j)
         w = np.minimum.accumulate((limit + prefix)[::-1])[::-1] - prefix
         # forward: u_{k+1} = min(w_{k+1}, u_k + c_k)  ⇔  u_k − S_k = min_{j ≤ k} (w_j − S_j)

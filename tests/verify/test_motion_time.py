@@ -24,9 +24,11 @@ from grbl_planner import grbl_time_s  # noqa: E402  (the test-side reference, no
 ROOT = Path(__file__).resolve().parents[2]
 
 
-def _post(a_mm_s2=100.0, deviation_mm=0.01, rapid_mm_min=1e6, a_deg_s2=None):
+def _post(a_mm_s2=100.0, deviation_mm=0.01, rapid_mm_min=1e6, a_deg_s2=None, lookahead_blocks=0, arc_tolerance_mm=0.0):
+    """GRBL's post with other limits; by default planning over the whole program, arcs as arcs."""
     return replace(load_post("grbl"), max_accel_mm_s2=a_mm_s2, max_accel_deg_s2=a_deg_s2 or a_mm_s2,
-                   junction_deviation_mm=deviation_mm, rapid_mm_min=rapid_mm_min)
+                   junction_deviation_mm=deviation_mm, rapid_mm_min=rapid_mm_min, lookahead_blocks=lookahead_blocks,
+                   arc_tolerance_mm=arc_tolerance_mm)
 
 
 def _line(start, end, feed_mm_min):
@@ -71,10 +73,39 @@ def test_straight_on_is_not_a_corner_and_a_reversal_stops():
 
 
 def test_an_arc_is_held_to_its_centripetal_limit():
-    # a half circle of r = 1 mm at 6000 mm/min (100 mm/s): v² ≤ a·r = 100 → 10 mm/s along π mm
+    # a half circle of r = 1 mm at 6000 mm/min (100 mm/s); the arc's acceleration, along it and across it, is
+    # a / mean max(|cos|, |sin|) = a / (2√2/π) over the half turn; v² ≤ a_arc·r, far under the feed
     arc = ("arc", (1.0, 0.0, 0.0), (-1.0, 0.0, 0.0), (0.0, 0.0), True, 6000.0)
     t = motion_time((arc,), _post()).total_s
-    assert t == pytest.approx(math.pi / 10 + 10 / 100, rel=1e-12)  # closed form: equal to rounding
+    a_arc = 100 * math.pi / (2 * math.sqrt(2))
+    v = math.sqrt(a_arc * 1.0)
+    assert t == pytest.approx(math.pi / v + v / a_arc, rel=1e-12)  # closed form: equal to rounding
+
+
+def test_a_short_look_ahead_is_grbls_buffer():
+    # 100 collinear 0.1 mm blocks at 3000 mm/min, a = 100 mm/s²: GRBL's 16-block buffer plans each entry to a
+    # stop 14 blocks on, v² ≤ 2·a·1.4 mm, far under the feed; the model's window says the same
+    moves = tuple(_line((0.1 * i, 0.0, 0.0), (0.1 * (i + 1), 0.0, 0.0), 3000.0) for i in range(100))
+    model = motion_time(moves, _post(lookahead_blocks=16)).total_s
+    grbl = grbl_time_s(moves, acceleration_mm_s2=100.0, rapid_mm_min=1e6, junction_deviation_mm=0.01)
+    # the same planner equations, in another order (0.1 mm = 25 steps: no step rounding): equal to rounding
+    assert model == pytest.approx(grbl, rel=1e-9)
+    # planning over the whole program: one 10 mm triangle, 2·sqrt(L/a) (a sum of 100 blocks: to rounding)
+    assert motion_time(moves, _post()).total_s == pytest.approx(2 * math.sqrt(10.0 / 100.0), rel=1e-9)
+    assert model > 1.15 * 2 * math.sqrt(10.0 / 100.0)  # the buffer costs 20 % here
+
+
+@pytest.mark.parametrize("r_mm, feed_mm_min", [(0.5, 600.0), (2.0, 3000.0), (5.0, 1000.0), (20.0, 3000.0), (50.0, 6000.0)])
+def test_an_arc_as_grbl_cuts_it(r_mm, feed_mm_min):
+    # a 2 rad arc after a crawl to its start (1 mm/min: the join is all but a stop in both); GRBL cuts it
+    # into chords at $12 = 0.002 mm and plans them over its buffer
+    end = (r_mm * math.cos(2.0), r_mm * math.sin(2.0), 0.0)
+    moves = (_line((0.0, 0.0, 0.0), (r_mm, 0.0, 0.0), 1.0), ("arc", (r_mm, 0.0, 0.0), end, (0.0, 0.0), True, feed_mm_min))
+    crawl_s = 60.0 * r_mm
+    model = motion_time(moves, _post(lookahead_blocks=16, arc_tolerance_mm=0.002)).total_s - crawl_s
+    grbl = grbl_time_s(moves, acceleration_mm_s2=100.0, rapid_mm_min=1e6, junction_deviation_mm=0.01) - crawl_s
+    # one arc with its mean axis share against chords each with its own (measured within 2.5 %)
+    assert abs(model - grbl) <= 0.03 * grbl
 
 
 def test_a_rotary_move_is_limited_by_its_a_share():
@@ -161,19 +192,24 @@ def programs(draw):
 
 
 @settings(max_examples=200, deadline=None)
-@given(programs(), st.floats(1.0, 5000.0), st.floats(0.001, 1.0))
-def test_acceleration_only_ever_slows(moves, a, dev):
-    post = _post(a, dev, rapid_mm_min=1e6)  # feeds within the rapid rate: the nominal durations are the feed-only ones
+@given(programs(), st.floats(1.0, 5000.0), st.floats(0.001, 1.0), st.sampled_from([0, 3, 16]),
+       st.sampled_from([0.0, 0.002]))
+def test_acceleration_only_ever_slows(moves, a, dev, lookahead, arc_tol):
+    # feeds within the rapid rate: the nominal durations are the feed-only ones
+    post = _post(a, dev, rapid_mm_min=1e6, lookahead_blocks=lookahead, arc_tolerance_mm=arc_tol)
     t = motion_time(moves, post)
     # every block at or under its nominal speed takes at least its nominal time (rounding of a sum of ~12)
     assert t.total_s >= t.feed_only_s * (1 - 1e-12)
-    fast = motion_time(moves, _post(1e12, dev, rapid_mm_min=1e6, a_deg_s2=1e12))
+    fast = motion_time(moves, _post(1e12, dev, rapid_mm_min=1e6, a_deg_s2=1e12, lookahead_blocks=lookahead,
+                                    arc_tolerance_mm=arc_tol))
     # a → ∞: the ramps take ~v/a ≤ 1e6/1e12 s each and the corners pass at full speed
     assert fast.total_s == pytest.approx(fast.feed_only_s, rel=1e-5, abs=1e-5)
 
 
 @pytest.mark.parametrize("key, value", [("max_accel_mm_s2", 0.0), ("max_accel_deg_s2", -5.0),
-                                        ("junction_deviation_mm", float("inf")), ("max_accel_mm_s2", "fast")])
+                                        ("junction_deviation_mm", float("inf")), ("max_accel_mm_s2", "fast"),
+                                        ("lookahead_blocks", 2), ("lookahead_blocks", 16.0),
+                                        ("arc_tolerance_mm", 5.0)])
 def test_bad_machine_limits_are_refused_naming_the_key(key, value):
     data = {"description": "d", "extension": "nc", "units": "G21", "decimals": 3, "arc_format": "r",
             "max_arc_sweep_deg": 120.0, "header": ["G21"], "footer": ["M2"], key: value}
