@@ -61,12 +61,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from itertools import chain
 
 import numpy as np
 
 from camcam.verify.cycle_time import part_path_mm
 
 __all__ = ["MotionTime", "PassTime", "motion_time", "profile_time_s", "junction_speed_sqr", "pass_label"]
+
+#: The printed moves' kinds that move (the others: "comment", "tool change").
+_CODES = {"rapid": 0, "line": 1, "inverse": 2, "arc": 3}
 
 #: GRBL's ``junction_cos_theta`` beyond which a join is straight on (no limit) or a reversal (a stop).
 _STRAIGHT_COS = 0.999999
@@ -216,43 +220,38 @@ def _blocks(printed_moves, rapid_mm_min: float):
     """The printed moves as blocks: arrays of axis-space deltas, lengths, entry/exit unit vectors, nominal
     seconds, arc radii (0 for lines) and largest axis shares (1 for lines), which follow a stop, and segment numbers; tool change seconds and
     labels per segment."""
-    rows, starts, ends, segment_of, stop_before = [], [], [], [], []
+    motion, segment_of, stop_before = [], [], []
     labels, changes = ["start"], [0.0]
-    stop = True
+    stop, seg = True, 0
     for move in printed_moves:
         kind = move[0]
-        if kind == "comment":
+        if kind in _CODES:
+            motion.append(move)
+            segment_of.append(seg)
+            stop_before.append(stop)
+            stop = False
+        elif kind == "comment":
             label = pass_label(move[1])
             if label is not None:
                 labels.append(label)
                 changes.append(0.0)
-            continue
-        if kind == "tool change":
+                seg += 1
+        else:  # a tool change: a stop, its seconds
             changes[-1] += move[1]
             stop = True
-            continue
-        starts.append(move[1])
-        ends.append(move[2])
-        segment_of.append(len(labels) - 1)
-        stop_before.append(stop)
-        stop = False
-        if kind == "rapid":
-            rows.append((0, 0.0, 0.0, 0.0, 0.0, 0.0))
-        elif kind == "line":
-            rows.append((1, move[3], move[4], move[5], 0.0, 0.0))
-        elif kind == "inverse":
-            rows.append((2, move[3], move[4], move[5], 0.0, 0.0))
-        else:  # arc: centre, ccw, feed
-            rows.append((3, move[5], float(move[4]), 0.0, move[3][0], move[3][1]))
-    n = len(rows)
-    table = np.asarray(rows, dtype=float).reshape(n, 6)
-    start = np.asarray(starts, dtype=float).reshape(n, 3)
-    end = np.asarray(ends, dtype=float).reshape(n, 3)
-    kind = table[:, 0].astype(int)
+    n = len(motion)
+    kind = np.fromiter((_CODES[m[0]] for m in motion), dtype=int, count=n)
+    start = np.fromiter(chain.from_iterable(m[1] for m in motion), dtype=float, count=3 * n).reshape(n, 3)
+    end = np.fromiter(chain.from_iterable(m[2] for m in motion), dtype=float, count=3 * n).reshape(n, 3)
+    # the feed (mm/min) or F (1/min, G93); A where a line or G93 move starts and ends
+    rate = np.fromiter((m[5] if m[0] == "arc" else m[3] if m[0] != "rapid" else 0.0 for m in motion), dtype=float,
+                       count=n)
+    a_from = np.fromiter((m[4] if m[0] in ("line", "inverse") else 0.0 for m in motion), dtype=float, count=n)
+    a_to = np.fromiter((m[5] if m[0] in ("line", "inverse") else 0.0 for m in motion), dtype=float, count=n)
     delta = np.zeros((n, 4))
     delta[:, :3] = end - start
     turns = np.isin(kind, (1, 2))
-    delta[turns, 3] = table[turns, 3] - table[turns, 2]
+    delta[turns, 3] = a_to[turns] - a_from[turns]
     length = np.linalg.norm(delta, axis=1)
     with np.errstate(divide="ignore", invalid="ignore"):
         unit = delta / length[:, None]
@@ -266,18 +265,20 @@ def _blocks(printed_moves, rapid_mm_min: float):
     tip = line & (delta[:, 3] != 0.0)  # a tool-tip feed while A turns: the tip's path in the part (rare)
     path = length.copy()
     for i in np.flatnonzero(tip):
-        path[i] = part_path_mm(starts[i], ends[i], table[i, 2], table[i, 3])
-    nominal_s[line] = path[line] / table[line, 1] * 60.0
+        path[i] = part_path_mm(motion[i][1], motion[i][2], a_from[i], a_to[i])
+    nominal_s[line] = path[line] / rate[line] * 60.0
     inverse = kind == 2
-    nominal_s[inverse] = 60.0 / table[inverse, 1]
+    nominal_s[inverse] = 60.0 / rate[inverse]
     arc = kind == 3
     if arc.any():
-        centre = table[arc, 4:6]
-        r, sweep, a0, a1 = _arc_geometry(start[arc], end[arc], centre, table[arc, 2] > 0.5)
+        arcs = [m for m in motion if m[0] == "arc"]
+        centre = np.fromiter(chain.from_iterable(m[3] for m in arcs), dtype=float, count=2 * len(arcs)).reshape(-1, 2)
+        ccw = np.fromiter((m[4] for m in arcs), dtype=bool, count=len(arcs))
+        r, sweep, a0, a1 = _arc_geometry(start[arc], end[arc], centre, ccw)
         planar = r * sweep
         dz = delta[arc, 2]
         m = np.hypot(planar, dz)
-        sign = np.where(table[arc, 2] > 0.5, 1.0, -1.0)
+        sign = np.where(ccw, 1.0, -1.0)
         for vec, ang in ((unit_in, a0), (unit_out, a1)):
             t = np.zeros((arc.sum(), 4))
             t[:, 0], t[:, 1] = -np.sin(ang) * sign * planar / m, np.cos(ang) * sign * planar / m
@@ -288,7 +289,7 @@ def _blocks(printed_moves, rapid_mm_min: float):
         with np.errstate(divide="ignore", invalid="ignore"):
             mean = np.abs(_share_integral(a0 + sign * sweep) - _share_integral(a0)) / sweep
         arc_share[arc] = np.maximum(np.where(sweep > 0, mean, 1.0) * planar, np.abs(dz)) / m
-        nominal_s[arc] = m / table[arc, 1] * 60.0
+        nominal_s[arc] = m / rate[arc] * 60.0
     keep = length > 0.0
     return (delta[keep], length[keep], unit_in[keep], unit_out[keep], nominal_s[keep], radius[keep], arc_share[keep],
             np.asarray(stop_before, dtype=bool).reshape(n)[keep], np.asarray(segment_of, dtype=int).reshape(n)[keep],
