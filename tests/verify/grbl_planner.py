@@ -32,6 +32,7 @@ the equations are homogeneous).
 from __future__ import annotations
 
 import math
+import re
 
 BLOCK_BUFFER_SIZE = 16  # planner.h (without USE_LINE_NUMBERS)
 N_ARC_CORRECTION = 12  # config.h
@@ -301,3 +302,42 @@ def grbl_time_s(printed_moves, *, acceleration_mm_s2: float, rapid_mm_min: float
             raise ValueError(f"{kind} moves are not in GRBL 1.1's three axes")
     grbl.finish()
     return grbl.elapsed_s + extra
+
+
+_WORD = re.compile(r"([A-Z])([-+]?[0-9]*\.?[0-9]*)")
+
+
+def grbl_time_of_text_s(text: str, *, acceleration_mm_s2: float, rapid_mm_min: float,
+                        junction_deviation_mm: float) -> float:
+    """Seconds GRBL takes over a program's text: what ``gcode.c`` reads of camcam's GRBL programs (modal G0 G1
+    G2 G3 and F, G90 absolute X Y Z, G91.1 incremental I J, G17, G21; comments in parentheses; S and M
+    words move nothing), straight into the planner: independent of the writer's ``printed_moves``."""
+    grbl = GrblPlanner(acceleration_mm_s2=acceleration_mm_s2, max_rate_mm_s=rapid_mm_min / 60.0,
+                       junction_deviation_mm=junction_deviation_mm)
+    position, motion, feed = [0.0, 0.0, 0.0], None, None
+    for raw in text.splitlines():
+        line = re.sub(r"\(.*?\)", "", raw).strip().upper()
+        words = {}
+        for letter, number in _WORD.findall(line):
+            if letter == "G":
+                g = float(number)
+                if g in (0, 1, 2, 3):
+                    motion = int(g)
+                elif g == 93:
+                    raise ValueError("inverse time (G93): not in this reference")
+            else:
+                words[letter] = float(number)
+        if "F" in words:
+            feed = words["F"] / 60.0
+        if not any(axis in words for axis in "XYZ"):
+            continue
+        target = [words.get(axis, position[i]) for i, axis in enumerate("XYZ")]
+        if motion == 0:
+            grbl.buffer_line(target, None)
+        elif motion == 1:
+            grbl.buffer_line(target, feed)
+        else:
+            grbl.arc(position, target, (words.get("I", 0.0), words.get("J", 0.0)), feed, motion == 2)
+        position = target
+    grbl.finish()
+    return grbl.elapsed_s
