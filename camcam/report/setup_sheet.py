@@ -113,11 +113,22 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
         ("cycle time (estimate)", f"{r.program.cycle_time.describe()}; rapids at {post.rapid_mm_min:g} mm/min, "
                                   f"tool change {post.tool_change_s:g} s, acceleration not counted"),
     ]
+    motion = r.program.motion_time
+    if motion is not None:
+        rows.append(("cycle time with acceleration", f"{motion.describe()}: trapezoidal moves, GRBL's cornering rule, "
+                                                     f"the post's limits (docs/machine-ready.md)"))
     n = len(passes)
+    # per pass: feed-only and motion-model seconds, when the program's pass comments split them (one per pass)
+    timed = motion is not None and len(motion.passes) == n + 1
+    times = [(f"{t.feed_only_s:.1f}", f"{t.model_s:.1f}") for t in motion.passes[1:]] if timed else [("", "")] * n
     # "plan": how a pass is planned where its kind does not say it (a roughing spiral's turns, Pass.note)
-    table = DataTable(("pass", "kind", "contour", "Z", "feed mm/min", "spindle rev/min", "plan"),
+    table = DataTable(("pass", "kind", "contour", "Z", "feed mm/min", "spindle rev/min", "feed-only s",
+                       "with acceleration s", "plan"),
                       tuple((f"{i + 1}/{n}", p.kind, r.contours[p.contour].label, f"{p.z:g}",
-                             f"{machining.feed_mm_min:g}", f"{spindle_rpm:g}", p.note) for i, p in enumerate(passes)),
-                      "The passes in cutting order (each opens with a comment naming it in the program).")
+                             f"{machining.feed_mm_min:g}", f"{spindle_rpm:g}", *times[i], p.note)
+                            for i, p in enumerate(passes)),
+                      "The passes in cutting order (each opens with a comment naming it in the program); their "
+                      "times, feed-only and with acceleration, leave out the start (tool change and approach)"
+                      + (f": {motion.passes[0].feed_only_s:.1f} s and {motion.passes[0].model_s:.1f} s." if timed else "."))
     picture = setup_picture(built, r, machining)
     return (Drawing(picture.svg, picture.caption), KeyValues(tuple(rows)), table)
