@@ -291,10 +291,13 @@ def _blocks(printed_moves, rapid_mm_min: float):
         arc_share[arc] = np.maximum(np.where(sweep > 0, mean, 1.0) * planar, np.abs(dz)) / m
         nominal_s[arc] = m / rate[arc] * 60.0
     keep = length > 0.0
+    segment = np.asarray(segment_of, dtype=int).reshape(n)
+    # a move of no length (or one whose length underflows, as a 1e-219 mm G93 move hypothesis found) takes its
+    # programmed time in the model too, as in the feed-only figure (a G93 block lasts 1/F): both count it here
+    still = np.bincount(segment[~keep], weights=nominal_s[~keep], minlength=len(labels))
     return (delta[keep], length[keep], unit_in[keep], unit_out[keep], nominal_s[keep], radius[keep], arc_share[keep],
-            np.asarray(stop_before, dtype=bool).reshape(n)[keep], np.asarray(segment_of, dtype=int).reshape(n)[keep],
-            labels, changes, np.bincount(np.asarray(segment_of, dtype=int).reshape(n), weights=nominal_s,
-                                         minlength=len(labels)))
+            np.asarray(stop_before, dtype=bool).reshape(n)[keep], segment[keep],
+            labels, np.asarray(changes) + still, np.bincount(segment[keep], weights=nominal_s[keep], minlength=len(labels)))
 
 
 def _chords(length, dz, radius, tolerance_mm):
@@ -364,7 +367,10 @@ def motion_time(printed_moves, post) -> MotionTime:
         # forward: u_{k+1} = min(w_{k+1}, u_k + c_k)  ⇔  u_k − S_k = min_{j ≤ k} (w_j − S_j)
         u = np.minimum.accumulate(w - prefix) + prefix
         speed = np.sqrt(np.clip(np.minimum(u, limit), 0.0, None))
-        t = profile_time_s(length, speed[:-1], speed[1:], v, accel)
+        # no block takes less than its programmed time (acceleration only slows): this also holds a G93 block to
+        # its 1/F where its length underflows the speed (hypothesis found a 1e-219 mm G93 move timed 0 s, not 60 s)
+        t = np.fmax(profile_time_s(length, speed[:-1], speed[1:], v, accel), nominal_s)  # fmax: a NaN (a length
+        # whose unit vector overflows) takes the programmed time
         model = np.bincount(segment, weights=t, minlength=len(labels))
     changes = np.asarray(changes)
     passes = tuple(PassTime(label=label, feed_only_s=float(feed_only[k] + changes[k]), model_s=float(model[k] + changes[k]))

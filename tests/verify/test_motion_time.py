@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import example, given, settings, strategies as st
 
 from camcam.errors import InputError
 from camcam.geometry.build import build_cam
@@ -209,6 +209,13 @@ def programs(draw):
 @settings(max_examples=200, deadline=None)
 @given(programs(), st.floats(1.0, 5000.0), st.floats(0.001, 1.0), st.sampled_from([0, 3, 16]),
        st.sampled_from([0.0, 0.002]))
+# found by hypothesis on the merged tree: a G93 move whose length (1e-219 mm) underflows to 0 in the norm was
+# dropped by the model (0 s) but counted 1/F = 60 s by the feed-only figure
+@example(moves=(("inverse", (0.0, 0.0, 0.0), (0.0, 0.0, 3.5705056516905296e-219), 1.0, 0.0, 0.0),), a=1.0, dev=1.0,
+         lookahead=0, arc_tol=0.0)
+@example(moves=(("inverse", (0.0, 0.0, 0.0), (0.0, 0.0, 3.5705056516905296e-219), 31.0, 0.0, 0.0),
+                ("rapid", (0.0, 0.0, 3.5705056516905296e-219), (0.0, 0.0, 1.0))), a=1.0, dev=1.0, lookahead=0,
+         arc_tol=0.0)
 def test_acceleration_only_ever_slows(moves, a, dev, lookahead, arc_tol):
     # feeds within the rapid rate: the nominal durations are the feed-only ones
     post = _post(a, dev, rapid_mm_min=1e6, lookahead_blocks=lookahead, arc_tolerance_mm=arc_tol)
