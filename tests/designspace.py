@@ -182,7 +182,39 @@ def draw_case(seed: int, index: int, families: tuple[str, ...] | None = None, qu
         _disc(rng, spec, family, base, lift_mm, rotation, rpm, quick)
     else:
         _barrel(rng, spec, family, base, lift_mm, rotation, rpm, quick)
+    _options(random.Random(f"anycam-options:{seed}:{index}{':quick' if quick else ''}"), spec)
     return Case(seed, index, family, spec)
+
+
+def _options(rng: random.Random, spec: dict) -> None:
+    """The options a user adds to a cam (a helical bore, a dowel hole cut or not, a keyway), drawn from a
+    stream of their own so that every case keeps the cam, motion and machining it was drawn with before."""
+    cam, m = spec["cam"], spec["machining"]
+    if cam["kind"] == "cylindrical":
+        return
+    tool = m["tool_diameter"]
+    rr = spec["follower"].get("roller_radius", 0.0)
+    room = cam["base_radius"] - rr - 1.0  # the bore must stay inside the base circle minus the roller
+    if "bore" in cam and rng.random() < 0.25:
+        bore = _r(tool * rng.uniform(1.15, 1.85), 1)  # a tool of at least half the bore and smaller than it
+        if bore / 2 < room:
+            cam["bore"], m["bore"] = bore, True
+    if "bore" in cam and rng.random() < 0.15:
+        width, depth = _r(cam["bore"] * rng.uniform(0.2, 0.45), 1), _r(cam["bore"] * rng.uniform(0.1, 0.3), 1)
+        if math.hypot(width / 2, cam["bore"] / 2 + depth) < cam["base_radius"] - 1.0 and width >= 0.5 and depth >= 0.5:
+            cam["keyway"] = {"width": width, "depth": depth, "angle": float(rng.choice([0, 90, 135, 270]))}
+    if cam["kind"] == "disc" and rng.random() < 0.2:
+        cut = rng.random() < 0.5
+        diameter = _r(tool * rng.uniform(1.15, 1.85) if cut else rng.uniform(3.0, 10.0), 1)
+        k = cam.get("keyway")
+        inner = (cam.get("bore", 0.0) / 2 if k is None
+                 else math.hypot(k["width"] / 2, cam["bore"] / 2 + k["depth"]))
+        lo, hi = inner + diameter / 2 + 1.0, cam["base_radius"] - diameter / 2 - 1.0
+        if lo < hi:
+            cam["dowel"] = {"diameter": diameter, "radius": _r(rng.uniform(lo, hi), 1),
+                            "angle": float(rng.choice([0, 45, 90, 200, 300]))}
+            if cut:
+                m["dowel"] = True
 
 
 def _tool(rng: random.Random, hi: float = 16.0) -> float:
@@ -246,7 +278,7 @@ def _disc(rng, spec, family, base, lift_mm, rotation, rpm, quick=False) -> None:
         spec["stock"] = stock
     elif u < 0.65 and cam["kind"] == "disc":
         spec["stock"] = {"kind": "offset", "allowance": _r(rng.uniform(1.0, 6.0), 1)}
-    # Heidenhain's Klartext post has no helical arcs, which a groove's ramped entries need (exit 2 says so)
+    # every post cuts a disc or face groove (Heidenhain's Klartext prints helices as CP IPA … IZ …); barrels need G93
     post = rng.choice(POSTS if cam["kind"] == "disc" else POSTS_4AXIS)
     m = _machining(rng, post, float(tool), depth, quick=quick)
     if cam["kind"] == "disc":
@@ -677,11 +709,34 @@ def _exact_curves(spec: dict) -> dict:
     s = parse_spec(tomllib.loads(to_toml(spec)), ROOT / "spec.toml")
     disc = DiscCam(disc_follower(s.follower), s.motion.program(s.unit), s.cam.base_radius, s.cam.rotation)
     r_t = spec["machining"]["tool_diameter"] / 2
+    holes = {}  # the helical bore's and the dowel hole's tool-centre circles (their passes have no leads)
+    if spec["machining"].get("bore"):
+        holes["bore"] = (_circle(spec["cam"]["bore"] / 2 - r_t, (0.0, 0.0)), False)
+    if spec["machining"].get("dowel"):
+        d = spec["cam"]["dowel"]
+        a = math.radians(d.get("angle", 90.0))
+        holes["dowel hole"] = (_circle(d["diameter"] / 2 - r_t, (d["radius"] * math.cos(a), d["radius"] * math.sin(a))),
+                               False)
     if spec["cam"]["kind"] == "disc":
-        return {"profile": (disc.offset_profile(r_t), True)}
+        return {"profile": (disc.offset_profile(r_t), True), **holes}
     cam = GrooveCam(disc, s.cam.groove_depth)
     return {"groove centre": (cam.pitch, False), "groove centre (rough)": (cam.pitch, False),
-            "inner flank": (cam.offset_flank(0, r_t), False), "outer flank": (cam.offset_flank(1, r_t), False)}
+            "inner flank": (cam.offset_flank(0, r_t), False), "outer flank": (cam.offset_flank(1, r_t), False),
+            **holes}
+
+
+def _circle(radius: float, centre: tuple[float, float]):
+    """The circle of ``radius`` about ``centre`` as an exact closed curve (written here, not camcam's bore_curve)."""
+    import numpy as np
+
+    from camcam.geometry.curve import FunctionCurve
+
+    def func(t, k):
+        c, s = np.cos(t), np.sin(t)
+        v = radius * np.stack([[c, s], [-s, c], [-c, -s], [s, -c]][k], -1)
+        return v + np.asarray(centre) if k == 0 else v
+
+    return FunctionCurve(func, 0.0, 2 * math.pi, closed=True)
 
 
 def _swept(spec: dict, out: Path, canon: list) -> dict:

@@ -200,6 +200,27 @@ class _Writer:
                                 f"max_arc_sweep_deg {self.post.max_arc_sweep_deg:g}")
 
     # -- Heidenhain --------------------------------------------------------------------
+    def hh_helix(self, m, before) -> bool:
+        """A helical arc (a ramped entry, a helical bore): Klartext programs a helix only in polar coordinates,
+        ``CC`` (the pole: the centre) then ``CP IPA… IZ… DR…`` (the incremental polar angle and Z travel), as
+        HEIDENHAIN's TNC manuals state ("A helix is programmed only in polar coordinates").  The angle is the
+        sweep from the printed start to the printed end about the printed centre, printed to 1e-4°; the
+        controller ends the helix on the start's radius, within the arc check's radius error of the printed end."""
+        sx, sy, sz = self.pos
+        ex, ey, ez, cx, cy = (self.count(v) for v in (m.x, m.y, m.z, m.cx, m.cy))
+        self.check_arc(sx, sy, ex, ey, cx, cy, m.ccw)
+        a0, a1 = math.atan2(sy - cy, sx - cx), math.atan2(ey - cy, ex - cx)
+        sweep = math.degrees((a1 - a0) % (2 * math.pi) if m.ccw else -((a0 - a1) % (2 * math.pi)))
+        if abs(sweep) < 1e-4:  # a full turn: the printed ends coincide
+            sweep = 360.0 if m.ccw else -360.0
+        self.emit(f"CC X{self.n(cx, True)} Y{self.n(cy, True)}")
+        self.emit(f"CP IPA{sweep:+.4f} IZ{self.n(ez - sz, True)} DR{'+' if m.ccw else '-'} R0 {self.f_word(m.feed_mm_min)}")
+        self.pos[0], self.pos[1], self.pos[2] = ex, ey, ez
+        self.counts["arc"] += 1
+        self.log.append(("arc", before, self.where(), (self.per_mm(cx), self.per_mm(cy)), m.ccw,
+                         self.per_mm(self.count(m.feed_mm_min))))
+        return False
+
     def hh_move(self, m, first_words: str, five_axis: bool = False) -> bool:
         """One move; ``first_words`` (spindle and coolant on) go on it if it prints an L block (then True)."""
         if isinstance(m, Comment):
@@ -211,8 +232,7 @@ class _Writer:
             raise InputError(f"post {self.post.name}: 4-axis programs are not supported by this dialect")
         if isinstance(m, ArcMove):
             if self.pos[2] is not None and self.count(m.z) != self.pos[2]:
-                raise InputError(f"post {self.post.name}: helical arcs (ramped groove entries) are not supported by "
-                                 f"this dialect")
+                return self.hh_helix(m, before)
             sx, sy = self.pos[0], self.pos[1]
             ex, ey, cx, cy = (self.count(v) for v in (m.x, m.y, m.cx, m.cy))
             self.check_arc(sx, sy, ex, ey, cx, cy, m.ccw)

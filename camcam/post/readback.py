@@ -130,6 +130,14 @@ def _heidenhain(text: str) -> list:
                 raise ValueError(f"line {no}: C without CC: {raw.strip()!r}")
             nx, ny, nz = vals.get("X", x), vals.get("Y", y), z
             out.append(Move("arc", nx, ny, nz, a=0.0, centre=cc, ccw="DR+" in line))
+        elif head == "CP":  # a helix about the pole CC: incremental polar angle IPA and Z travel IZ
+            inc = {k: float(v) for k, v in _WORD.findall(line) if k in ("IPA", "IZ")}
+            if cc is None or "IPA" not in inc:
+                raise ValueError(f"line {no}: CP needs a pole (CC) and IPA: {raw.strip()!r}")
+            r, a0 = math.hypot(x - cc[0], y - cc[1]), math.atan2(y - cc[1], x - cc[0])
+            a1 = a0 + math.radians(inc["IPA"])
+            nx, ny, nz = cc[0] + r * math.cos(a1), cc[1] + r * math.sin(a1), z + inc.get("IZ", 0.0)
+            out.append(Move("arc", nx, ny, nz, a=0.0, centre=cc, ccw="DR+" in line))
         else:
             continue
         x, y, z = nx, ny, nz
