@@ -352,7 +352,8 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
     # highest.  Its Z is the lowest tip Z it prints (issue 43: the table said the final pass's tip radius less
     # the raise, so the first pass read 5.57 mm below the last where the program cuts it 5.57 mm above)
     raises = [(n - 1 - k) * step for k in range(n)]
-    passes = tuple(Pass(0, "slot", _lowest_tip_z(nodes, h, post.quantizer), tuple(_pass_moves(nodes, h, m, outer, r_t)))
+    passes = tuple(Pass(0, "slot", _lowest_tip_z(nodes, h, post.quantizer), tuple(_pass_moves(nodes, h, m, outer, r_t)),
+                        direction="both")
                    for h in raises)
     # A turns back in a G0 at the safe height, or counts on where the controller has no rotary G0 (issue 47)
     passes = with_markers(passes if post.rotary_rapid else shortest_rotation(passes), [LABEL])

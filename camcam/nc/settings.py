@@ -17,14 +17,17 @@ if TYPE_CHECKING:  # annotations only: reading a spec does not import the tool-p
     from camcam.toolpath.path import CutSettings, Toolpath
     from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["MachiningSpec", "PostDialect", "ProgramSetup", "WORK_OFFSETS", "COOLANTS", "StockSpec", "DEFAULT_STOCK",
-           "DEFAULT_OVERSIZE_MM", "STOCK_KINDS"]
+__all__ = ["MachiningSpec", "PostDialect", "ProgramSetup", "WORK_OFFSETS", "COOLANTS", "DIRECTIONS", "StockSpec",
+           "DEFAULT_STOCK", "DEFAULT_OVERSIZE_MM", "STOCK_KINDS"]
 
 #: The work offsets a spec may name; a post prints each in its own words (``Post.work_offsets``).
 WORK_OFFSETS = ("G54", "G55", "G56", "G57", "G58", "G59")
 
 #: The coolant a spec may ask for.
 COOLANTS = ("flood", "mist", "off")
+
+#: The values of ``[machining] direction`` (:mod:`camcam.nc.direction`); the first is the default.
+DIRECTIONS = ("climb", "conventional")
 
 
 @dataclass(frozen=True)
@@ -137,6 +140,7 @@ class MachiningSpec:
     stepover: float = 0.4
     ramp_angle_deg: float = 3.0
     bore: bool = False
+    direction: str = "climb"  # or "conventional": which way round every contour runs (camcam.nc.direction)
 
     @property
     def stepover_mm(self) -> float:

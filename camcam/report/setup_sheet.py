@@ -76,6 +76,17 @@ def _datum(built) -> str:
             f"turns {turn}.")
 
 
+def _direction_text(direction: str, passes) -> str:
+    """The milling direction asked for and how the passes hold it (:mod:`camcam.nc.direction`)."""
+    both = sum(p.direction == "both" for p in passes)
+    climb = direction == "climb"
+    return (f"{direction} milling, spindle clockwise (M3): the material on the {'right' if climb else 'left'} of "
+            f"travel on every one-sided pass, so {'clockwise' if climb else 'counter-clockwise'} round material "
+            f"inside the path (a disc's profile) and {'counter-clockwise' if climb else 'clockwise'} round material "
+            f"outside it (the bore, a groove's outer wall)"
+            + (f"; {both} full-width pass{'es' if both > 1 else ''} cut on both sides" if both else ""))
+
+
 def setup_blocks(built, r: MachiningResult, machining) -> tuple:
     """KeyValues of the setup and a table of the passes, in cutting order (``machining``: the spec's table)."""
     post, setup, spindle_rpm = r.post, machining.setup, machining.spindle_rpm
@@ -101,14 +112,16 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
                     f"(clear of the blank at every move)" if machining.stick_out_mm is not None else "")),
         ("tool length offset", post.length_offset_text(tool)),
         ("spindle", f"{spindle_rpm:g} rev/min clockwise"),
+        ("milling direction", _direction_text(machining.direction, passes)),
         ("coolant", f"{setup.coolant} ({post.coolant_word(setup.coolant)} on, {post.coolant_off} off)"),
         ("cycle time (estimate)", f"{r.program.cycle_time.describe()}; rapids at {post.rapid_mm_min:g} mm/min, "
                                   f"tool change {post.tool_change_s:g} s, acceleration not counted"),
     ]
     n = len(passes)
     # "plan": how a pass is planned where its kind does not say it (a roughing spiral's turns, Pass.note)
-    table = DataTable(("pass", "kind", "contour", "Z", "feed mm/min", "spindle rev/min", "plan"),
+    table = DataTable(("pass", "kind", "contour", "Z", "feed mm/min", "spindle rev/min", "plan", "direction"),
                       tuple((f"{i + 1}/{n}", p.kind, r.contours[p.contour].label, f"{p.z:g}",
-                             f"{machining.feed_mm_min:g}", f"{spindle_rpm:g}", p.note) for i, p in enumerate(passes)),
+                             f"{machining.feed_mm_min:g}", f"{spindle_rpm:g}", p.note, p.direction)
+                            for i, p in enumerate(passes)),
                       "The passes in cutting order (each opens with a comment naming it in the program).")
     return (KeyValues(tuple(rows)), table)

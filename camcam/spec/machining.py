@@ -24,6 +24,8 @@ ramp_angle = 3.0           # deg, steepest descent into material (grooves: rampe
 bore = false               # true: cut the bore as a helical bore
 units_checked = false      # true: a tolerance over 1 % of the cam's size or a feed under 50 mm/min is meant
                            # (both are refused otherwise: likely µm typed as mm, mm/s or in/min typed as mm/min)
+direction = "climb"        # or "conventional": the side of travel the material is on with the M3 spindle
+                           # (climb: clockwise round a disc's profile, counter-clockwise round the bore)
 axes = 5                   # cylindrical cams: 4 (X A) or 5 (X Y Z A B, tool axis on the roller axis);
                            # default 5 for an oscillating roller, 4 otherwise
 ```
@@ -36,7 +38,7 @@ from pathlib import Path
 
 from camcam.errors import InputError, SpecError
 from camcam.geometry.followers import follower_kind as follower_class
-from camcam.nc.settings import COOLANTS, WORK_OFFSETS, MachiningSpec, ProgramSetup
+from camcam.nc.settings import COOLANTS, DIRECTIONS, WORK_OFFSETS, MachiningSpec, ProgramSetup
 from camcam.post.post import five_axis_posts, load_post
 from camcam.spec.reader import Table
 from camcam.toolpath.budget import DEFAULT_BUDGET
@@ -164,6 +166,7 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
     stepover = t.number("stepover", 0.4, minimum=0.0, maximum=1.0, inclusive=False)
     ramp = t.number("ramp_angle", 3.0, minimum=0.0, maximum=45.0, inclusive=False, unit="deg")
     bore = t.boolean("bore", False)
+    direction = t.string("direction", DIRECTIONS[0], choices=DIRECTIONS)
     work_offset = t.string("work_offset", "G54", choices=WORK_OFFSETS)
     coolant = t.string("coolant", "flood", choices=COOLANTS)
     setup = ProgramSetup(work_offset, coolant, t.integer("program_number", None, minimum=1), source)
@@ -178,5 +181,5 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
                          safe_z_mm=safe, clearance_z_mm=clearance, lead_radius_mm=lead,
                          finish_allowance_mm=allowance, spring_pass=spring, tool_number=tool_number,
                          accept_out_of_tolerance=accept, setup=setup, flute_length_mm=flute, a_axis=a_axis,
-                         stepover=stepover, ramp_angle_deg=ramp, bore=bore, axes=axes,
+                         stepover=stepover, ramp_angle_deg=ramp, bore=bore, axes=axes, direction=direction,
                          holder_diameter_mm=holder, stick_out_mm=stick_out)
