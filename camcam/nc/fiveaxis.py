@@ -49,6 +49,7 @@ import numpy as np
 
 from camcam.errors import FitError, GeometryError, InputError
 from camcam.geometry.build import BuiltCam
+from camcam.nc.feeds import with_cutting_data
 from camcam.nc.passes import with_markers
 from camcam.nc.result import GroovePlan, MachiningResult
 from camcam.nc.settings import MachiningSpec
@@ -356,7 +357,8 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
                         direction="both")
                    for h in raises)
     # A turns back in a G0 at the safe height, or counts on where the controller has no rotary G0 (issue 47)
-    passes = with_markers(passes if post.rotary_rapid else shortest_rotation(passes), [LABEL])
+    passes = with_cutting_data(passes if post.rotary_rapid else shortest_rotation(passes), m)
+    passes = with_markers(passes, [LABEL])
     comments = frame_comments(m.a_axis, pose.sign, post.tcp_comment(m.tool_number)) + (
         f"tool D{m.tool_diameter_mm:g} flat end mill = the roller; the cut reaches {path.cut_length_mm:.2f} mm "
         f"up the tool from its tip",
@@ -365,7 +367,7 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
         post.five_axis_feed_note)
     title = job_title(name, built.spec.kind, cam.kind, m.tool_diameter_mm, "lines", m.tolerance_mm, post.name) \
         + ", 5 axes"
-    toolpath = Toolpath(title, passes, m.spindle_rpm, tool_number=m.tool_number, tool_diameter_mm=m.tool_diameter_mm,
+    toolpath = Toolpath(title, passes, passes[0].spindle_rpm or m.spindle_rpm, tool_number=m.tool_number, tool_diameter_mm=m.tool_diameter_mm,
                         rotary=True, comments=comments,
                         opening=(Rapid(None, None, outer + m.safe_z_mm),),
                         closing=(Rapid(None, None, None, a_deg=None, b_deg=0.0),), five_axis=True)

@@ -34,6 +34,7 @@ from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
 from camcam.nc.direction import direction_of, orient
 from camcam.nc.bore import bore_circle_radius, bore_curve, bore_passes
+from camcam.nc.feeds import with_cutting_data
 from camcam.nc.passes import finish_moves, ramp_loop_passes, spiral_moves, with_markers
 from camcam.nc.result import MachiningResult, deviation_checks
 from camcam.nc.roughing import RING_STEP_FRACTION, Spiral, disc_spiral, groove_rings
@@ -188,12 +189,14 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
     # lead arcs, spirals and ramps planned at the post's largest sweep print within it (contours already do)
     passes = [replace(q, note=p.note) for p, q in
               zip(passes, passes_within_sweep(passes, post.quantizer, post.max_arc_sweep_deg), strict=True)]
+    passes = with_cutting_data(passes, m)  # each kind's speed and feed, held at the edge on arcs (cutting data)
     safe = (Rapid(None, None, max(m.safe_z_mm, z_clear)),)
     counts: dict[str, int] = {}
     for p in passes:
         counts[p.kind] = counts.get(p.kind, 0) + 1
     summary = ", ".join(f"{n} {kind}" for kind, n in counts.items())
-    toolpath = Toolpath(title, with_markers(passes, [c.label for c in contours]), m.spindle_rpm,
+    spindle = passes[0].spindle_rpm or m.spindle_rpm  # the header starts the first pass's speed
+    toolpath = Toolpath(title, with_markers(passes, [c.label for c in contours]), spindle,
                         tool_number=m.tool_number, tool_diameter_mm=m.tool_diameter_mm, rotary=False,
                         comments=(f"{len(passes)} passes [{summary}] in {len(levels)} depth levels to "
                                   f"{levels[-1]:g} mm",),

@@ -44,6 +44,7 @@ from camcam.errors import GeometryError, InputError, SpecError
 from camcam.workers import parallel_map
 from camcam.geometry.build import BuiltCam
 from camcam.nc.direction import direction_of, material_side
+from camcam.nc.feeds import with_cutting_data
 from camcam.nc.flank import DisplacedCurve, plan_flank, smallest_tool_radius
 from camcam.nc.passes import with_markers
 from camcam.nc.result import GroovePlan, MachiningResult, deviation_checks
@@ -232,8 +233,8 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     # every pass opens with a comment naming it (pass 1/4: slot, groove centre, Z45.0), as a disc's do
     # A turns back to each pass's start in a G0 at the safe height, or counts on (the shortest way) where the
     # controller takes no rotary word in G0 (issue 47)
-    passes = joined.passes if post.rotary_rapid else shortest_rotation(joined.passes)
-    toolpath = dataclasses.replace(joined, comments=comments,
+    passes = with_cutting_data(joined.passes if post.rotary_rapid else shortest_rotation(joined.passes), m)
+    toolpath = dataclasses.replace(joined, comments=comments, spindle_rpm=passes[0].spindle_rpm or m.spindle_rpm,
                                    passes=with_markers(passes, [c.label for c in contours]))
     # printed without the 3-D check: camcam.verify.job_checks measures this program and adds its result to the
     # header (the same moves)

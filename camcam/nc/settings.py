@@ -141,6 +141,16 @@ class MachiningSpec:
     ramp_angle_deg: float = 3.0
     bore: bool = False
     direction: str = "climb"  # or "conventional": which way round every contour runs (camcam.nc.direction)
+    cutting: tuple = ()  # rough, finish, spring CuttingData (camcam.nc.cutting_data); () the single feed/spindle
+
+    def cutting_for(self, pass_kind: str):
+        """The :class:`~camcam.nc.cutting_data.CuttingData` a pass of ``pass_kind`` cuts with, or None (the single
+        ``feed_mm_min`` and ``spindle_rpm``)."""
+        if not self.cutting:
+            return None
+        from camcam.nc.cutting_data import CUT_KINDS, KIND_DATA
+
+        return self.cutting[CUT_KINDS.index(KIND_DATA[pass_kind])]
 
     @property
     def stepover_mm(self) -> float:

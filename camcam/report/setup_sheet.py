@@ -13,6 +13,8 @@ import math
 import numpy as np
 
 from camcam.geometry.followers import follower_kind
+from camcam.nc.cutting_data import PRESETS
+from camcam.nc.feeds import MIN_ENGAGEMENT_FACTOR, engagement_factor
 from camcam.nc.result import MachiningResult
 from camcam.verify.reach import flute_text
 from camcam.report.html import DataTable, KeyValues
@@ -111,7 +113,9 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
                  + (f"; holder Ø{machining.holder_diameter_mm:g} mm at stick-out {machining.stick_out_mm:g} mm "
                     f"(clear of the blank at every move)" if machining.stick_out_mm is not None else "")),
         ("tool length offset", post.length_offset_text(tool)),
-        ("spindle", f"{spindle_rpm:g} rev/min clockwise"),
+        ("spindle", f"{spindle_rpm:g} rev/min clockwise" if not machining.cutting else
+                    "clockwise, each pass at its kind's speed (cutting data below; the program prints S at each "
+                    "change)"),
         ("milling direction", _direction_text(machining.direction, passes)),
         ("coolant", f"{setup.coolant} ({post.coolant_word(setup.coolant)} on, {post.coolant_off} off)"),
         ("cycle time (estimate)", f"{r.program.cycle_time.describe()}; rapids at {post.rapid_mm_min:g} mm/min, "
@@ -121,7 +125,32 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
     # "plan": how a pass is planned where its kind does not say it (a roughing spiral's turns, Pass.note)
     table = DataTable(("pass", "kind", "contour", "Z", "feed mm/min", "spindle rev/min", "plan", "direction"),
                       tuple((f"{i + 1}/{n}", p.kind, r.contours[p.contour].label, f"{p.z:g}",
-                             f"{machining.feed_mm_min:g}", f"{spindle_rpm:g}", p.note, p.direction)
+                             *_pass_speeds(machining, p), p.note, p.direction)
                             for i, p in enumerate(passes)),
                       "The passes in cutting order (each opens with a comment naming it in the program).")
-    return (KeyValues(tuple(rows)), table)
+    if not machining.cutting:
+        return (KeyValues(tuple(rows)), table)
+    return (KeyValues(tuple(rows)), table, _cutting_table(machining))
+
+
+def _pass_speeds(machining, p) -> tuple[str, str]:
+    """A pass's (feed, spindle) as the pass table shows them: its kind's cutting data (arcs: at the edge)."""
+    data = machining.cutting_for(p.kind)
+    if data is None:
+        return f"{machining.feed_mm_min:g}", f"{machining.spindle_rpm:g}"
+    return f"{round(data.feed_mm_min * engagement_factor(p.kind, machining.stepover)):g}", f"{data.rpm:g}"
+
+
+def _cutting_table(machining) -> DataTable:
+    """The cutting data per pass kind and where each came from (:mod:`camcam.nc.cutting_data`)."""
+    def source(c) -> str:
+        if c.origin.startswith("preset "):
+            return f"{c.origin}: {PRESETS[c.origin.removeprefix('preset ')].source}"
+        return {"spec": "[machining." + c.kind + "]", "feed and spindle": "[machining] feed and spindle"}[c.origin]
+
+    return DataTable(("kind", "vc m/min", "fz mm", "flutes", "spindle rev/min", "feed mm/min", "source"),
+                     tuple((c.kind, f"{c.vc_m_min:.4g}", f"{c.fz_mm:.4g}", f"{c.flutes}", f"{c.rpm:g}",
+                            f"{c.feed_mm_min:g}", source(c)) for c in machining.cutting),
+                     "Cutting data per pass kind (n = 1000 vc / (pi D), F = fz z n). A full-width slot or bore runs "
+                     f"at the rough feed x {MIN_ENGAGEMENT_FACTOR:g} or the stepover if larger; on every arc of a "
+                     "one-sided pass the tool-centre feed is F R/(R -/+ r_tool), so the cutting edge runs at F.")

@@ -93,6 +93,8 @@ class Pass:
         "" (not stated).
     cutting : str
         The pass's cutting data as stated (:mod:`camcam.nc.cutting_data`), or "".
+    spindle_rpm : float or None
+        The pass's spindle speed; the writer prints a change at the pass's start (None: as before).
     """
 
     contour: int
@@ -103,6 +105,7 @@ class Pass:
     note: str = ""
     direction: str = ""
     cutting: str = ""
+    spindle_rpm: float | None = None
 
     def __post_init__(self) -> None:
         if self.kind not in PASS_KINDS:
