@@ -100,7 +100,8 @@ def nc_figures(report: dict, result, part_deviation_mm: float | None, said: list
     """Add the NC step's figures to ``report``; its notes go to ``said`` as ("note", text)."""
     nc = result.figures()
     nc["dxf_part_deviation_mm"] = part_deviation_mm
-    for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks", "cycle_time_s"):
+    for key in ("tolerance_mm", "max_deviation_mm", "line_blocks", "arc_blocks", "lower_bound_blocks", "cycle_time_s",
+                "motion_time_s"):
         report[key] = nc[key]
     report["machining"] = nc
     if "material" in nc:

@@ -24,7 +24,7 @@ __all__ = ["register", "batch_task", "summary_row", "COLUMNS"]
 NOT_ALL_PASSED = 3
 
 COLUMNS = ("spec", "folder", "name", "verdict", "accepted", "max_deviation_mm", "tolerance_mm", "line_blocks", "arc_blocks",
-           "cycle_time_s", "max_pressure_angle_deg", "min_curvature_radius_mm", "warnings", "reason")
+           "cycle_time_s", "motion_time_s", "max_pressure_angle_deg", "min_curvature_radius_mm", "warnings", "reason")
 
 
 def register(sub) -> None:
@@ -47,8 +47,8 @@ def summary_row(spec_arg: str, folder: str, summary: dict | None, verdict, warni
     cam = summary.get("cam") or {}
     reason = "" if verdict.status == "PASS" else verdict.line() + (" (accepted: accept_out_of_tolerance = true)" if verdict.accepted and not verdict.passed else "")
     row.update(name=summary.get("name", ""), verdict=verdict.status, accepted=verdict.accepted, reason=reason)
-    for key in ("max_deviation_mm", "tolerance_mm", "line_blocks", "arc_blocks", "cycle_time_s", "max_pressure_angle_deg",
-                "min_curvature_radius_mm"):
+    for key in ("max_deviation_mm", "tolerance_mm", "line_blocks", "arc_blocks", "cycle_time_s", "motion_time_s",
+                "max_pressure_angle_deg", "min_curvature_radius_mm"):
         if cam.get(key) is not None:
             row[key] = cam[key]
     return row
@@ -104,10 +104,10 @@ def _index(rows: list[dict], files: list[dict[str, bytes]]) -> str:
 
     table = DataTable(
         ("spec", "folder", "verdict", "max deviation (mm)", "tolerance (mm)", "blocks (line + arc)", "cycle time (s)",
-         "max pressure angle (°)", "reason"),
+         "with acceleration (s)", "max pressure angle (°)", "reason"),
         tuple((r["spec"], r["folder"], r["verdict"] + (" (accepted)" if r["accepted"] is True else ""), num(r["max_deviation_mm"], 4), num(r["tolerance_mm"], 4),
                f"{r['line_blocks']} + {r['arc_blocks']}" if r["line_blocks"] != "" else "", num(r["cycle_time_s"], 1),
-               num(r["max_pressure_angle_deg"], 3), r["reason"]) for r in rows))
+               num(r["motion_time_s"], 1), num(r["max_pressure_angle_deg"], 3), r["reason"]) for r in rows))
     passed = sum(r["verdict"] == "PASS" for r in rows)
     warned = sum(r["verdict"] == "WARN" for r in rows)
     page = render_html("camcam batch", f"{len(rows)} specs: {passed} PASS, " + (f"{warned} WARN, " if warned else "")

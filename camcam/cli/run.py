@@ -98,6 +98,10 @@ def run(args) -> int:
                     ct = {k: v for k, v in c["machining"]["cycle_time"].items() if k != "total_s"}
                     print(f"cycle time {CycleTime(**ct).describe()}, rapids at "
                           f"{spec.machining.post.rapid_mm_min:g} mm/min, acceleration not counted")
+                if "motion_time" in c["machining"]:
+                    from camcam.verify.motion_time import MotionTime
+
+                    print(f"cycle time {MotionTime.from_dict(c['machining']['motion_time']).describe()}")
             if "material" in c:
                 mt = c["material"]
                 print(f"material: {mt['blank']['description']}; {len(mt['passes'])} passes, {engagement_phrase(mt)}, "

@@ -1,7 +1,8 @@
-"""The helical bore (``[machining] bore = true``): helix down at the ramp angle, then a full circle.
+"""The helical bore (``[machining] bore = true``, and the dowel hole with ``dowel = true``): helix down at the
+ramp angle, then a full circle.
 
 The tool centre runs on the circle of radius ``bore/2 − r_t`` about the cam
-axis; it winds down from the blank's top in quarter-turn helical arcs at no
+axis (a dowel hole's: about the hole's centre); it winds down from the blank's top in quarter-turn helical arcs at no
 more than the ramp angle to the bore's depth (through the cam: its
 thickness, or the cut depth if deeper), then cuts one full circle there:
 the circle is a contour of the job, fitted and measured like the others.
@@ -12,6 +13,7 @@ the bore is less than twice the tool: the pass is a stated slot (``bore``).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -21,7 +23,7 @@ from camcam.nc.direction import reverse_elements
 from camcam.nc.stock import Blank
 from camcam.toolpath.path import ArcMove, Feed, Pass, Rapid, contour_moves
 
-__all__ = ["bore_passes", "bore_circle_radius", "bore_curve"]
+__all__ = ["bore_passes", "bore_circle_radius", "bore_curve", "dowel_curve", "dowel_passes"]
 
 
 def bore_circle_radius(blank: Blank, tool_radius_mm: float) -> float:
@@ -29,14 +31,26 @@ def bore_circle_radius(blank: Blank, tool_radius_mm: float) -> float:
     return blank.bore_mm / 2 - tool_radius_mm
 
 
-def bore_curve(radius_mm: float) -> JetCurve:
-    """The tool centre's circle, counter-clockwise from (radius, 0), as an exact curve for the fitter."""
+def bore_curve(radius_mm: float, centre: tuple[float, float] = (0.0, 0.0)) -> JetCurve:
+    """The tool centre's circle about ``centre``, counter-clockwise from centre + (radius, 0), as an exact curve
+    for the fitter (counter-clockwise inside a hole is climb milling with the spindle clockwise, M3)."""
+    # a module-level callable, not a closure: the contour goes pickled to the drawing's child process (a closure
+    # made `camcam run` with bore = true end in an internal error: "Can't pickle local object")
+    return JetCurve(_Circle(radius_mm, *map(float, centre)), np.array([0.0, math.pi / 2, math.pi, 1.5 * math.pi,
+                                                                        2 * math.pi]))
 
-    def func(t, K, piece=None):
+
+@dataclass(frozen=True)
+class _Circle:
+    """The jets of the circle of ``radius_mm`` about (``cx``, ``cy``) at angle t (a JetCurve's function)."""
+
+    radius_mm: float
+    cx: float
+    cy: float
+
+    def __call__(self, t, K, piece=None):
         a = Jet.variable(t, K)
-        return a.cos() * radius_mm, a.sin() * radius_mm
-
-    return JetCurve(func, np.array([0.0, math.pi / 2, math.pi, 1.5 * math.pi, 2 * math.pi]))
+        return a.cos() * self.radius_mm + self.cx, a.sin() * self.radius_mm + self.cy
 
 
 def bore_passes(contour: int, elements, blank: Blank, tool_radius_mm: float, z_clear: float, z_depth: float,
@@ -52,19 +66,46 @@ def bore_passes(contour: int, elements, blank: Blank, tool_radius_mm: float, z_c
     point.  ``ccw`` runs helix and circle counter-clockwise (climb with an M3 spindle: the material is
     outside, on the right of travel), else clockwise (conventional; :mod:`camcam.nc.direction`).
     """
-    rho = bore_circle_radius(blank, tool_radius_mm)
-    z_top, z_end = blank.top_z_mm, min(z_depth, -thickness_mm)
+    return _helix_passes(contour, elements, (0.0, 0.0), bore_circle_radius(blank, tool_radius_mm), blank.top_z_mm,
+                         z_clear, min(z_depth, -thickness_mm), ramp_angle_deg=ramp_angle_deg,
+                         plunge_feed_mm_min=plunge_feed_mm_min, feed_mm_min=feed_mm_min, ccw=ccw)
+
+
+def dowel_curve(blank: Blank, tool_radius_mm: float) -> JetCurve:
+    """The tool centre's circle in the dowel hole ``blank.dowel`` (:func:`bore_curve` about its centre)."""
+    return bore_curve(blank.dowel.diameter / 2 - tool_radius_mm, blank.dowel.centre)
+
+
+def dowel_passes(contour: int, elements, blank: Blank, tool_radius_mm: float, z_clear: float, z_depth: float,
+                 thickness_mm: float, *, ramp_angle_deg: float, plunge_feed_mm_min: float,
+                 feed_mm_min: float, ccw: bool = True) -> list[Pass]:
+    """The dowel hole through the cam (``[machining] dowel = true``): a ``bore`` pass about its centre, as
+    :func:`bore_passes` (``ccw`` likewise), noted as the dowel hole."""
+    d = blank.dowel
+    passes = _helix_passes(contour, elements, d.centre, d.diameter / 2 - tool_radius_mm, blank.top_z_mm, z_clear,
+                           min(z_depth, -thickness_mm), ramp_angle_deg=ramp_angle_deg,
+                           plunge_feed_mm_min=plunge_feed_mm_min, feed_mm_min=feed_mm_min, ccw=ccw)
+    note = f"dowel hole Ø{d.diameter:g} mm at R{d.radius:g} mm, {d.angle_deg % 360:g}° from +X"
+    return [replace(p, note=note) for p in passes]
+
+
+def _helix_passes(contour: int, elements, centre, rho: float, z_top: float, z_clear: float, z_end: float, *,
+                  ramp_angle_deg: float, plunge_feed_mm_min: float, feed_mm_min: float,
+                  ccw: bool) -> list[Pass]:
+    """A helix about ``centre`` on the tool-centre radius ``rho`` from ``z_top`` to ``z_end``, then the fitted
+    circle ``elements`` (counter-clockwise) there, and the retract; both run clockwise unless ``ccw``."""
+    cx, cy = centre
     quarter = math.pi / 2 * rho
     per_quarter = quarter * math.tan(math.radians(ramp_angle_deg))
     n = 4 * max(1, math.ceil((z_top - z_end) / per_quarter / 4 * (1 + 1e-9)))  # whole turns: ends at (ρ, 0)
     start = tuple(map(float, elements[0].start))
-    phi0 = math.atan2(start[1], start[0])
+    phi0 = math.atan2(start[1] - cy, start[0] - cx)
     turn = math.pi / 2 if ccw else -math.pi / 2
-    pts = [start] + [(rho * math.cos(phi0 + k * turn), rho * math.sin(phi0 + k * turn)) for k in (1, 2, 3)]
+    pts = [start] + [(cx + rho * math.cos(phi0 + k * turn), cy + rho * math.sin(phi0 + k * turn)) for k in (1, 2, 3)]
     moves = [Rapid(start[0], start[1], None), Rapid(None, None, z_clear), Feed(None, None, z_top, plunge_feed_mm_min)]
     for i in range(n):
         x, y = pts[(i + 1) % 4]
-        moves.append(ArcMove(x, y, 0.0, 0.0, ccw=ccw, z=z_top + (z_end - z_top) * (i + 1) / n,
+        moves.append(ArcMove(x, y, cx, cy, ccw=ccw, z=z_top + (z_end - z_top) * (i + 1) / n,
                              feed_mm_min=feed_mm_min))
     moves += contour_moves(elements if ccw else reverse_elements(elements), z_end, feed_mm_min)
     moves.append(Rapid(None, None, z_clear))

@@ -33,7 +33,7 @@ from camcam.workers import ChildGroup, ProcessMap, resolve
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
 from camcam.nc.direction import direction_of, orient
-from camcam.nc.bore import bore_circle_radius, bore_curve, bore_passes
+from camcam.nc.bore import bore_circle_radius, bore_curve, bore_passes, dowel_curve, dowel_passes
 from camcam.nc.feeds import with_cutting_data
 from camcam.nc.passes import finish_moves, ramp_loop_passes, spiral_moves, with_markers
 from camcam.nc.result import MachiningResult, deviation_checks
@@ -46,6 +46,9 @@ from camcam.toolpath.contours import CutContour, fit_printed
 from camcam.toolpath.path import Pass, Rapid, Toolpath, depth_levels
 
 __all__ = ["machine_program"]
+
+#: The contour label of the dowel hole's circle (``[machining] dowel = true``).
+DOWEL_LABEL = "dowel hole"
 
 
 def _stock_side(curve, free_dir: np.ndarray) -> str:
@@ -146,12 +149,14 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
         return machine_cylindrical(built, m, name, workers)
     post, r_t = m.post, m.tool_diameter_mm / 2
     title = job_title(name, built.spec.kind, built.cam.kind, m.tool_diameter_mm, m.mode, m.tolerance_mm, post.name)
-    blank = blank_for(built, stock, m.tool_diameter_mm, m.bore)
+    blank = blank_for(built, stock, m.tool_diameter_mm, m.bore, m.dowel)
     z_clear = blank.top_z_mm + m.clearance_z_mm
     levels = depth_levels(m.cut_settings())
     plan = _disc_plan(built, r_t, m.stepover_mm)
     if m.bore:
         plan.append(("bore", bore_curve(bore_circle_radius(blank, r_t)), r_t, None, "bore", "", None))
+    if blank.dowel is not None:
+        plan.append((DOWEL_LABEL, dowel_curve(blank, r_t), r_t, None, "bore", "", None))
     contours, passes = [], []
     sides = [_plan_side(built.cam, curve, free, wall) for _, curve, _, free, _, _, wall in plan]
     # the side each pass runs with the material on: climb or conventional as asked (camcam.nc.direction)
@@ -171,10 +176,11 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
             cs = replace(m.cut_settings(run if free is not None else "right"), clearance_z_mm=z_clear,
                          safe_z_mm=max(m.safe_z_mm, z_clear))
             if kind == "bore":
-                new = bore_passes(k, fit.elements, blank, r_t, z_clear, levels[-1], built.spec.thickness,
-                                  ramp_angle_deg=m.ramp_angle_deg, plunge_feed_mm_min=m.plunge_feed_mm_min,
-                                  feed_mm_min=m.feed_mm_min, ccw=m.direction == "climb")
-                run = "right" if m.direction == "climb" else "left"  # the material is outside the bore's circle
+                hole = dowel_passes if label == DOWEL_LABEL else bore_passes
+                new = hole(k, fit.elements, blank, r_t, z_clear, levels[-1], built.spec.thickness,
+                           ramp_angle_deg=m.ramp_angle_deg, plunge_feed_mm_min=m.plunge_feed_mm_min,
+                           feed_mm_min=m.feed_mm_min, ccw=m.direction == "climb")
+                run = "right" if m.direction == "climb" else "left"  # the material is outside the hole's circle
             elif free is not None:
                 spiral = resolve(spirals[k]) if k in spirals else _roughing_spiral(blank, m, run)
                 new = _profile_passes(k, elements, spiral, cs, levels, allowance_mm=m.finish_allowance_mm,

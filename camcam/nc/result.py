@@ -13,6 +13,7 @@ from camcam.verdict import Check
 
 if TYPE_CHECKING:  # what camcam.verify measures on the printed program (camcam.verify.job_checks)
     from camcam.verify.cycle_time import CycleTime
+    from camcam.verify.motion_time import MotionTime
     from camcam.verify.groove3d import GrooveMeasurement
     from camcam.verify.reach import ToolReach
     from camcam.verify.removal import RemovalReport
@@ -31,11 +32,15 @@ class Program:
     rapid_blocks: int
     #: every move as printed, in order: ("rapid", start, end), ("line", start, end, feed mm/min, A0°, A1°),
     #: ("inverse", start, end, F 1/min, A0°, A1°), ("arc", start, end, centre, ccw, feed mm/min),
-    #: ("tool change", seconds); positions in mm from the printed numbers (:mod:`camcam.post.gcode`)
+    #: ("tool change", seconds), ("comment", text) (a pass's name between its moves); positions in mm from
+    #: the printed numbers (:mod:`camcam.post.gcode`)
     printed_moves: tuple = ()
     #: the cycle time of the printed moves (:func:`camcam.verify.cycle_time.cycle_time`), set by the job's
     #: checks (:func:`camcam.verify.with_checks`)
     cycle_time: CycleTime | None = None
+    #: the cycle time from the motion model, per pass beside the feed-only figure
+    #: (:func:`camcam.verify.motion_time.motion_time`), set with ``cycle_time``
+    motion_time: MotionTime | None = None
 
 
 def deviation_checks(contours, tolerance_mm: float) -> tuple[Check, ...]:
@@ -157,6 +162,8 @@ class MachiningResult:
             "reference_radius_mm": self.reference_radius_mm, "contours": contours, "notes": list(self.notes),
             **({"cycle_time_s": self.program.cycle_time.total_s, "cycle_time": self.program.cycle_time.as_dict()}
                if self.program.cycle_time is not None else {}),
+            **({"motion_time_s": self.program.motion_time.total_s, "motion_time": self.program.motion_time.as_dict()}
+               if self.program.motion_time is not None else {}),
             **({"material": self.material_figures()} if self.removal is not None else {}),
         }
         if self.groove is not None:

@@ -140,6 +140,7 @@ class MachiningSpec:
     stepover: float = 0.4
     ramp_angle_deg: float = 3.0
     bore: bool = False
+    dowel: bool = False  # cut the cam's dowel hole as a helical bore (camcam.nc.bore)
     direction: str = "climb"  # or "conventional": which way round every contour runs (camcam.nc.direction)
     cutting: tuple = ()  # rough, finish, spring CuttingData (camcam.nc.cutting_data); () the single feed/spindle
 

@@ -19,6 +19,7 @@ from shapely.geometry import Point, Polygon
 from camcam.errors import SpecError
 from camcam.geometry.build import BuiltCam, groove_outer_radius
 from camcam.geometry.extrema import extreme
+from camcam.geometry.params import Dowel
 from camcam.nc.settings import DEFAULT_OVERSIZE_MM, DEFAULT_STOCK, STOCK_KINDS, StockSpec
 
 __all__ = ["Blank", "blank_for", "largest_radius", "curve_polygon", "CIRCLE_SEGMENTS", "MeasuringPolygon",
@@ -171,6 +172,7 @@ class Blank:
     groove: bool
     bore_mm: float
     bore_machined: bool
+    dowel: Dowel | None = None  # the dowel hole when the program cuts it ([machining] dowel = true)
 
     def describe(self) -> str:
         """One line for the report's setup."""
@@ -197,7 +199,8 @@ class Blank:
         return f"bore Ø{self.bore_mm:g} mm is NOT machined by this program (set [machining] bore = true to cut it)"
 
 
-def blank_for(built: BuiltCam, stock: StockSpec, tool_diameter_mm: float, bore: bool = False) -> Blank:
+def blank_for(built: BuiltCam, stock: StockSpec, tool_diameter_mm: float, bore: bool = False,
+              dowel: bool = False) -> Blank:
     """The blank of ``stock`` around ``built`` (a disc or face-groove cam).
 
     Raises
@@ -205,7 +208,7 @@ def blank_for(built: BuiltCam, stock: StockSpec, tool_diameter_mm: float, bore: 
     SpecError
         ``stock.diameter`` smaller than the cam, ``cam.bore`` larger than the
         base circle minus the roller, ``machining.bore`` with no bore or one the
-        tool does not fit.
+        tool does not fit, ``machining.dowel`` with no dowel hole or one the tool does not fit.
     """
     cam, spec = built.cam, built.spec
     groove = spec.kind == "disc-groove"
@@ -224,15 +227,10 @@ def blank_for(built: BuiltCam, stock: StockSpec, tool_diameter_mm: float, bore: 
         raise SpecError("cam.bore", f"Ø{spec.bore:g} mm is larger than the base circle minus the roller; expected at "
                                     f"most Ø{room:g} mm (2 × ({cam.base_radius:g} − {roller:g})), or {fix}")
     if bore:
-        if spec.bore <= 0:
-            raise SpecError("machining.bore", "true, but the cam has no bore (cam.bore = 0)")
-        if spec.bore <= tool_diameter_mm:
-            raise SpecError("machining.bore", f"the tool Ø{tool_diameter_mm:g} mm does not fit the bore "
-                                              f"Ø{spec.bore:g} mm; expected a tool smaller than the bore")
-        if spec.bore / 2 > tool_diameter_mm:
-            raise SpecError("machining.bore", f"a Ø{tool_diameter_mm:g} mm tool on a helix in the Ø{spec.bore:g} mm "
-                                              f"bore leaves a core standing; expected a tool of at least "
-                                              f"Ø{spec.bore / 2:g} mm (half the bore)")
+        _check_helix_fits("machining.bore", "bore", spec.bore, tool_diameter_mm, "the cam has no bore (cam.bore = 0)")
+    if dowel:
+        _check_helix_fits("machining.dowel", "dowel hole", spec.dowel.diameter if spec.dowel else 0.0,
+                          tool_diameter_mm, "the cam has no dowel hole ([cam] dowel)")
     if groove:
         outer = groove_outer_radius(cam, spec)
         radius, at = outer, 0.0
@@ -254,7 +252,20 @@ def blank_for(built: BuiltCam, stock: StockSpec, tool_diameter_mm: float, bore: 
         region = part.buffer(allowance, quad_segs=64)
     return Blank(kind=stock.kind, region=region, part=part, cam_radius_mm=radius, cam_radius_at_deg=at,
                  diameter_mm=diameter, allowance_mm=allowance, top_z_mm=stock.top_allowance_mm, stated=stock.stated,
-                 groove=groove, bore_mm=spec.bore, bore_machined=bore)
+                 groove=groove, bore_mm=spec.bore, bore_machined=bore, dowel=spec.dowel if dowel else None)
+
+
+def _check_helix_fits(key: str, what: str, diameter_mm: float, tool_diameter_mm: float, missing: str) -> None:
+    """A hole cut as a helical bore (:mod:`camcam.nc.bore`) needs a tool smaller than it and at least half as
+    wide (a smaller one leaves a core standing): :class:`SpecError` naming ``key`` otherwise."""
+    if diameter_mm <= 0:
+        raise SpecError(key, f"true, but {missing}")
+    if diameter_mm <= tool_diameter_mm:
+        raise SpecError(key, f"the tool Ø{tool_diameter_mm:g} mm does not fit the {what} Ø{diameter_mm:g} mm; "
+                             f"expected a tool smaller than the {what}")
+    if diameter_mm / 2 > tool_diameter_mm:
+        raise SpecError(key, f"a Ø{tool_diameter_mm:g} mm tool on a helix in the Ø{diameter_mm:g} mm {what} leaves "
+                             f"a core standing; expected a tool of at least Ø{diameter_mm / 2:g} mm (half the {what})")
 
 
 def bore_region(b: Blank) -> Polygon:

@@ -134,6 +134,7 @@ class _Writer:
         d = self.post.decimals
         if isinstance(m, Comment):
             self.emit(self.comment(m.text))
+            self.log.append(("comment", m.text))
             return
         before, a_before = self.where(), self.a_now()
         if isinstance(m, Rapid):
@@ -203,6 +204,7 @@ class _Writer:
         """One move; ``first_words`` (spindle and coolant on) go on it if it prints an L block (then True)."""
         if isinstance(m, Comment):
             self.emit(self.comment(m.text))
+            self.log.append(("comment", m.text))
             return False
         before, a_before = self.where(), self.a_now()
         if isinstance(m, Feed) and m.a_deg is not None and not five_axis:

@@ -48,6 +48,16 @@ Keys (all required unless a default is given):
 ``coolant_off``
 ``rapid_mm_min``              rapid traverse rate for the cycle-time estimate (default 5000)
 ``tool_change_s``             seconds per tool change for the estimate (default 10)
+``max_accel_mm_s2``           each linear axis's acceleration limit, mm/s² (default 500), for the
+                              motion-model cycle time (:mod:`camcam.verify.motion_time`)
+``max_accel_deg_s2``          the rotary axes' acceleration limit, °/s² (default 500)
+``junction_deviation_mm``     GRBL's junction deviation ($11), mm (default 0.01): the cornering
+                              speed rule of the motion model; each bundled post says where its
+                              three values come from
+``lookahead_blocks``          blocks the controller plans over (GRBL: its 16-block buffer); default
+                              0: the model plans over the whole program
+``arc_tolerance_mm``          the controller cuts arcs into chords within it (GRBL's $12); default 0:
+                              arcs interpolated as arcs
 ``rotary_rapid``              the controller moves its rotary axes in G0 (default true): a
                               barrel program turns A back to each pass's start in a G0 at
                               the safe height; false: A never turns back, each pass starts
@@ -137,6 +147,11 @@ class Post:
     coolant_off: str = "M9"
     rapid_mm_min: float = 5000.0
     tool_change_s: float = 10.0
+    max_accel_mm_s2: float = 500.0
+    max_accel_deg_s2: float = 500.0
+    junction_deviation_mm: float = 0.01
+    lookahead_blocks: int = 0
+    arc_tolerance_mm: float = 0.0
     rotary_rapid: bool = True
 
     @property
@@ -222,7 +237,8 @@ def parse_post(data: dict, name: str) -> Post:
              "header": list, "footer": list, "program_number": int, "five_axis": bool, "tcp_on": list,
              "tcp_off": list, "tool_length_offset": str, "work_offsets": list, "coolant_flood": str,
              "coolant_mist": str, "coolant_off": str, "rapid_mm_min": (int, float), "tool_change_s": (int, float),
-             "rotary_rapid": bool}
+             "rotary_rapid": bool, "max_accel_mm_s2": (int, float), "max_accel_deg_s2": (int, float),
+             "junction_deviation_mm": (int, float), "lookahead_blocks": int, "arc_tolerance_mm": (int, float)}
     required = {"description", "extension", "units", "decimals", "arc_format", "max_arc_sweep_deg", "header", "footer"}
     for key in data:
         if key not in types:
@@ -274,6 +290,16 @@ def parse_post(data: dict, name: str) -> Post:
         low = 0.0 if key == "tool_change_s" else 1.0
         if not (math.isfinite(v) and low <= v <= 1e6):
             fail(key, f"expected {low:g} to 1e6, got {v}")
+    for key, default, low, high in (("max_accel_mm_s2", 500.0, 0.1, 1e6), ("max_accel_deg_s2", 500.0, 0.1, 1e7),
+                                    ("junction_deviation_mm", 0.01, 1e-4, 10.0)):
+        v = data.get(key, default)
+        if not (math.isfinite(v) and low <= v <= high):
+            fail(key, f"expected {low:g} to {high:g}, got {v}")
+    if not (data.get("lookahead_blocks", 0) == 0 or 3 <= data["lookahead_blocks"] <= 100_000):
+        fail("lookahead_blocks", f"expected 0 (the whole program) or 3 to 100000, got {data['lookahead_blocks']}")
+    tol = data.get("arc_tolerance_mm", 0.0)
+    if not (tol == 0.0 or (math.isfinite(tol) and 1e-4 <= tol <= 1.0)):
+        fail("arc_tolerance_mm", f"expected 0 (arcs interpolated) or 0.0001 to 1, got {tol}")
     lines = {(key, i): line for key in ("header", "footer", "tcp_on", "tcp_off") for i, line in enumerate(data.get(key, ()))}
     for key in ("tool_length_offset", "coolant_flood", "coolant_mist", "coolant_off"):
         if data.get(key):
@@ -316,7 +342,8 @@ def parse_post(data: dict, name: str) -> Post:
     pn = data.get("program_number", 1)
     if not 1 <= pn <= pn_limit:
         fail("program_number", f"expected 1 to {pn_limit} (the digits the header prints it with), got {pn}")
-    floats = ("max_arc_sweep_deg", "max_radius_error_mm", "rapid_mm_min", "tool_change_s")
+    floats = ("max_arc_sweep_deg", "max_radius_error_mm", "rapid_mm_min", "tool_change_s", "max_accel_mm_s2",
+              "max_accel_deg_s2", "junction_deviation_mm", "arc_tolerance_mm")
     fields = {k: (tuple(v) if isinstance(v, list) else (float(v) if k in floats else v)) for k, v in data.items()}
     fields.setdefault("work_offsets", _DEFAULT_OFFSETS[dialect])
     return Post(name=name, **fields)

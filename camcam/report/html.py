@@ -14,7 +14,7 @@ from typing import Sequence, Union
 from camcam.workers import Pending, resolve
 from camcam.verdict import Verdict
 
-__all__ = ["Figure", "KeyValues", "DataTable", "Paragraph", "Code", "VerdictBlock", "Section", "render_html"]
+__all__ = ["Figure", "Drawing", "KeyValues", "DataTable", "Paragraph", "Code", "VerdictBlock", "Section", "render_html"]
 
 
 @dataclass(frozen=True)
@@ -22,6 +22,14 @@ class Figure:
     """A PNG plot with a caption."""
 
     png: bytes | Pending  # a plot still being drawn is collected when the page is rendered
+    caption: str
+
+
+@dataclass(frozen=True)
+class Drawing:
+    """An inline SVG picture (text made by camcam, e.g. :mod:`camcam.report.setup_picture`) with a caption."""
+
+    svg: str
     caption: str
 
 
@@ -61,7 +69,7 @@ class VerdictBlock:
     verdict: Verdict
 
 
-Block = Union[Figure, KeyValues, DataTable, Paragraph, Code, VerdictBlock]
+Block = Union[Figure, Drawing, KeyValues, DataTable, Paragraph, Code, VerdictBlock]
 
 
 @dataclass(frozen=True)
@@ -79,7 +87,7 @@ h1{font-size:1.6em;margin-bottom:.2em}h2{font-size:1.25em;border-bottom:2px soli
 .sub{color:#555;margin-top:0}table{border-collapse:collapse;margin:.6em 0;font-size:.92em}
 td,th{border:1px solid #ccc;padding:.25em .6em;text-align:right}th{background:#eef3f8}
 td:first-child,th:first-child{text-align:left}table.kv td{text-align:left}table.kv td:first-child{font-weight:600;background:#f7f7f7}
-figure{margin:1em 0}figure img{max-width:100%;border:1px solid #ddd}figcaption{color:#444;font-size:.9em}
+figure{margin:1em 0}figure img{max-width:100%;border:1px solid #ddd}figure.drawing svg{max-width:100%;height:auto;border:1px solid #ddd}figcaption{color:#444;font-size:.9em}
 pre{background:#f6f8fa;border:1px solid #ddd;padding:.6em;font-size:.85em;overflow-x:auto}
 .ok{color:#176b2c;font-weight:600}.bad{color:#a11;font-weight:600}
 .verdict{font-size:1.5em;font-weight:700;padding:.4em .8em;border-radius:4px;color:#fff;display:inline-block}
@@ -90,7 +98,8 @@ figure,tr{page-break-inside:avoid;break-inside:avoid}table{font-size:8pt}td,th{p
 pre{white-space:pre-wrap;word-break:break-all;font-size:7.5pt}figure img{max-height:120mm;max-width:100%}
 .sheet{page-break-after:always;break-after:page}.sheet h1{font-size:13pt;margin:0}.sheet .sub{margin:0 0 .3em}
 .sheet h2{font-size:11pt;margin:.5em 0 .2em}.sheet table{font-size:7.5pt;margin:.2em 0}.sheet p{margin:.2em 0}
-.sheet .verdict{font-size:12pt;padding:.15em .5em}}
+.sheet .verdict{font-size:12pt;padding:.15em .5em}.sheet figure.drawing{margin:.3em 0}
+.sheet figure.drawing svg{height:42mm;width:auto}}
 """
 
 
@@ -110,6 +119,8 @@ def _block(b: Block) -> str:
     if isinstance(b, Figure):
         data = base64.b64encode(resolve(b.png)).decode("ascii")
         return f'<figure><img alt="{e(b.caption)}" src="data:image/png;base64,{data}"><figcaption>{e(b.caption)}</figcaption></figure>'
+    if isinstance(b, Drawing):
+        return f'<figure class="drawing">{b.svg}<figcaption>{e(b.caption)}</figcaption></figure>'
     if isinstance(b, KeyValues):
         rows = "".join(f"<tr><td>{e(k)}</td><td>{e(v)}</td></tr>" for k, v in b.rows)
         return f'<table class="kv">{rows}</table>'

@@ -17,7 +17,8 @@ from camcam.nc.cutting_data import PRESETS
 from camcam.nc.feeds import MIN_ENGAGEMENT_FACTOR, engagement_factor
 from camcam.nc.result import MachiningResult
 from camcam.verify.reach import flute_text
-from camcam.report.html import DataTable, KeyValues
+from camcam.report.html import DataTable, Drawing, KeyValues
+from camcam.report.setup_picture import setup_picture
 
 __all__ = ["setup_blocks"]
 
@@ -56,7 +57,7 @@ def _blank_and_zero(built, r: MachiningResult) -> list[tuple[str, str]]:
     return rows
 
 
-def _datum(built) -> str:
+def _datum(built, r: MachiningResult) -> str:
     cam = built.cam
     p0 = cam.profile.evaluate(np.array([cam.profile.t_start]))[0]
     ang = math.degrees(math.atan2(p0[1], p0[0])) % 360.0
@@ -67,11 +68,17 @@ def _datum(built) -> str:
     clamp = "; ".join(
         ([f"Clamp the part by its keyway, {k.width:g} mm wide and {k.depth:g} mm deep in the Ø"
           f"{built.spec.bore:g} mm bore, its centre line at {k.angle_deg % 360:g}° from +X, "
-          f"{(k.angle_deg - ang) % 360:.2f}° counter-clockwise from the cam-angle-0 line (DXF layer KEYWAY)"]
+          f"{(k.angle_deg - ang) % 360:.2f}° counter-clockwise from the cam-angle-0 line (DXF layer KEYWAY), not "
+          f"cut by this program (an end mill would leave its radius in the keyway's square corners: broach or "
+          f"wire-erode it after the bore)"]
          if k is not None else [])
         + ([f"Locate the part on its dowel hole, Ø{d.diameter:g} mm through the cam, its centre at radius "
             f"{d.radius:g} mm, {d.angle_deg % 360:g}° from +X, {(d.angle_deg - ang) % 360:.2f}° counter-clockwise "
-            f"from the cam-angle-0 line (DXF layer DOWEL)"] if d is not None else [])) or (
+            f"from the cam-angle-0 line (DXF layer DOWEL)" + (
+                ", cut by this program as a helical bore ([machining] dowel = true)"
+                if r.blank is not None and r.blank.dowel is not None else
+                ", not cut by this program (drill and ream it, or set [machining] dowel = true with a tool of at "
+                "least half its diameter)")] if d is not None else [])) or (
         "Clamp the part with its keyway or dowel where the drawing puts it relative to that line")
     return (f"program and drawing show the cam at cam angle 0: {where}; the cam-angle-0 contact point lies at "
             f"{ang:.2f}° from +X (DXF layer ANGLE-ZERO, X0 Y0 through that point). {clamp}; in service the cam "
@@ -90,7 +97,8 @@ def _direction_text(direction: str, passes) -> str:
 
 
 def setup_blocks(built, r: MachiningResult, machining) -> tuple:
-    """KeyValues of the setup and a table of the passes, in cutting order (``machining``: the spec's table)."""
+    """The part on the machine (a drawing), KeyValues of the setup and a table of the passes, in cutting order
+    (``machining``: the spec's table)."""
     post, setup, spindle_rpm = r.post, machining.setup, machining.spindle_rpm
     tool = r.toolpath.tool_number
     passes = r.toolpath.passes
@@ -98,7 +106,7 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
     depth = max((top - p.z for p in passes), default=0.0) if not r.rotary else machining.depth_mm
     rows = _blank_and_zero(built, r)
     if not r.rotary:
-        rows.append(("angular datum", _datum(built)))
+        rows.append(("angular datum", _datum(built, r)))
     else:
         rows.append(("angular datum", "A0 is cam angle 0: the developed drawing's u = 0 line (DXF layer ANGLE-ZERO)"))
     number = setup.program_number if setup.program_number is not None else post.program_number
@@ -121,16 +129,26 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
         ("cycle time (estimate)", f"{r.program.cycle_time.describe()}; rapids at {post.rapid_mm_min:g} mm/min, "
                                   f"tool change {post.tool_change_s:g} s, acceleration not counted"),
     ]
+    motion = r.program.motion_time
+    if motion is not None:
+        rows.append(("cycle time with acceleration", f"{motion.describe()}: trapezoidal moves, GRBL's cornering rule, "
+                                                     f"the post's limits (docs/machine-ready.md)"))
     n = len(passes)
+    # per pass: feed-only and motion-model seconds, when the program's pass comments split them (one per pass)
+    timed = motion is not None and len(motion.passes) == n + 1
+    times = [(f"{t.feed_only_s:.1f}", f"{t.model_s:.1f}") for t in motion.passes[1:]] if timed else [("", "")] * n
     # "plan": how a pass is planned where its kind does not say it (a roughing spiral's turns, Pass.note)
-    table = DataTable(("pass", "kind", "contour", "Z", "feed mm/min", "spindle rev/min", "plan", "direction"),
+    table = DataTable(("pass", "kind", "contour", "Z", "feed mm/min", "spindle rev/min", "feed-only s",
+                       "with acceleration s", "plan", "direction"),
                       tuple((f"{i + 1}/{n}", p.kind, r.contours[p.contour].label, f"{p.z:g}",
-                             *_pass_speeds(machining, p), p.note, p.direction)
+                             *_pass_speeds(machining, p), *times[i], p.note, p.direction)
                             for i, p in enumerate(passes)),
-                      "The passes in cutting order (each opens with a comment naming it in the program).")
-    if not machining.cutting:
-        return (KeyValues(tuple(rows)), table)
-    return (KeyValues(tuple(rows)), table, _cutting_table(machining))
+                      "The passes in cutting order (each opens with a comment naming it in the program); their "
+                      "times, feed-only and with acceleration, leave out the start (tool change and approach)"
+                      + (f": {motion.passes[0].feed_only_s:.1f} s and {motion.passes[0].model_s:.1f} s." if timed else "."))
+    picture = setup_picture(built, r, machining)
+    blocks = (Drawing(picture.svg, picture.caption), KeyValues(tuple(rows)), table)
+    return blocks + ((_cutting_table(machining),) if machining.cutting else ())
 
 
 def _pass_speeds(machining, p) -> tuple[str, str]:

@@ -22,6 +22,8 @@ accept_out_of_tolerance = false  # true: a FAIL verdict only warns (exit 0)
 stepover = 0.4             # roughing: radial step, a fraction of the tool diameter
 ramp_angle = 3.0           # deg, steepest descent into material (grooves: ramped entries)
 bore = false               # true: cut the bore as a helical bore
+dowel = false              # true: cut the dowel hole ([cam] dowel) as a helical bore (a tool of half its
+                           # diameter or more, and smaller than it)
 units_checked = false      # true: a tolerance over 1 % of the cam's size or a feed under 50 mm/min is meant
                            # (both are refused otherwise: likely µm typed as mm, mm/s or in/min typed as mm/min)
 direction = "climb"        # or "conventional": the side of travel the material is on with the M3 spindle
@@ -260,6 +262,9 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
     stepover = t.number("stepover", 0.4, minimum=0.0, maximum=1.0, inclusive=False)
     ramp = t.number("ramp_angle", 3.0, minimum=0.0, maximum=45.0, inclusive=False, unit="deg")
     bore = t.boolean("bore", False)
+    dowel = t.boolean("dowel", False)
+    if dowel and cam_kind == "cylindrical":
+        raise t.error("dowel", "applies to disc cams only (a cylindrical cam has no dowel hole)")
     direction = t.string("direction", DIRECTIONS[0], choices=DIRECTIONS)
     work_offset = t.string("work_offset", "G54", choices=WORK_OFFSETS)
     coolant = t.string("coolant", "flood", choices=COOLANTS)
@@ -275,5 +280,5 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
                          safe_z_mm=safe, clearance_z_mm=clearance, lead_radius_mm=lead,
                          finish_allowance_mm=allowance, spring_pass=spring, tool_number=tool_number,
                          accept_out_of_tolerance=accept, setup=setup, flute_length_mm=flute, a_axis=a_axis,
-                         stepover=stepover, ramp_angle_deg=ramp, bore=bore, axes=axes, direction=direction,
-                         holder_diameter_mm=holder, stick_out_mm=stick_out, cutting=cutting)
+                         stepover=stepover, ramp_angle_deg=ramp, bore=bore, dowel=dowel, axes=axes,
+                         direction=direction, holder_diameter_mm=holder, stick_out_mm=stick_out, cutting=cutting)

@@ -11,7 +11,8 @@ what it printed is taken here, from the program text the machine reads:
   (:mod:`camcam.verify.groove_checks`), and how deep the tool reaches and how
   much flute it needs (:mod:`camcam.verify.reach`).  The 3-D figure is then
   printed in the program's header: the same moves, read back again to show it;
-* every job: the cycle time of the moves as printed (:mod:`camcam.verify.cycle_time`).
+* every job: the cycle time of the moves as printed, feed-only (:mod:`camcam.verify.cycle_time`) and from
+  the motion model with the post's accelerations (:mod:`camcam.verify.motion_time`), per pass.
 
 :func:`check_job` does no I/O and returns a frozen :class:`JobChecks`; it may
 run in another process (`camcam run` checks a disc's material in a child
@@ -48,6 +49,7 @@ from camcam.post.readback import read_poses
 from camcam.toolpath.poses import CylinderTool, ToolPoses
 from camcam.verdict import Check
 from camcam.verify.cycle_time import cycle_time
+from camcam.verify.motion_time import motion_time
 from camcam.verify.groove_checks import five_axis_check, groove_check
 from camcam.verify.holder import check_holder
 from camcam.verify.reach import ToolReach, tool_reach
@@ -137,7 +139,8 @@ def with_checks(result: MachiningResult, checks: JobChecks, m: MachiningSpec) ->
         if not (np.array_equal(again.tip_mm, before.tip_mm) and np.array_equal(again.a_deg, before.a_deg)
                 and np.array_equal(again.b_deg, before.b_deg)):
             raise PostError("the program's moves changed with its header comment")
-    program = replace(program, cycle_time=cycle_time(program.printed_moves, result.post.rapid_mm_min))
+    program = replace(program, cycle_time=cycle_time(program.printed_moves, result.post.rapid_mm_min),
+                      motion_time=motion_time(program.printed_moves, result.post))
     return replace(result, toolpath=toolpath, program=program, checks=result.checks + checks.checks,
                    removal=checks.removal if checks.removal is not None else result.removal,
                    groove=checks.groove if checks.groove is not None else result.groove,

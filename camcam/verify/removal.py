@@ -36,6 +36,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 import shapely
+from shapely import affinity
 
 from camcam.workers import ChildGroup, resolve
 from camcam.nc.passes import SLOT_KINDS
@@ -425,6 +426,13 @@ def design_keep(blank, built, tolerance_mm: float, spacing_mm: float = DENSE_MM,
         keep = keep.difference(bore.polygon)
         a = np.linspace(0, 2 * math.pi, int(2 * math.pi * r / spacing_mm) + 1, endpoint=False)
         pts.append(np.column_stack([r * np.cos(a), r * np.sin(a)]))
+    if blank.dowel is not None:  # the dowel hole the program cuts ([machining] dowel = true)
+        r, (cx, cy) = blank.dowel.diameter / 2, blank.dowel.centre
+        hole = measuring_circle(r, chord)
+        polys.append(hole)
+        keep = keep.difference(affinity.translate(hole.polygon, cx, cy))
+        a = np.linspace(0, 2 * math.pi, int(2 * math.pi * r / spacing_mm) + 1, endpoint=False)
+        pts.append(np.column_stack([cx + r * np.cos(a), cy + r * np.sin(a)]))
     return keep, np.concatenate(pts), max(p.error_mm for p in polys)
 
 

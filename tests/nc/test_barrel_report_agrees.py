@@ -66,7 +66,7 @@ def test_every_pass_opens_with_its_comment_and_states_its_z(canon, sample):
     for p, moves in zip(result.passes, passes.values()):
         # the pass's Z is the lowest tip Z its blocks print (rs274 prints 4 decimals, as the post does)
         assert p.z == pytest.approx(min(mv.z for mv in moves), abs=1e-9)  # the same 4-decimal text, parsed twice
-    table = setup_blocks(built, result, spec.machining)[1]
+    table = setup_blocks(built, result, spec.machining)[2]
     assert [row[3] for row in table.rows] == [f"{p.z:g}" for p in result.passes]
 
 
@@ -128,7 +128,7 @@ def test_cut_depth_and_flute_length_are_the_programs(sample):
     assert check.ok  # as deep as the walls need, no deeper
     assert result.reach.below_floor_mm == pytest.approx(cam.bottom_radius - deepest, abs=1e-4)  # the same sampling
     # the setup sheet asks for the flute the program needs (it asked for 10 mm where the cut reaches 19.58)
-    rows = dict(setup_blocks(built, result, m)[0].rows)
+    rows = dict(setup_blocks(built, result, m)[1].rows)
     asked = float(re.search(r"flute length ≥ ([\d.]+) mm", rows["tool"]).group(1))
     assert reach - 1e-3 <= asked < reach + 0.011  # the bisection's 1e-3 mm; rounded up to 0.01 mm
 

@@ -200,7 +200,7 @@ def test_setup_sheet_states_each_kinds_figures_and_source(tmp_path):
     spec = _spec(tmp_path, DISC, "flutes = 3\n")
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
     result = checked(built, spec.machining, spec.name, spec.stock)  # with the cycle time the sheet states
-    keys, passes, cutting = setup_blocks(built, result, spec.machining)
+    _, keys, passes, cutting = setup_blocks(built, result, spec.machining)
     assert [r[:6] for r in cutting.rows] == [("rough", "160", "0.08364", "3", "3183", "799"),
                                              ("finish", "225", "0.1673", "3", "4476", "2246"),
                                              ("spring", "225", "0.1673", "3", "4476", "2246")]
