@@ -129,7 +129,8 @@ class CuttingData:
     """One pass kind's cutting data: what the program prints (``rpm``, ``feed_mm_min``) and where it came from.
 
     ``vc_m_min`` and ``fz_mm`` are the given ones, or those the given speed and feed make (from rpm
-    and feed).  ``origin`` says which: "spec", "preset steel", "feed and spindle".
+    and feed).  ``origin`` says which: "spec", "preset steel", "feed and spindle", "as finish" (a
+    spring pass without its own table).
     """
 
     kind: str

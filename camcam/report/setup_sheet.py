@@ -88,12 +88,8 @@ def _datum(built, r: MachiningResult) -> str:
 def _direction_text(direction: str, passes) -> str:
     """The milling direction asked for and how the passes hold it (:mod:`camcam.nc.direction`)."""
     both = sum(p.direction == "both" for p in passes)
-    climb = direction == "climb"
-    return (f"{direction} milling, spindle clockwise (M3): the material on the {'right' if climb else 'left'} of "
-            f"travel on every one-sided pass, so {'clockwise' if climb else 'counter-clockwise'} round material "
-            f"inside the path (a disc's profile) and {'counter-clockwise' if climb else 'clockwise'} round material "
-            f"outside it (the bore, a groove's outer wall)"
-            + (f"; {both} full-width pass{'es' if both > 1 else ''} cut on both sides" if both else ""))
+    return (f"{direction} milling (the material {'right' if direction == 'climb' else 'left'} of travel)"
+            + (f", {both} full-width pass{'es' if both > 1 else ''} both sides" if both else ""))
 
 
 def setup_blocks(built, r: MachiningResult, machining) -> tuple:
@@ -121,10 +117,9 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
                  + (f"; holder Ø{machining.holder_diameter_mm:g} mm at stick-out {machining.stick_out_mm:g} mm "
                     f"(clear of the blank at every move)" if machining.stick_out_mm is not None else "")),
         ("tool length offset", post.length_offset_text(tool)),
-        ("spindle", f"{spindle_rpm:g} rev/min clockwise" if not machining.cutting else
-                    "clockwise, each pass at its kind's speed (cutting data below; the program prints S at each "
-                    "change)"),
-        ("milling direction", _direction_text(machining.direction, passes)),
+        ("spindle", f"{spindle_rpm:g} rev/min clockwise; {_direction_text(machining.direction, passes)}")
+        if not machining.cutting else ("cutting data", f"{_direction_text(machining.direction, passes)}; "
+                                                       f"{_cutting_text(machining)}"),
         ("coolant", f"{setup.coolant} ({post.coolant_word(setup.coolant)} on, {post.coolant_off} off)"),
         ("cycle time (estimate)", f"{r.program.cycle_time.describe()}; rapids at {post.rapid_mm_min:g} mm/min, "
                                   f"tool change {post.tool_change_s:g} s, acceleration not counted"),
@@ -139,16 +134,15 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
     times = [(f"{t.feed_only_s:.1f}", f"{t.model_s:.1f}") for t in motion.passes[1:]] if timed else [("", "")] * n
     # "plan": how a pass is planned where its kind does not say it (a roughing spiral's turns, Pass.note)
     table = DataTable(("pass", "kind", "contour", "Z", "feed mm/min", "spindle rev/min", "feed-only s",
-                       "with acceleration s", "plan", "direction"),
+                       "with acceleration s", "plan"),
                       tuple((f"{i + 1}/{n}", p.kind, r.contours[p.contour].label, f"{p.z:g}",
-                             *_pass_speeds(machining, p), *times[i], p.note, p.direction)
+                             *_pass_speeds(machining, p), *times[i], p.note)
                             for i, p in enumerate(passes)),
                       "The passes in cutting order (each opens with a comment naming it in the program); their "
                       "times, feed-only and with acceleration, leave out the start (tool change and approach)"
                       + (f": {motion.passes[0].feed_only_s:.1f} s and {motion.passes[0].model_s:.1f} s." if timed else "."))
     picture = setup_picture(built, r, machining)
-    blocks = (Drawing(picture.svg, picture.caption), KeyValues(tuple(rows)), table)
-    return blocks + ((_cutting_table(machining),) if machining.cutting else ())
+    return (Drawing(picture.svg, picture.caption), KeyValues(tuple(rows)), table)
 
 
 def _pass_speeds(machining, p) -> tuple[str, str]:
@@ -159,16 +153,15 @@ def _pass_speeds(machining, p) -> tuple[str, str]:
     return f"{round(data.feed_mm_min * engagement_factor(p.kind, machining.stepover)):g}", f"{data.rpm:g}"
 
 
-def _cutting_table(machining) -> DataTable:
-    """The cutting data per pass kind and where each came from (:mod:`camcam.nc.cutting_data`)."""
+def _cutting_text(machining) -> str:
+    """Each pass kind's cutting data and its source, in one row (:mod:`camcam.nc.cutting_data`)."""
     def source(c) -> str:
         if c.origin.startswith("preset "):
             return f"{c.origin}: {PRESETS[c.origin.removeprefix('preset ')].source}"
-        return {"spec": "[machining." + c.kind + "]", "feed and spindle": "[machining] feed and spindle"}[c.origin]
+        return {"spec": f"[machining.{c.kind}]", "feed and spindle": "[machining] feed and spindle",
+                "as finish": "as finish"}[c.origin]
 
-    return DataTable(("kind", "vc m/min", "fz mm", "flutes", "spindle rev/min", "feed mm/min", "source"),
-                     tuple((c.kind, f"{c.vc_m_min:.4g}", f"{c.fz_mm:.4g}", f"{c.flutes}", f"{c.rpm:g}",
-                            f"{c.feed_mm_min:g}", source(c)) for c in machining.cutting),
-                     "Cutting data per pass kind (n = 1000 vc / (pi D), F = fz z n). A full-width slot or bore runs "
-                     f"at the rough feed x {MIN_ENGAGEMENT_FACTOR:g} or the stepover if larger; on every arc of a "
-                     "one-sided pass the tool-centre feed is F R/(R -/+ r_tool), so the cutting edge runs at F.")
+    kinds = "; ".join(f"{c.kind} vc {c.vc_m_min:.4g} m/min, fz {c.fz_mm:.4g} mm × {c.flutes}: S{c.rpm:g} "
+                      f"F{c.feed_mm_min:g} ({source(c)})" for c in machining.cutting)
+    return (f"S printed at each pass; {kinds}; slot and bore at F × max(stepover, {MIN_ENGAGEMENT_FACTOR:g}); "
+            f"arcs: the edge at F")

@@ -168,7 +168,7 @@ def _cutting_data(t: Table, flutes: int, tool: float, material: str | None, feed
         if t.has(kind):
             out[kind] = _kind_data(t, kind, flutes, tool, checked)
         elif kind == "spring":
-            out[kind] = dataclasses.replace(out["finish"], kind="spring")
+            out[kind] = dataclasses.replace(out["finish"], kind="spring", origin="as finish")
         elif preset is not None:
             vc, fz_per_mm = preset.data(kind)
             out[kind] = from_chip_load(kind, vc_m_min=vc, fz_mm=fz_per_mm * tool, flutes=flutes, diameter_mm=tool,

@@ -200,11 +200,11 @@ def test_setup_sheet_states_each_kinds_figures_and_source(tmp_path):
     spec = _spec(tmp_path, DISC, "flutes = 3\n")
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
     result = checked(built, spec.machining, spec.name, spec.stock)  # with the cycle time the sheet states
-    _, keys, passes, cutting = setup_blocks(built, result, spec.machining)
-    assert [r[:6] for r in cutting.rows] == [("rough", "160", "0.08364", "3", "3183", "799"),
-                                             ("finish", "225", "0.1673", "3", "4476", "2246"),
-                                             ("spring", "225", "0.1673", "3", "4476", "2246")]
-    assert all("Tungaloy" in r[6] and "carbon steel" in r[6] for r in cutting.rows)
+    _, keys, passes = setup_blocks(built, result, spec.machining)
+    text = dict(keys.rows)["cutting data"]
+    assert "rough vc 160 m/min, fz 0.08364 mm × 3: S3183 F799 (preset steel: Tungaloy" in text
+    assert "finish vc 225 m/min, fz 0.1673 mm × 3: S4476 F2246 (preset steel" in text
+    assert "spring vc 225 m/min, fz 0.1673 mm × 3: S4476 F2246 (as finish)" in text
     assert [(r[1], r[4], r[5]) for r in passes.rows] == [("rough", "799", "3183"), ("rough", "799", "3183"),
                                                           ("finish", "2246", "4476"), ("spring", "2246", "4476")]
-    assert "climb milling" in dict(keys.rows)["milling direction"]
+    assert text.startswith("climb milling (the material right of travel); S printed at each pass")
