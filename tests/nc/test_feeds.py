@@ -13,13 +13,15 @@ import subprocess
 from pathlib import Path
 
 import pytest
+from hypothesis import given, strategies as st
 
 from camcam.errors import SpecError
 from camcam.geometry.build import build_cam
 from camcam.nc import machine_program
 from camcam.nc.cutting_data import feed_mm_min, spindle_rpm
-from camcam.nc.feeds import MAX_ARC_FACTOR, MIN_ARC_FACTOR, arc_factor
+from camcam.nc.feeds import MAX_ARC_FACTOR, MIN_ARC_FACTOR, arc_factor, centre_feed
 from camcam.spec import load_spec
+from camcam.toolpath.path import ArcMove
 from camcam.verify.rs274 import rs274_available
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -208,3 +210,20 @@ def test_setup_sheet_states_each_kinds_figures_and_source(tmp_path):
     assert [(r[1], r[4], r[5]) for r in passes.rows] == [("rough", "799", "3183"), ("rough", "799", "3183"),
                                                           ("finish", "2246", "4476"), ("spring", "2246", "4476")]
     assert text.startswith("climb milling (the material right of travel); S printed at each pass")
+
+
+@given(radius=st.floats(0.5, 500.0), r_t=st.floats(0.5, 20.0), feed=st.floats(50.0, 5000.0), ccw=st.booleans(),
+       side=st.sampled_from(["left", "right"]))
+def test_the_edge_runs_at_the_pass_feed_on_any_arc(radius, r_t, feed, ccw, side):
+    arc = ArcMove(radius, 0.0, 0.0, 0.0, ccw=ccw, z=0.0, feed_mm_min=feed)
+    centre = centre_feed(feed, arc, r_t, side)
+    at_centre = (side == "left") == ccw  # a ccw arc's centre is on the left of travel
+    edge = radius - r_t if at_centre else radius + r_t
+    k = radius / edge if edge > 0 else math.inf
+    if MIN_ARC_FACTOR < k < MAX_ARC_FACTOR:
+        # whole mm/min at the centre: the edge is off by at most half of that x edge/R (plus float noise)
+        assert abs(centre * edge / radius - feed) <= 0.5 * edge / radius + 1e-9
+    else:
+        assert centre == round(feed * min(max(k, MIN_ARC_FACTOR), MAX_ARC_FACTOR))
+    # convex (the material on the centre's side): the centre runs faster than the edge; concave: slower
+    assert (centre >= round(feed)) if at_centre else (centre <= round(feed))
