@@ -20,7 +20,8 @@ tool-centre feed" has it the wrong way round: on a convex part the edge is on th
 centre's arc and runs *slower* (at r/(r + r_t) of it), which is why the centre is sped up there.
 The factor is held within [:data:`MIN_ARC_FACTOR`, :data:`MAX_ARC_FACTOR`] (a convex nose much
 smaller than the tool, a concave corner nearly the tool's radius), and the centre feed is rounded
-to whole mm/min, so an unchanged figure prints no new F word (F is modal).  Lines keep the pass
+to whole mm/min, so an unchanged figure prints no new F word (F is modal), and at most the post's
+``max_feed_mm_min`` where it states one.  Lines keep the pass
 feed.  A pass cutting on both sides (a full-width slot) keeps the pass feed on its arcs.
 
 **Engagement.**  A pass whose radial engagement ae exceeds the nominal stepover (a groove's
@@ -67,12 +68,14 @@ def arc_factor(radius_mm: float, tool_radius_mm: float, material_at_centre: bool
     return max(radius_mm / edge, MIN_ARC_FACTOR)
 
 
-def centre_feed(feed_mm_min: float, arc: ArcMove, tool_radius_mm: float, material_side: str) -> float:
+def centre_feed(feed_mm_min: float, arc: ArcMove, tool_radius_mm: float, material_side: str,
+                max_feed_mm_min: float | None = None) -> float:
     """The tool-centre feed (whole mm/min) that runs the cutting edge at ``feed_mm_min`` on ``arc``, the material
-    on ``material_side`` ("left" or "right") of travel."""
+    on ``material_side`` ("left" or "right") of travel; at most ``max_feed_mm_min`` (the post's, if it states one)."""
     radius = math.hypot(arc.x - arc.cx, arc.y - arc.cy)
     centre_side = "left" if arc.ccw else "right"
-    return float(round(feed_mm_min * arc_factor(radius, tool_radius_mm, material_side == centre_side)))
+    f = float(round(feed_mm_min * arc_factor(radius, tool_radius_mm, material_side == centre_side)))
+    return f if max_feed_mm_min is None else min(f, float(math.floor(max_feed_mm_min)))
 
 
 def engagement_factor(kind: str, stepover: float) -> float:
@@ -110,7 +113,8 @@ def with_cutting_data(passes, m: MachiningSpec) -> tuple:
         moves = []
         for mv in p.moves:
             if _cutting(m, mv):
-                f = centre_feed(feed, mv, r_t, side) if isinstance(mv, ArcMove) and side else feed
+                f = centre_feed(feed, mv, r_t, side, m.post.max_feed_mm_min) if isinstance(mv, ArcMove) and side \
+                    else feed
                 mv = replace(mv, feed_mm_min=f)
             moves.append(mv)
         text = data.describe() + (f", F x {k:g} for full-width engagement (stepover {m.stepover:g} x D): F{feed:g}"

@@ -95,6 +95,7 @@ class PostDialect(Protocol):
     rotary_rapid: bool  # moves its rotary axes in G0 (a barrel pass's A unwind; else the shortest way, A counting on)
     five_axis_feed_note: str  # what the F word of a 5-axis move means (header comment of a 5-axis program)
     rapid_mm_min: float  # the rapid traverse rate the cycle time assumes
+    max_feed_mm_min: float | None  # the machine's fastest feed (None: not stated)
 
     def tcp_comment(self, tool_number: int) -> str:
         """The blocks that switch tool-centre-point control on (header comment of a 5-axis program)."""

@@ -159,6 +159,25 @@ def _kind_data(t: Table, kind: str, flutes: int, tool: float, checked: bool) -> 
     return data
 
 
+def _post_limits(t: Table, post, spindle: float | None, feed: float | None, cutting, tool: float) -> None:
+    """Refuse a speed or feed over the post's ``max_spindle_rpm`` or ``max_feed_mm_min`` (when it states them)."""
+    for key, value, top, what in (("spindle", spindle, post.max_spindle_rpm, "max_spindle_rpm"),
+                                  ("feed", feed, post.max_feed_mm_min, "max_feed_mm_min")):
+        if value is not None and top is not None:
+            t.check(key, value <= top, f"{value:g} is over post {post.name}'s {what} {top:g}")
+    for c in cutting:
+        if c.origin in ("feed and spindle", "as finish"):
+            continue  # the spindle and feed keys above, or the finish pass's (checked as finish)
+        for value, top, what, unit in ((c.rpm, post.max_spindle_rpm, "max_spindle_rpm", "rev/min"),
+                                       (c.feed_mm_min, post.max_feed_mm_min, "max_feed_mm_min", "mm/min")):
+            if top is not None and value > top:
+                how = (f"the {c.origin.removeprefix('preset ')} preset makes" if c.origin.startswith("preset ") else
+                       "its figures make")
+                raise t.error(c.kind, f"{how} {value:g} {unit} with the Ø{tool:g} mm tool, over post "
+                                      f"{post.name}'s {what} {top:g}; give [machining.{c.kind}] rpm and feed_mm_min "
+                                      f"within it")
+
+
 def _cutting_data(t: Table, flutes: int, tool: float, material: str | None, feed: float | None,
                   spindle: float | None, checked: bool) -> tuple[CuttingData, ...]:
     """Rough, finish and spring cutting data: each kind's table, else (spring) the finish's, a material
@@ -226,6 +245,7 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
     else:
         for kind in CUT_KINDS:
             t.check(kind, not t.has(kind), "needs [machining] flutes (the chip load is per flute)")
+    _post_limits(t, post, spindle if t.has("spindle") else None, feed if t.has("feed") else None, cutting, tool)
     depth = t.number("depth", minimum=MIN_SIZE_MM, unit="mm")
     stepdown = t.number("stepdown", depth, minimum=MIN_SIZE_MM, unit="mm")
     slowest = min([feed] + [c.feed_mm_min for c in cutting])  # with cutting data: half the slowest pass's feed

@@ -227,3 +227,29 @@ def test_the_edge_runs_at_the_pass_feed_on_any_arc(radius, r_t, feed, ccw, side)
         assert centre == round(feed * min(max(k, MIN_ARC_FACTOR), MAX_ARC_FACTOR))
     # convex (the material on the centre's side): the centre runs faster than the edge; concave: slower
     assert (centre >= round(feed)) if at_centre else (centre <= round(feed))
+
+
+def _limited_post(tmp_path, rpm: float, feed: float) -> str:
+    from camcam.post.post import load_post
+
+    text = (load_post.__globals__["_post_dir"]() / "linuxcnc.toml").read_text()
+    path = tmp_path / "limited.toml"
+    path.write_text(text + f"max_spindle_rpm = {rpm}\nmax_feed_mm_min = {feed}\n")
+    return str(path)
+
+
+def test_a_post_s_limits_refuse_speeds_over_them_and_cap_the_arc_feed(tmp_path):
+    post = _limited_post(tmp_path, 4000, 930)
+    # the steel preset's finish: 4476 rev/min with the Ø16 tool, over 4000
+    with pytest.raises(SpecError, match=r"^machining.finish: the steel preset makes 4476 rev/min .* max_spindle_rpm "
+                                        r"4000"):
+        _spec(tmp_path, DISC, f'post = "{post}"\nflutes = 3\n', drop=("feed", "spindle", "post"))
+    with pytest.raises(SpecError, match=r"^machining.spindle: 5000 is over post limited's max_spindle_rpm 4000"):
+        _spec(tmp_path, DISC, f'post = "{post}"\nspindle = 5000\n', drop=("post", "spindle"))
+    # within the speeds, the rough feed 799 under the post's 930: the spiral's convex arcs (up to 961 unlimited)
+    # stop at 930
+    spec = _spec(tmp_path, DISC, f'post = "{post}"\nflutes = 3\n[machining.finish]\nrpm = 3500\nfeed_mm_min = 700\n',
+                 drop=("feed", "spindle", "post"))
+    result = _job(spec)
+    arcs = [m.feed_mm_min for p in result.passes for m in p.moves if isinstance(m, ArcMove)]
+    assert max(arcs) == 930.0 and sum(f == 930.0 for f in arcs) > 5
