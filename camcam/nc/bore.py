@@ -19,6 +19,7 @@ import numpy as np
 
 from camcam.geometry.jet import Jet
 from camcam.geometry.jetcurve import JetCurve
+from camcam.nc.direction import reverse_elements
 from camcam.nc.stock import Blank
 from camcam.toolpath.path import ArcMove, Feed, Pass, Rapid, contour_moves
 
@@ -54,18 +55,20 @@ class _Circle:
 
 def bore_passes(contour: int, elements, blank: Blank, tool_radius_mm: float, z_clear: float, z_depth: float,
                 thickness_mm: float, *, ramp_angle_deg: float, plunge_feed_mm_min: float,
-                feed_mm_min: float) -> list[Pass]:
+                feed_mm_min: float, ccw: bool = True) -> list[Pass]:
     """One ``bore`` pass: helix from the top to ``min(z_depth, −thickness)``, the fitted circle there, retract.
 
     The helix descends at ``ramp_angle_deg`` (``[machining] ramp_angle``); it is entered at
     ``plunge_feed_mm_min`` and cut at ``feed_mm_min``.
 
-    ``elements`` are the fitted circle (:func:`bore_curve`); the arc fitter may start a closed
-    contour anywhere, so the helix turns about the axis from the circle's first printed point.
+    ``elements`` are the fitted circle (:func:`bore_curve`, counter-clockwise); the arc fitter may
+    start a closed contour anywhere, so the helix turns about the axis from the circle's first printed
+    point.  ``ccw`` runs helix and circle counter-clockwise (climb with an M3 spindle: the material is
+    outside, on the right of travel), else clockwise (conventional; :mod:`camcam.nc.direction`).
     """
     return _helix_passes(contour, elements, (0.0, 0.0), bore_circle_radius(blank, tool_radius_mm), blank.top_z_mm,
                          z_clear, min(z_depth, -thickness_mm), ramp_angle_deg=ramp_angle_deg,
-                         plunge_feed_mm_min=plunge_feed_mm_min, feed_mm_min=feed_mm_min)
+                         plunge_feed_mm_min=plunge_feed_mm_min, feed_mm_min=feed_mm_min, ccw=ccw)
 
 
 def dowel_curve(blank: Blank, tool_radius_mm: float) -> JetCurve:
@@ -75,34 +78,35 @@ def dowel_curve(blank: Blank, tool_radius_mm: float) -> JetCurve:
 
 def dowel_passes(contour: int, elements, blank: Blank, tool_radius_mm: float, z_clear: float, z_depth: float,
                  thickness_mm: float, *, ramp_angle_deg: float, plunge_feed_mm_min: float,
-                 feed_mm_min: float) -> list[Pass]:
+                 feed_mm_min: float, ccw: bool = True) -> list[Pass]:
     """The dowel hole through the cam (``[machining] dowel = true``): a ``bore`` pass about its centre, as
-    :func:`bore_passes`, noted as the dowel hole."""
+    :func:`bore_passes` (``ccw`` likewise), noted as the dowel hole."""
     d = blank.dowel
     passes = _helix_passes(contour, elements, d.centre, d.diameter / 2 - tool_radius_mm, blank.top_z_mm, z_clear,
                            min(z_depth, -thickness_mm), ramp_angle_deg=ramp_angle_deg,
-                           plunge_feed_mm_min=plunge_feed_mm_min, feed_mm_min=feed_mm_min)
+                           plunge_feed_mm_min=plunge_feed_mm_min, feed_mm_min=feed_mm_min, ccw=ccw)
     note = f"dowel hole Ø{d.diameter:g} mm at R{d.radius:g} mm, {d.angle_deg % 360:g}° from +X"
     return [replace(p, note=note) for p in passes]
 
 
 def _helix_passes(contour: int, elements, centre, rho: float, z_top: float, z_clear: float, z_end: float, *,
-                  ramp_angle_deg: float, plunge_feed_mm_min: float, feed_mm_min: float) -> list[Pass]:
+                  ramp_angle_deg: float, plunge_feed_mm_min: float, feed_mm_min: float,
+                  ccw: bool) -> list[Pass]:
     """A helix about ``centre`` on the tool-centre radius ``rho`` from ``z_top`` to ``z_end``, then the fitted
-    circle ``elements`` there, and the retract."""
+    circle ``elements`` (counter-clockwise) there, and the retract; both run clockwise unless ``ccw``."""
     cx, cy = centre
     quarter = math.pi / 2 * rho
     per_quarter = quarter * math.tan(math.radians(ramp_angle_deg))
     n = 4 * max(1, math.ceil((z_top - z_end) / per_quarter / 4 * (1 + 1e-9)))  # whole turns: ends at (ρ, 0)
     start = tuple(map(float, elements[0].start))
     phi0 = math.atan2(start[1] - cy, start[0] - cx)
-    pts = [start] + [(cx + rho * math.cos(phi0 + k * math.pi / 2), cy + rho * math.sin(phi0 + k * math.pi / 2))
-                     for k in (1, 2, 3)]
+    turn = math.pi / 2 if ccw else -math.pi / 2
+    pts = [start] + [(cx + rho * math.cos(phi0 + k * turn), cy + rho * math.sin(phi0 + k * turn)) for k in (1, 2, 3)]
     moves = [Rapid(start[0], start[1], None), Rapid(None, None, z_clear), Feed(None, None, z_top, plunge_feed_mm_min)]
     for i in range(n):
         x, y = pts[(i + 1) % 4]
-        moves.append(ArcMove(x, y, cx, cy, ccw=True, z=z_top + (z_end - z_top) * (i + 1) / n,
+        moves.append(ArcMove(x, y, cx, cy, ccw=ccw, z=z_top + (z_end - z_top) * (i + 1) / n,
                              feed_mm_min=feed_mm_min))
-    moves += contour_moves(elements, z_end, feed_mm_min)
+    moves += contour_moves(elements if ccw else reverse_elements(elements), z_end, feed_mm_min)
     moves.append(Rapid(None, None, z_clear))
     return [Pass(contour, "bore", z_end, tuple(moves))]

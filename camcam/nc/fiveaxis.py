@@ -49,6 +49,7 @@ import numpy as np
 
 from camcam.errors import FitError, GeometryError, InputError
 from camcam.geometry.build import BuiltCam
+from camcam.nc.feeds import with_cutting_data
 from camcam.nc.passes import with_markers
 from camcam.nc.result import GroovePlan, MachiningResult
 from camcam.nc.settings import MachiningSpec
@@ -352,10 +353,12 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
     # highest.  Its Z is the lowest tip Z it prints (issue 43: the table said the final pass's tip radius less
     # the raise, so the first pass read 5.57 mm below the last where the program cuts it 5.57 mm above)
     raises = [(n - 1 - k) * step for k in range(n)]
-    passes = tuple(Pass(0, "slot", _lowest_tip_z(nodes, h, post.quantizer), tuple(_pass_moves(nodes, h, m, outer, r_t)))
+    passes = tuple(Pass(0, "slot", _lowest_tip_z(nodes, h, post.quantizer), tuple(_pass_moves(nodes, h, m, outer, r_t)),
+                        direction="both")
                    for h in raises)
     # A turns back in a G0 at the safe height, or counts on where the controller has no rotary G0 (issue 47)
-    passes = with_markers(passes if post.rotary_rapid else shortest_rotation(passes), [LABEL])
+    passes = with_cutting_data(passes if post.rotary_rapid else shortest_rotation(passes), m)
+    passes = with_markers(passes, [LABEL])
     comments = frame_comments(m.a_axis, pose.sign, post.tcp_comment(m.tool_number)) + (
         f"tool D{m.tool_diameter_mm:g} flat end mill = the roller; the cut reaches {path.cut_length_mm:.2f} mm "
         f"up the tool from its tip",
@@ -364,7 +367,7 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
         post.five_axis_feed_note)
     title = job_title(name, built.spec.kind, cam.kind, m.tool_diameter_mm, "lines", m.tolerance_mm, post.name) \
         + ", 5 axes"
-    toolpath = Toolpath(title, passes, m.spindle_rpm, tool_number=m.tool_number, tool_diameter_mm=m.tool_diameter_mm,
+    toolpath = Toolpath(title, passes, passes[0].spindle_rpm or m.spindle_rpm, tool_number=m.tool_number, tool_diameter_mm=m.tool_diameter_mm,
                         rotary=True, comments=comments,
                         opening=(Rapid(None, None, outer + m.safe_z_mm),),
                         closing=(Rapid(None, None, None, a_deg=None, b_deg=0.0),), five_axis=True)

@@ -32,7 +32,9 @@ import numpy as np
 from camcam.workers import ChildGroup, ProcessMap, resolve
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.curve import left_normal
+from camcam.nc.direction import direction_of, orient
 from camcam.nc.bore import bore_circle_radius, bore_curve, bore_passes, dowel_curve, dowel_passes
+from camcam.nc.feeds import with_cutting_data
 from camcam.nc.passes import finish_moves, ramp_loop_passes, spiral_moves, with_markers
 from camcam.nc.result import MachiningResult, deviation_checks
 from camcam.nc.roughing import RING_STEP_FRACTION, Spiral, disc_spiral, groove_rings
@@ -56,15 +58,16 @@ def _stock_side(curve, free_dir: np.ndarray) -> str:
 
 
 def _disc_plan(built: BuiltCam, r_t: float, stepover_mm: float):
-    """[(label, tool-centre curve, offset, free direction at t=0 or None for a groove pass, pass kind, note)]."""
+    """[(label, tool-centre curve, offset, free direction at t=0 or None for a groove pass, pass kind, note,
+    the groove wall a groove pass cuts toward: 0 inner, 1 outer, None both or a profile)]."""
     cam, kind = built.cam, built.spec.kind
     away = cam.normal(np.array([0.0]))[0]  # away from the material of the profile / inner flank
     if kind == "disc":
         check_profile_tool(r_t, built.analysis.profile.min_concave_radius)
-        return [("profile", cam.offset_profile(r_t), r_t, away, "finish", "")]
+        return [("profile", cam.offset_profile(r_t), r_t, away, "finish", "", None)]
     r_r = cam.roller_radius
     if groove_passes(r_t, r_r) == "centre":
-        return [("groove centre", cam.pitch, r_r, None, "slot", "")]
+        return [("groove centre", cam.pitch, r_r, None, "slot", "", None)]
     step = RING_STEP_FRACTION * stepover_mm
     span = r_r - r_t  # from the centre line to a flank pass
     rough = []
@@ -72,11 +75,20 @@ def _disc_plan(built: BuiltCam, r_t: float, stepover_mm: float):
         # rough offsets between the centre pass and the flank pass, each band within the step as the tool meets
         # it, round the bends away from the material too (camcam.nc.roughing.groove_rings; issue 43 E)
         rings = groove_rings(lambda o, i=i: cam.offset_flank(i, r_r - o), _material_side(cam, i), span, r_t, step)
-        rough += [(f"groove rough {side} {j}", cam.offset_flank(i, r_r - o), r_t, None, "rough", rings.describe(j))
-                  for j, o in enumerate(rings.offsets, start=1)]
-    return [("groove centre (rough)", cam.pitch, r_r, None, "slot", ""), *rough,
-            ("inner flank", cam.offset_flank(0, r_t), r_t, None, "finish", ""),
-            ("outer flank", cam.offset_flank(1, r_t), r_t, None, "finish", "")]
+        rough += [(f"groove rough {side} {j}", cam.offset_flank(i, r_r - o), r_t, None, "rough", rings.describe(j),
+                   i) for j, o in enumerate(rings.offsets, start=1)]
+    return [("groove centre (rough)", cam.pitch, r_r, None, "slot", "", None), *rough,
+            ("inner flank", cam.offset_flank(0, r_t), r_t, None, "finish", "", 0),
+            ("outer flank", cam.offset_flank(1, r_t), r_t, None, "finish", "", 1)]
+
+
+def _plan_side(cam, curve, free, wall) -> str:
+    """The side of a planned contour's travel where its material is: "left", "right", or "both" (a slot)."""
+    if free is not None:
+        return _stock_side(curve, free)
+    if wall is None:
+        return "both"
+    return "left" if _material_side(cam, wall)(curve, np.array([curve.t_start]))[0] > 0 else "right"
 
 
 def _material_side(cam, flank: int):
@@ -142,48 +154,55 @@ def machine_program(built: BuiltCam, m: MachiningSpec, name: str, stock: StockSp
     levels = depth_levels(m.cut_settings())
     plan = _disc_plan(built, r_t, m.stepover_mm)
     if m.bore:
-        plan.append(("bore", bore_curve(bore_circle_radius(blank, r_t)), r_t, None, "bore", ""))
+        plan.append(("bore", bore_curve(bore_circle_radius(blank, r_t)), r_t, None, "bore", "", None))
     if blank.dowel is not None:
-        plan.append((DOWEL_LABEL, dowel_curve(blank, r_t), r_t, None, "bore", ""))
+        plan.append((DOWEL_LABEL, dowel_curve(blank, r_t), r_t, None, "bore", "", None))
     contours, passes = [], []
-    sides = [_stock_side(curve, free) if free is not None else "both" for _, curve, _, free, _, _ in plan]
+    sides = [_plan_side(built.cam, curve, free, wall) for _, curve, _, free, _, _, wall in plan]
+    # the side each pass runs with the material on: climb or conventional as asked (camcam.nc.direction)
+    travel = [orient((), s, m.direction)[1] for s in sides]
     with ChildGroup() as group:
         # a profile's roughing spiral needs only the blank and the side the material is on: with a second
         # process it is made in a child beside its contour's fit (the same call, the same spiral)
-        spirals = {k: group.later(_roughing_spiral, blank, m, sides[k])
-                   for k, (_, _, _, free, kind, _) in enumerate(plan)
+        spirals = {k: group.later(_roughing_spiral, blank, m, travel[k])
+                   for k, (_, _, _, free, kind, _, _) in enumerate(plan)
                    if workers > 1 and free is not None and kind != "bore"}
-        for k, (label, curve, offset, free, kind, note) in enumerate(plan):
+        for k, (label, curve, offset, free, kind, note, _) in enumerate(plan):
             fit, printed, dev, segs = fit_printed(curve, m.tolerance_mm, m.mode, post.quantizer,
                                                   post.max_arc_sweep_deg, post.quantizer.printed_elements,
                                                   f"{name} {label}", mapper=ProcessMap(workers))
             side = sides[k]
-            cs = replace(m.cut_settings(side if free is not None else "right"), clearance_z_mm=z_clear,
+            elements, run = orient(fit.elements, side, m.direction)
+            cs = replace(m.cut_settings(run if free is not None else "right"), clearance_z_mm=z_clear,
                          safe_z_mm=max(m.safe_z_mm, z_clear))
             if kind == "bore":
                 hole = dowel_passes if label == DOWEL_LABEL else bore_passes
-                passes += hole(k, fit.elements, blank, r_t, z_clear, levels[-1], built.spec.thickness,
-                               ramp_angle_deg=m.ramp_angle_deg, plunge_feed_mm_min=m.plunge_feed_mm_min,
-                               feed_mm_min=m.feed_mm_min)
+                new = hole(k, fit.elements, blank, r_t, z_clear, levels[-1], built.spec.thickness,
+                           ramp_angle_deg=m.ramp_angle_deg, plunge_feed_mm_min=m.plunge_feed_mm_min,
+                           feed_mm_min=m.feed_mm_min, ccw=m.direction == "climb")
+                run = "right" if m.direction == "climb" else "left"  # the material is outside the hole's circle
             elif free is not None:
-                spiral = resolve(spirals[k]) if k in spirals else _roughing_spiral(blank, m, side)
-                passes += _profile_passes(k, fit.elements, spiral, cs, levels, allowance_mm=m.finish_allowance_mm,
-                                          spring_pass=m.spring_pass)
+                spiral = resolve(spirals[k]) if k in spirals else _roughing_spiral(blank, m, run)
+                new = _profile_passes(k, elements, spiral, cs, levels, allowance_mm=m.finish_allowance_mm,
+                                      spring_pass=m.spring_pass)
             else:
-                passes += [replace(p, note=note) if p.kind == "rough" else p  # a groove's rough ring: its plan
-                           for p in ramp_loop_passes(k, kind, fit.elements, levels, blank.top_z_mm, m.ramp_angle_deg,
-                                                     cs, m.spring_pass)]
+                new = [replace(p, note=note) if p.kind == "rough" else p  # a groove's rough ring: its plan
+                       for p in ramp_loop_passes(k, kind, elements, levels, blank.top_z_mm, m.ramp_angle_deg,
+                                                 cs, m.spring_pass)]
+            passes += [replace(p, direction=direction_of(run)) for p in new]
             contours.append(CutContour(label=label, curve=curve, fit=fit, printed=printed, deviation=dev,
                                        offset_mm=offset, leads=free is not None, segments=segs, stock_side=side))
     # lead arcs, spirals and ramps planned at the post's largest sweep print within it (contours already do)
     passes = [replace(q, note=p.note) for p, q in
               zip(passes, passes_within_sweep(passes, post.quantizer, post.max_arc_sweep_deg), strict=True)]
+    passes = with_cutting_data(passes, m)  # each kind's speed and feed, held at the edge on arcs (cutting data)
     safe = (Rapid(None, None, max(m.safe_z_mm, z_clear)),)
     counts: dict[str, int] = {}
     for p in passes:
         counts[p.kind] = counts.get(p.kind, 0) + 1
     summary = ", ".join(f"{n} {kind}" for kind, n in counts.items())
-    toolpath = Toolpath(title, with_markers(passes, [c.label for c in contours]), m.spindle_rpm,
+    spindle = passes[0].spindle_rpm or m.spindle_rpm  # the header starts the first pass's speed
+    toolpath = Toolpath(title, with_markers(passes, [c.label for c in contours]), spindle,
                         tool_number=m.tool_number, tool_diameter_mm=m.tool_diameter_mm, rotary=False,
                         comments=(f"{len(passes)} passes [{summary}] in {len(levels)} depth levels to "
                                   f"{levels[-1]:g} mm",),

@@ -20,6 +20,8 @@ Groove passes (slot, rough offsets, flanks) are ramped down along their contour.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
+
 import numpy as np
 
 from camcam.nc.roughing import Spiral, cut_cyclic
@@ -101,9 +103,10 @@ def ramp_loop_passes(contour: int, kind: str, elements, levels, z_top: float, ra
 
 
 def with_markers(passes, labels) -> tuple:
-    """``passes``, each opened by a comment naming it: ``pass i/n: kind, contour label, Z…[, note]``."""
+    """``passes``, each opened by a comment naming it:
+    ``pass i/n: kind, contour label, Z…[, direction][, note][, cutting data]``."""
     n = len(passes)
-    return tuple(Pass(p.contour, p.kind, p.z,
-                      (Comment(f"{MARKER_PREFIX}{i + 1}/{n}: {p.kind}, {labels[p.contour]}, Z{p.z:g}"
-                               + (f", {p.note}" if p.note else "")),) + p.moves, note=p.note)
+    return tuple(replace(p, moves=(Comment(f"{MARKER_PREFIX}{i + 1}/{n}: {p.kind}, {labels[p.contour]}, Z{p.z:g}"
+                                           + "".join(f", {t}" for t in (p.direction, p.note, p.cutting) if t)),)
+                         + p.moves)
                  for i, p in enumerate(passes))

@@ -43,6 +43,8 @@ import numpy as np
 from camcam.errors import GeometryError, InputError, SpecError
 from camcam.workers import parallel_map
 from camcam.geometry.build import BuiltCam
+from camcam.nc.direction import direction_of, material_side
+from camcam.nc.feeds import with_cutting_data
 from camcam.nc.flank import DisplacedCurve, plan_flank, smallest_tool_radius
 from camcam.nc.passes import with_markers
 from camcam.nc.result import GroovePlan, MachiningResult, deviation_checks
@@ -95,6 +97,22 @@ def _plan(cam, r_t: float, rho_d: float):
                 ("flank 1 (+X wall)", DisplacedCurve(centre, 1.0, plan), r_t, "finish")], plan.error_mm
     return [rough, ("flank 0 (-X wall)", OffsetCurve(cam.developed_flank(0, rho_d), r_t), r_t, "finish"),
             ("flank 1 (+X wall)", OffsetCurve(cam.developed_flank(1, rho_d), -r_t), r_t, "finish")], 0.0
+
+
+def _wall_side(label: str, pts: np.ndarray, a_axis: str) -> str:
+    """The side of travel a barrel pass's wall is on, seen down the radial tool ("both" for the centre pass).
+
+    ``pts`` are the pass's (X, A·ρ) in printed order.  Under the tool (at Y0, Z = ρ, looking down −Z with
+    X to the right and Y up) a part point p sits at Rx(±A)·p, so the tool runs over the part along +Y as
+    the printed A grows by the right-hand rule (``a_axis`` "right-hand"), along −Y by the left-hand rule;
+    flank 0's wall is at −X of the tool, flank 1's at +X.  The material is on the right of a travel
+    (dX, dY) where wall_x · dY > 0.
+    """
+    if not label.startswith("flank"):
+        return "both"
+    wall_x = -1.0 if label.startswith("flank 0") else 1.0
+    dy = A_AXIS_SENSE[a_axis] * float(pts[-1, 1] - pts[0, 1])
+    return "right" if wall_x * dy > 0 else "left"
 
 
 def _check_fit_floor(cam, m: MachiningSpec, quantizer: Quantizer, least_mm: float, flank_err: float,
@@ -195,9 +213,14 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     for k, ((label, curve, offset, kind), (fit, path, dev, segs)) in enumerate(zip(plan, done)):
         pts = np.array([fit.elements[0].start] + [e.end for e in fit.elements])
         pts = np.stack([pts[:, 1], turn * pts[:, 0]], axis=-1)  # (x, turn·u): A = turn·θ
+        side = _wall_side(label, pts, m.a_axis)
+        if side != "both" and side != material_side(m.direction):
+            pts, side = pts[::-1], material_side(m.direction)  # the other way round the cam
         try:
-            paths.append(rotary_toolpath(pts, cam.base_radius, cs, title, developed_radius_mm=rho_d,
-                                         contour=k, kind=kind, rotary_rapid=post.rotary_rapid))
+            tp = rotary_toolpath(pts, cam.base_radius, cs, title, developed_radius_mm=rho_d,
+                                 contour=k, kind=kind, rotary_rapid=post.rotary_rapid)
+            paths.append(dataclasses.replace(tp, passes=tuple(dataclasses.replace(p, direction=direction_of(side))
+                                                              for p in tp.passes)))
         except InputError as err:
             raise GeometryError(f"{name} {label}: {err}") from None
         contours.append(CutContour(label=label, curve=curve, fit=fit, printed=path, deviation=dev, offset_mm=offset,
@@ -210,8 +233,8 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     # every pass opens with a comment naming it (pass 1/4: slot, groove centre, Z45.0), as a disc's do
     # A turns back to each pass's start in a G0 at the safe height, or counts on (the shortest way) where the
     # controller takes no rotary word in G0 (issue 47)
-    passes = joined.passes if post.rotary_rapid else shortest_rotation(joined.passes)
-    toolpath = dataclasses.replace(joined, comments=comments,
+    passes = with_cutting_data(joined.passes if post.rotary_rapid else shortest_rotation(joined.passes), m)
+    toolpath = dataclasses.replace(joined, comments=comments, spindle_rpm=passes[0].spindle_rpm or m.spindle_rpm,
                                    passes=with_markers(passes, [c.label for c in contours]))
     # printed without the 3-D check: camcam.verify.job_checks measures this program and adds its result to the
     # header (the same moves)

@@ -17,14 +17,17 @@ if TYPE_CHECKING:  # annotations only: reading a spec does not import the tool-p
     from camcam.toolpath.path import CutSettings, Toolpath
     from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["MachiningSpec", "PostDialect", "ProgramSetup", "WORK_OFFSETS", "COOLANTS", "StockSpec", "DEFAULT_STOCK",
-           "DEFAULT_OVERSIZE_MM", "STOCK_KINDS"]
+__all__ = ["MachiningSpec", "PostDialect", "ProgramSetup", "WORK_OFFSETS", "COOLANTS", "DIRECTIONS", "StockSpec",
+           "DEFAULT_STOCK", "DEFAULT_OVERSIZE_MM", "STOCK_KINDS"]
 
 #: The work offsets a spec may name; a post prints each in its own words (``Post.work_offsets``).
 WORK_OFFSETS = ("G54", "G55", "G56", "G57", "G58", "G59")
 
 #: The coolant a spec may ask for.
 COOLANTS = ("flood", "mist", "off")
+
+#: The values of ``[machining] direction`` (:mod:`camcam.nc.direction`); the first is the default.
+DIRECTIONS = ("climb", "conventional")
 
 
 @dataclass(frozen=True)
@@ -92,6 +95,7 @@ class PostDialect(Protocol):
     rotary_rapid: bool  # moves its rotary axes in G0 (a barrel pass's A unwind; else the shortest way, A counting on)
     five_axis_feed_note: str  # what the F word of a 5-axis move means (header comment of a 5-axis program)
     rapid_mm_min: float  # the rapid traverse rate the cycle time assumes
+    max_feed_mm_min: float | None  # the machine's fastest feed (None: not stated)
 
     def tcp_comment(self, tool_number: int) -> str:
         """The blocks that switch tool-centre-point control on (header comment of a 5-axis program)."""
@@ -138,6 +142,17 @@ class MachiningSpec:
     ramp_angle_deg: float = 3.0
     bore: bool = False
     dowel: bool = False  # cut the cam's dowel hole as a helical bore (camcam.nc.bore)
+    direction: str = "climb"  # or "conventional": which way round every contour runs (camcam.nc.direction)
+    cutting: tuple = ()  # rough, finish, spring CuttingData (camcam.nc.cutting_data); () the single feed/spindle
+
+    def cutting_for(self, pass_kind: str):
+        """The :class:`~camcam.nc.cutting_data.CuttingData` a pass of ``pass_kind`` cuts with, or None (the single
+        ``feed_mm_min`` and ``spindle_rpm``)."""
+        if not self.cutting:
+            return None
+        from camcam.nc.cutting_data import CUT_KINDS, KIND_DATA
+
+        return self.cutting[CUT_KINDS.index(KIND_DATA[pass_kind])]
 
     @property
     def stepover_mm(self) -> float:

@@ -17,7 +17,7 @@ tool tip's feed in mm/min (Klartext has no inverse time).
 from __future__ import annotations
 
 import math
-
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from camcam.errors import InputError, PostError
@@ -266,6 +266,28 @@ class _Writer:
         return True
 
 
+@dataclass(frozen=True)
+class _Spindle:
+    """A spindle speed change the writer prints with the post's spindle line."""
+
+    rpm: int
+
+
+def _with_spindle(toolpath: Toolpath):
+    """``toolpath.moves``, with a :class:`_Spindle` after a pass's opening comments where its speed changes."""
+    now = int(round(toolpath.spindle_rpm))
+    yield from toolpath.opening
+    for p in toolpath.passes:
+        rpm = now if p.spindle_rpm is None else int(round(p.spindle_rpm))
+        k = next((i for i, m in enumerate(p.moves) if not isinstance(m, Comment)), len(p.moves))
+        yield from p.moves[:k]
+        if rpm != now:
+            yield _Spindle(rpm)
+            now = rpm
+        yield from p.moves[k:]
+    yield from toolpath.closing
+
+
 def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: ProgramSetup = ProgramSetup()) -> Program:
     """Print ``toolpath`` for ``post`` with the work offset, coolant and program number of ``setup``.
 
@@ -300,6 +322,14 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: P
     def lines(templates):
         return [parse_template(t, post.comment).render(fields, post.name) for t in templates]
 
+    def spindle_line(rpm: int) -> str:
+        """The header's spindle line (``S{spindle} M3``, Heidenhain's ``TOOL CALL``) at a pass's own speed."""
+        line = next((t for t in post.header if "{spindle" in t), None)
+        if line is None:
+            raise InputError(f"post {post.name}: its header has no {{spindle}} line to print a pass's spindle "
+                             f"speed with")
+        return parse_template(line, post.comment).render({**fields, "spindle": rpm}, post.name)
+
     w = _Writer(post)
     body: list[str] = []
     body += lines(post.header)
@@ -318,8 +348,10 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: P
         # Klartext has no inverse time: with M128 the programmed F is the tool tip's feed (mm/min)
         w.lines += tcp_on
         first = f"M3 {coolant_on}"  # spindle and coolant on ride on the first L block (comments are not moves)
-        for m in toolpath.moves:
-            if w.hh_move(m, first, toolpath.five_axis):
+        for m in _with_spindle(toolpath):
+            if isinstance(m, _Spindle):
+                w.emit(spindle_line(m.rpm))
+            elif w.hh_move(m, first, toolpath.five_axis):
                 first = ""
         last = max(i for i, line in enumerate(w.lines) if line.startswith("L "))
         w.lines[last] += f" {coolant_off}"
@@ -329,8 +361,11 @@ def write_program(toolpath: Toolpath, post: Post, name: str = "camcam", setup: P
         w.lines += tcp_on
         if toolpath.rotary:
             w.emit("G93")
-        for m in toolpath.moves:
-            w.gcode_move(m, toolpath.rotary)
+        for m in _with_spindle(toolpath):
+            if isinstance(m, _Spindle):
+                w.emit(spindle_line(m.rpm))
+            else:
+                w.gcode_move(m, toolpath.rotary)
         if toolpath.rotary:
             w.emit("G94")
         w.lines += tcp_off

@@ -58,6 +58,9 @@ Keys (all required unless a default is given):
                               0: the model plans over the whole program
 ``arc_tolerance_mm``          the controller cuts arcs into chords within it (GRBL's $12); default 0:
                               arcs interpolated as arcs
+``max_spindle_rpm``,          the machine's fastest spindle (rev/min) and feed (mm/min); default none
+``max_feed_mm_min``           (not checked).  A spec whose speed or feed exceeds one is refused naming
+                              the field; an arc's edge-held centre feed is capped at the feed
 ``rotary_rapid``              the controller moves its rotary axes in G0 (default true): a
                               barrel program turns A back to each pass's start in a G0 at
                               the safe height; false: A never turns back, each pass starts
@@ -153,6 +156,8 @@ class Post:
     lookahead_blocks: int = 0
     arc_tolerance_mm: float = 0.0
     rotary_rapid: bool = True
+    max_spindle_rpm: float | None = None
+    max_feed_mm_min: float | None = None
 
     @property
     def uses_program_number(self) -> bool:
@@ -238,7 +243,8 @@ def parse_post(data: dict, name: str) -> Post:
              "tcp_off": list, "tool_length_offset": str, "work_offsets": list, "coolant_flood": str,
              "coolant_mist": str, "coolant_off": str, "rapid_mm_min": (int, float), "tool_change_s": (int, float),
              "rotary_rapid": bool, "max_accel_mm_s2": (int, float), "max_accel_deg_s2": (int, float),
-             "junction_deviation_mm": (int, float), "lookahead_blocks": int, "arc_tolerance_mm": (int, float)}
+             "junction_deviation_mm": (int, float), "lookahead_blocks": int, "arc_tolerance_mm": (int, float),
+             "max_spindle_rpm": (int, float), "max_feed_mm_min": (int, float)}
     required = {"description", "extension", "units", "decimals", "arc_format", "max_arc_sweep_deg", "header", "footer"}
     for key in data:
         if key not in types:
@@ -295,6 +301,9 @@ def parse_post(data: dict, name: str) -> Post:
         v = data.get(key, default)
         if not (math.isfinite(v) and low <= v <= high):
             fail(key, f"expected {low:g} to {high:g}, got {v}")
+    for key in ("max_spindle_rpm", "max_feed_mm_min"):
+        if key in data and not (math.isfinite(data[key]) and 1.0 <= data[key] <= 1e6):
+            fail(key, f"expected 1 to 1e6, got {data[key]}")
     if not (data.get("lookahead_blocks", 0) == 0 or 3 <= data["lookahead_blocks"] <= 100_000):
         fail("lookahead_blocks", f"expected 0 (the whole program) or 3 to 100000, got {data['lookahead_blocks']}")
     tol = data.get("arc_tolerance_mm", 0.0)
@@ -343,7 +352,7 @@ def parse_post(data: dict, name: str) -> Post:
     if not 1 <= pn <= pn_limit:
         fail("program_number", f"expected 1 to {pn_limit} (the digits the header prints it with), got {pn}")
     floats = ("max_arc_sweep_deg", "max_radius_error_mm", "rapid_mm_min", "tool_change_s", "max_accel_mm_s2",
-              "max_accel_deg_s2", "junction_deviation_mm", "arc_tolerance_mm")
+              "max_accel_deg_s2", "junction_deviation_mm", "arc_tolerance_mm", "max_spindle_rpm", "max_feed_mm_min")
     fields = {k: (tuple(v) if isinstance(v, list) else (float(v) if k in floats else v)) for k, v in data.items()}
     fields.setdefault("work_offsets", _DEFAULT_OFFSETS[dialect])
     return Post(name=name, **fields)

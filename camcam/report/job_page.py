@@ -57,7 +57,9 @@ def _job_rows(name, spec, built: BuiltCam | None, m: MachiningResult | None):
         rows += [
             ("post", f"{m.post.name} ({m.post.description})"), ("program", m.program_filename),
             ("tool", f"Ø{m.tool_diameter_mm:g} mm"), ("tolerance", f"±{m.tolerance_mm:g} mm, two-sided, on the printed program"),
-            ("mode", m.mode), ("feed", f"{ms.feed_mm_min:g} mm/min"), ("spindle", f"{ms.spindle_rpm:g} rev/min"),
+            ("mode", m.mode),
+            *((("feed", f"{ms.feed_mm_min:g} mm/min"), ("spindle", f"{ms.spindle_rpm:g} rev/min")) if not ms.cutting
+              else (("feed and spindle", "per pass kind: the setup sheet's cutting data"),)),
             ("depth / stepdown", f"{ms.depth_mm:g} / {ms.stepdown_mm:g} mm"),
         ]
     return tuple(rows)

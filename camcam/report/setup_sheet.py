@@ -13,6 +13,8 @@ import math
 import numpy as np
 
 from camcam.geometry.followers import follower_kind
+from camcam.nc.cutting_data import PRESETS
+from camcam.nc.feeds import MIN_ENGAGEMENT_FACTOR, engagement_factor
 from camcam.nc.result import MachiningResult
 from camcam.verify.reach import flute_text
 from camcam.report.html import DataTable, Drawing, KeyValues
@@ -83,6 +85,13 @@ def _datum(built, r: MachiningResult) -> str:
             f"turns {turn}.")
 
 
+def _direction_text(direction: str, passes) -> str:
+    """The milling direction asked for and how the passes hold it (:mod:`camcam.nc.direction`)."""
+    both = sum(p.direction == "both" for p in passes)
+    return (f"{direction} milling (the material {'right' if direction == 'climb' else 'left'} of travel)"
+            + (f", {both} full-width pass{'es' if both > 1 else ''} both sides" if both else ""))
+
+
 def setup_blocks(built, r: MachiningResult, machining) -> tuple:
     """The part on the machine (a drawing), KeyValues of the setup and a table of the passes, in cutting order
     (``machining``: the spec's table)."""
@@ -108,7 +117,9 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
                  + (f"; holder Ø{machining.holder_diameter_mm:g} mm at stick-out {machining.stick_out_mm:g} mm "
                     f"(clear of the blank at every move)" if machining.stick_out_mm is not None else "")),
         ("tool length offset", post.length_offset_text(tool)),
-        ("spindle", f"{spindle_rpm:g} rev/min clockwise"),
+        ("spindle", f"{spindle_rpm:g} rev/min clockwise; {_direction_text(machining.direction, passes)}")
+        if not machining.cutting else ("cutting data", f"{_direction_text(machining.direction, passes)}; "
+                                                       f"{_cutting_text(machining)}"),
         ("coolant", f"{setup.coolant} ({post.coolant_word(setup.coolant)} on, {post.coolant_off} off)"),
         ("cycle time (estimate)", f"{r.program.cycle_time.describe()}; rapids at {post.rapid_mm_min:g} mm/min, "
                                   f"tool change {post.tool_change_s:g} s, acceleration not counted"),
@@ -125,10 +136,32 @@ def setup_blocks(built, r: MachiningResult, machining) -> tuple:
     table = DataTable(("pass", "kind", "contour", "Z", "feed mm/min", "spindle rev/min", "feed-only s",
                        "with acceleration s", "plan"),
                       tuple((f"{i + 1}/{n}", p.kind, r.contours[p.contour].label, f"{p.z:g}",
-                             f"{machining.feed_mm_min:g}", f"{spindle_rpm:g}", *times[i], p.note)
+                             *_pass_speeds(machining, p), *times[i], p.note)
                             for i, p in enumerate(passes)),
                       "The passes in cutting order (each opens with a comment naming it in the program); their "
                       "times, feed-only and with acceleration, leave out the start (tool change and approach)"
                       + (f": {motion.passes[0].feed_only_s:.1f} s and {motion.passes[0].model_s:.1f} s." if timed else "."))
     picture = setup_picture(built, r, machining)
     return (Drawing(picture.svg, picture.caption), KeyValues(tuple(rows)), table)
+
+
+def _pass_speeds(machining, p) -> tuple[str, str]:
+    """A pass's (feed, spindle) as the pass table shows them: its kind's cutting data (arcs: at the edge)."""
+    data = machining.cutting_for(p.kind)
+    if data is None:
+        return f"{machining.feed_mm_min:g}", f"{machining.spindle_rpm:g}"
+    return f"{round(data.feed_mm_min * engagement_factor(p.kind, machining.stepover)):g}", f"{data.rpm:g}"
+
+
+def _cutting_text(machining) -> str:
+    """Each pass kind's cutting data and its source, in one row (:mod:`camcam.nc.cutting_data`)."""
+    def source(c) -> str:
+        if c.origin.startswith("preset "):
+            return f"{c.origin}: {PRESETS[c.origin.removeprefix('preset ')].source}"
+        return {"spec": f"[machining.{c.kind}]", "feed and spindle": "[machining] feed and spindle",
+                "as finish": "as finish"}[c.origin]
+
+    kinds = "; ".join(f"{c.kind} vc {c.vc_m_min:.4g} m/min, fz {c.fz_mm:.4g} mm × {c.flutes}: S{c.rpm:g} "
+                      f"F{c.feed_mm_min:g} ({source(c)})" for c in machining.cutting)
+    return (f"S printed at each pass; {kinds}; slot and bore at F × max(stepover, {MIN_ENGAGEMENT_FACTOR:g}); "
+            f"arcs: the edge at F")

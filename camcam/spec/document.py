@@ -103,7 +103,8 @@ def parse_spec(data: dict, source: Path) -> Spec:
     # the cam's size (its base circle's or cylinder's diameter) bounds the tolerance: a likely unit mistake over it
     machining_spec = (_reader("machining", "read_machining")(machining, base, cam.kind if cam else None,
                                                              follower.kind if follower else None, source.name,
-                                                             2.0 * cam.base_radius if cam else None)
+                                                             2.0 * cam.base_radius if cam else None,
+                                                             cam.material if cam else None)
                       if machining is not None else None)
     if machining_spec is not None and cam is not None:
         _check_depth(machining_spec, cam)

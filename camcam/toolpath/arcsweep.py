@@ -108,7 +108,9 @@ def passes_within_sweep(passes, quantizer: Quantizer, max_sweep_deg: float) -> t
     (:func:`parts_within`): lead arcs, roughing spirals, ramps.  Each arc starts where the moves before
     it end, across passes.  A helical arc's drop is shared out equally over its equal parts, so a
     ramp's slope stays as planned."""
-    from camcam.toolpath.path import ArcMove, Comment, Pass  # the moves' types; path does not import this module
+    from dataclasses import replace
+
+    from camcam.toolpath.path import ArcMove, Comment  # the moves' types; path does not import this module
 
     at = [None, None, None]
     out = []
@@ -126,5 +128,5 @@ def passes_within_sweep(passes, quantizer: Quantizer, max_sweep_deg: float) -> t
                 moves.append(m)
             if not isinstance(m, Comment):
                 at = [v if v is not None else a for v, a in zip((m.x, m.y, m.z), at)]
-        out.append(ps if len(moves) == len(ps.moves) else Pass(ps.contour, ps.kind, ps.z, tuple(moves)))
+        out.append(ps if len(moves) == len(ps.moves) else replace(ps, moves=tuple(moves)))
     return tuple(out)

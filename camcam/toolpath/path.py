@@ -87,6 +87,14 @@ class Pass:
     note : str
         How the pass is planned, where the kind does not say it all (a roughing
         spiral's turns): its comment and the pass table add it.
+    direction : str
+        "climb", "conventional" (the material on the right or left of travel with
+        an M3 spindle, :mod:`camcam.nc.direction`), "both" (a full-width pass) or
+        "" (not stated).
+    cutting : str
+        The pass's cutting data as stated (:mod:`camcam.nc.cutting_data`), or "".
+    spindle_rpm : float or None
+        The pass's spindle speed; the writer prints a change at the pass's start (None: as before).
     """
 
     contour: int
@@ -95,6 +103,9 @@ class Pass:
     moves: tuple
     _: KW_ONLY
     note: str = ""
+    direction: str = ""
+    cutting: str = ""
+    spindle_rpm: float | None = None
 
     def __post_init__(self) -> None:
         if self.kind not in PASS_KINDS:

@@ -62,7 +62,8 @@ def test_every_pass_opens_with_its_comment_and_states_its_z(canon, sample):
     passes = _passes_read_back(canon(sample))
     n = len(result.passes)
     assert list(passes) == [encode_comment(f"pass {i + 1}/{n}: {p.kind}, {result.contours[p.contour].label}, "
-                                           f"Z{p.z:g}", "parentheses") for i, p in enumerate(result.passes)]
+                                           f"Z{p.z:g}, {p.direction}", "parentheses")
+                            for i, p in enumerate(result.passes)]
     for p, moves in zip(result.passes, passes.values()):
         # the pass's Z is the lowest tip Z its blocks print (rs274 prints 4 decimals, as the post does)
         assert p.z == pytest.approx(min(mv.z for mv in moves), abs=1e-9)  # the same 4-decimal text, parsed twice

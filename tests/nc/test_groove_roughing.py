@@ -52,9 +52,10 @@ def test_the_pass_table_and_comments_say_how_the_rings_are_planned(case):
     assert labels == ["groove rough inner 1", "groove rough inner 2", "groove rough outer 1", "groove rough outer 2"]
     assert [p.note for p in rough] == [f"ring {j} of 2, 3.77 mm apart, 1 more where the path is concave"
                                        for j in (1, 2, 1, 2)]
-    assert f"rough, groove rough outer 1, Z{rough[2].z:g}, {rough[2].note})" in result.program.text
+    assert f"rough, groove rough outer 1, Z{rough[2].z:g}, climb, {rough[2].note})" in result.program.text
     table = setup_blocks(_built(spec), result, spec.machining)[2]
-    assert [row[6] for row in table.rows if row[1] == "rough"] == [p.note for p in rough]  # the plan column
+    plan = table.header.index("plan")
+    assert [row[plan] for row in table.rows if row[1] == "rough"] == [p.note for p in rough]
 
 
 def _circle_ring(radius):

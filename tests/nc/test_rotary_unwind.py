@@ -134,4 +134,8 @@ def test_linuxcnc_interprets_the_unwind_as_a_traverse(tmp_path):
             # rs274 prints 4 decimals: the safe height R50 + 25 is exact at that
             assert mv.kind == "rapid" and min(mv.z, prev.z) >= 75.0 - 1e-4, (prev, mv)
         prev = mv
-    assert unwinds == len(r.passes) - 1 >= 5
+    # a pass that starts where the last one's A ended needs no unwind: with climb milling flank 0 runs A down
+    # (issue 47, Shop II), so of the 5 pass changes 3 unwind (slot -> slot, flank 0 -> flank 0, flank 1 -> flank 1)
+    a = [[m.a_deg for m in p.moves if getattr(m, "a_deg", None) is not None] for p in r.passes]
+    jumps = sum(abs(nxt[0] - last[-1]) >= 180.0 for last, nxt in zip(a, a[1:]))
+    assert unwinds == jumps == 3 and len(r.passes) == 6

@@ -55,9 +55,10 @@ def test_concave_notch_program_holds_the_stepover():
     # the pass comment and the pass record say how the spiral is planned
     rough = [p for p in result.passes if p.kind == "rough"]
     assert rough and all(p.note.startswith("spiral ") and "turns" in p.note for p in rough)
-    assert f"rough, profile, Z{rough[0].z:g}, {rough[0].note}" in result.program.text
+    assert f"rough, profile, Z{rough[0].z:g}, climb, {rough[0].note}" in result.program.text
     table = setup_blocks(_built(spec), result, spec.machining)[2]
-    assert [row[6] for row in table.rows if row[1] == "rough"] == [p.note for p in rough]  # the plan column
+    plan = table.header.index("plan")
+    assert [row[plan] for row in table.rows if row[1] == "rough"] == [p.note for p in rough]
 
 
 @pytest.mark.parametrize("stepover", [0.4, 0.2, 0.1])

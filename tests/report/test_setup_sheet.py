@@ -162,6 +162,11 @@ def test_printed_setup_sheet_is_page_one_and_no_page_is_blank(run_dir, tmp_path)
     assert main(["run", str(ROOT / "samples" / "cylindrical-translating.toml"), "-o", str(barrel)]) == 0
     assert len(_check_printed_sheet(barrel / "cylindrical-translating-report.html", tmp_path / "barrel.pdf",
                                     tmp_path / "barrel")) <= 4
+    # with cutting data per pass kind (issue 47, Shop II) the sheet states them and still fits page 1
+    feeds = tmp_path / "feeds"
+    assert main(["run", str(ROOT / "samples" / "disc-cutting-data.toml"), "-o", str(feeds)]) == 0
+    first = _check_printed_sheet(feeds / "disc-cutting-data-report.html", tmp_path / "feeds.pdf", tmp_path / "feeds")[0]
+    assert "cutting data" in first and "S3979" in first
 
 
 @pytest.mark.skipif(shutil.which("chromium") is None or shutil.which("pdftotext") is None,
