@@ -42,6 +42,8 @@ __all__ = ["SetupPicture", "setup_picture", "Canvas"]
 WIDTH_PX, HEIGHT_PX = 640.0, 200.0
 #: Room round each view for its labels (px).
 MARGIN_PX = 22.0
+#: Room right of the last view for a label such as "T1 Ø16" (px at 11 px type).
+LABEL_ROOM_PX = 40.0
 #: Stroke and fill of each kind of line drawn (class name → SVG style).
 STYLE = ("text{font:11px sans-serif;fill:#1b1b1b}.blank{fill:#e9e4d8;stroke:#8a7f66;stroke-width:1}"
          ".part{fill:#b9cde3;stroke:#1f4e79;stroke-width:1.4}.cut{fill:#ffffff;stroke:#1f4e79;stroke-width:1.2}"
@@ -118,7 +120,8 @@ def _views(canvas: Canvas, boxes) -> tuple[list[View], float]:
         views.append(View(left_px=left, top_px=top, u_min=u0, v_max=v1, scale=scale))
         left += (u1 - u0) * scale + gap
     canvas.px_per_mm = float(scale)
-    canvas.width_px = round(left, 1)  # no empty room on the right when the height sets the scale
+    # no empty room on the right when the height sets the scale, but room for the last view's labels (the tool's)
+    canvas.width_px = round(left + LABEL_ROOM_PX, 1)
     return views, scale
 
 
