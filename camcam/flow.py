@@ -59,13 +59,15 @@ def nc_step(spec, built):
 
 
 def model(built, name: str) -> tuple[dict, dict]:
-    """The STL and the mesh's figures: ({file: bytes}, figures).  The mesh is made and trimesh
-    imported here: `camcam run` calls this in a child process while the NC step runs (the drawing's
+    """The STL, the STEP where OpenCascade is installed (:func:`camcam.export.step.step_files`), and the
+    mesh's figures: ({file: bytes}, figures).  The mesh is made and trimesh imported here, and OCP when
+    it is there: `camcam run` calls this in a child process while the NC step runs (the drawing's
     prepared child when there is a program, see :func:`drawing_and_check`)."""
     from camcam.export.cam_report import mesh_figures
+    from camcam.export.step import step_files
     from camcam.export.stl import program_frame, stl_bytes
 
-    return {f"{name}.stl": stl_bytes(program_frame(built))}, mesh_figures(built)
+    return {f"{name}.stl": stl_bytes(program_frame(built)), **step_files(built, name)}, mesh_figures(built)
 
 
 def drawing(built, machining) -> tuple[dict, float | None]:
@@ -234,6 +236,12 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
         report["verdict"] = verdict.as_dict()
         with progress.step("report"):
             out.add(f"{spec.name}.stl", files.pop(f"{spec.name}.stl"))
+            if f"{spec.name}.step" in files:
+                out.add(f"{spec.name}.step", files.pop(f"{spec.name}.step"))
+            else:
+                from camcam.export.step import CAD_HINT
+
+                said.append(("note", CAD_HINT))
             out.add(f"{spec.name}-profile.png", profile_png)
             page = job_report(spec.name, spec, program, svaj, built, report, profile_png, machining,
                               spec.report.inspection_step_deg, verdict, render=plots.submit, analysis=analysis)
