@@ -55,7 +55,6 @@ def step_bytes(shape, name: str) -> bytes:
     _quiet()
     Interface_Static.SetCVal_s("write.step.schema", STEP_SCHEMA)
     Interface_Static.SetCVal_s("write.step.unit", "MM")
-    Interface_Static.SetCVal_s("write.step.product.name", name)
     writer = STEPControl_Writer()
     if writer.Transfer(shape, STEPControl_StepModelType.STEPControl_AsIs) != IFSelect_ReturnStatus.IFSelect_RetDone:
         raise RuntimeError(f"OpenCascade could not translate {name}'s solid to STEP")
@@ -76,13 +75,16 @@ def _quiet() -> None:
 
 
 def _fixed_header(text: bytes, name: str) -> bytes:
-    """``text`` with FILE_NAME's name and time stamp fixed (OpenCascade writes the path and the clock)."""
-    pattern = re.compile(rb"FILE_NAME\('(?:[^']|'')*','[^']*'")
-    fixed = f"FILE_NAME('{name}','{TIME_STAMP}'".encode()
-    out, n = pattern.subn(lambda _: fixed, text, count=1)
-    if n != 1:
-        raise RuntimeError("OpenCascade's STEP header has no FILE_NAME")
-    return out
+    """``text`` with FILE_NAME's name and time stamp and the PRODUCT's name fixed (OpenCascade writes the path,
+    the clock, and a translator name with a count of the files written so far in the process)."""
+    quoted = name.encode("ascii", "replace").replace(b"'", b"''")
+    fixes = ((rb"FILE_NAME\('(?:[^']|'')*',\s*'[^']*'", b"FILE_NAME('%s','%s'" % (quoted, TIME_STAMP.encode())),
+             (rb"PRODUCT\('(?:[^']|'')*',\s*'(?:[^']|'')*'", b"PRODUCT('%s','%s'" % (quoted, quoted)))
+    for pattern, fixed in fixes:
+        text, n = re.subn(pattern, lambda _: fixed, text, count=1)
+        if n != 1:
+            raise RuntimeError(f"OpenCascade's STEP file has no {pattern[:9].decode()}")
+    return text
 
 
 def step_files(built, name: str) -> dict[str, bytes]:
