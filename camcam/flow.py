@@ -59,15 +59,13 @@ def nc_step(spec, built):
 
 
 def model(built, name: str) -> tuple[dict, dict]:
-    """The STL, the STEP where OpenCascade is installed (:func:`camcam.export.step.step_files`), and the
-    mesh's figures: ({file: bytes}, figures).  The mesh is made and trimesh imported here, and OCP when
-    it is there: `camcam run` calls this in a child process while the NC step runs (the drawing's
+    """The STL and the mesh's figures: ({file: bytes}, figures).  The mesh is made and trimesh
+    imported here: `camcam run` calls this in a child process while the NC step runs (the drawing's
     prepared child when there is a program, see :func:`drawing_and_check`)."""
     from camcam.export.cam_report import mesh_figures
-    from camcam.export.step import step_files
     from camcam.export.stl import program_frame, stl_bytes
 
-    return {f"{name}.stl": stl_bytes(program_frame(built)), **step_files(built, name)}, mesh_figures(built)
+    return {f"{name}.stl": stl_bytes(program_frame(built))}, mesh_figures(built)
 
 
 def drawing(built, machining) -> tuple[dict, float | None]:
@@ -189,6 +187,11 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
         with progress.step("motion table and plot"):
             motion_outputs(out, spec.name, program, 0.5, svaj, dynamics)
         summary = {"name": spec.name, "motion": motion_summary(program)}
+        # the STEP in a child of its own, from now on (OCP's import is about a CPU second): nothing waits for it
+        # until the report (camcam.export.step.step_files: nothing where OCP is not installed)
+        from camcam.export.step import step_files
+
+        step_file = children.later(step_files, built, spec.name)
         if spec.machining is not None:
             # the drawing's child starts now, imports ezdxf and scipy (about a second) and makes the mesh and
             # STL (trimesh, which imports scipy too: once for both) beside the NC step; the program goes to it
@@ -236,8 +239,9 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
         report["verdict"] = verdict.as_dict()
         with progress.step("report"):
             out.add(f"{spec.name}.stl", files.pop(f"{spec.name}.stl"))
-            if f"{spec.name}.step" in files:
-                out.add(f"{spec.name}.step", files.pop(f"{spec.name}.step"))
+            step = resolve(step_file)
+            if step:
+                out.add(f"{spec.name}.step", step[f"{spec.name}.step"])
             else:
                 from camcam.export.step import CAD_HINT
 

@@ -250,3 +250,13 @@ def test_without_opencascade_the_run_says_so_once_and_writes_the_rest(tmp_path):
     assert written == set(record) - {"disc-groove.step"}
     for n in written - {"camcam-manifest.json"}:
         assert hashlib.sha256((out / n).read_bytes()).hexdigest() == record[n], n
+
+
+def test_importing_camcam_and_its_step_module_leaves_opencascade_unloaded():
+    # OCP takes about a second to import: only writing or reading a STEP pays it
+    code = ("import sys, camcam, camcam.flow, camcam.export.step; "
+            "print(sorted(m for m in sys.modules if m == 'OCP' or m.startswith('OCP.')))")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
+                         env={**os.environ, "PYTHONPATH": str(ROOT)})
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip() == "[]"
