@@ -239,13 +239,13 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
         report["verdict"] = verdict.as_dict()
         with progress.step("report"):
             out.add(f"{spec.name}.stl", files.pop(f"{spec.name}.stl"))
-            step = resolve(step_file)
-            if step:
-                out.add(f"{spec.name}.step", step[f"{spec.name}.step"])
-            else:
+            step, why_not = resolve(step_file)
+            for name, data in step.items():
+                out.add(name, data)
+            if why_not is not None:
                 from camcam.export.step import CAD_HINT
 
-                said.append(("note", CAD_HINT))
+                said.append(("note" if why_not == CAD_HINT else "warning", why_not))
             out.add(f"{spec.name}-profile.png", profile_png)
             page = job_report(spec.name, spec, program, svaj, built, report, profile_png, machining,
                               spec.report.inspection_step_deg, verdict, render=plots.submit, analysis=analysis)

@@ -87,11 +87,20 @@ def _fixed_header(text: bytes, name: str) -> bytes:
     return text
 
 
-def step_files(built, name: str) -> dict[str, bytes]:
-    """``{"<name>.step": bytes}`` of the cam's exact solid, or nothing where OCP is not installed."""
+def step_files(built, name: str) -> tuple[dict[str, bytes], str | None]:
+    """``({"<name>.step": bytes}, None)`` of the cam's exact solid, or ``({}, why)``: one line saying why not
+    (:data:`CAD_HINT` where OCP is not installed; OpenCascade's failure on this cam otherwise, which leaves
+    the rest of the run as it is)."""
     if not cad_available():
-        return {}
-    return {f"{name}.step": cam_step(built, name)}
+        return {}, CAD_HINT
+    from OCP.Standard import Standard_Failure
+
+    from camcam.errors import GeometryError
+
+    try:
+        return {f"{name}.step": cam_step(built, name)}, None
+    except (GeometryError, RuntimeError, Standard_Failure) as err:
+        return {}, f"STEP not written: {err}"
 
 
 def cam_step(built, name: str) -> bytes:

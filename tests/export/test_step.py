@@ -260,3 +260,19 @@ def test_importing_camcam_and_its_step_module_leaves_opencascade_unloaded():
                          env={**os.environ, "PYTHONPATH": str(ROOT)})
     assert run.returncode == 0, run.stderr
     assert run.stdout.strip() == "[]"
+
+
+def test_a_solid_opencascade_cannot_make_leaves_the_rest_of_the_run_with_a_warning(monkeypatch):
+    import camcam.export.step_solids as solids
+    from camcam.errors import GeometryError
+    from camcam.flow import run_job
+
+    def refuse(built):
+        raise GeometryError("the disc cam's OpenCascade solid is not valid")
+
+    monkeypatch.setattr(solids, "cam_solid", refuse)  # the STEP's child is forked: it sees the patch
+    job = run_job(ROOT / "samples" / "disc-translating-roller.toml")
+    assert "disc-translating-roller.step" not in job.files
+    assert {"disc-translating-roller.stl", "disc-translating-roller.dxf"} <= set(job.files)
+    assert "STEP not written: the disc cam's OpenCascade solid is not valid" in job.warnings
+    assert not any("STEP" in n for n in job.notes)
