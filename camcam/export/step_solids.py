@@ -1,7 +1,7 @@
 """The cams as OpenCascade solids (OCP), in the NC program's frame, for the STEP file.
 
-* disc cam: the exact profile as B-spline curves (:func:`camcam.geometry.bspline_fit.fit_curve`,
-  one per analytic piece, within :data:`~camcam.export.occ_build.SURFACE_TOLERANCE_MM` of the exact curve) extruded
+* disc cam: the exact profile as B-spline curves (:func:`fit_curve`, one per analytic piece,
+  within :data:`~camcam.export.occ_build.SURFACE_TOLERANCE_MM` of the exact curve) extruded
   through the thickness (faces that are B-spline curves swept along Z), the top face at
   Z0 and the part below it, as the program cuts it; the bore, its keyway and the dowel hole
   cut through;
@@ -27,30 +27,62 @@ from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder, BRepPrimAPI_MakePrism
 from OCP.Geom import Geom_BSplineCurve
 from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt, gp_Vec
-from OCP.OCP.collections import Array1_gp_Pnt
+from OCP.GeomAPI import GeomAPI_Interpolate
+from OCP.OCP.collections import HArray1_double, HArray1_gp_Pnt
 from OCP.ShapeFix import ShapeFix_Face
 from OCP.TopoDS import TopoDS_Shape
 
 from camcam.errors import GeometryError
-from camcam.export.occ_build import FIT_TOLERANCE_MM, PAST_MM, cut, knots_arrays
-from camcam.geometry.bspline_fit import CurveFit, fit_curve
+from camcam.export.occ_build import FIT_TOLERANCE_MM, PAST_MM, cut
+from camcam.geometry.bspline_fit import check_params, refined
 from camcam.geometry.mesh import keyway_corners
 
-__all__ = ["cam_solid", "disc_solid", "groove_solid"]
+__all__ = ["cam_solid", "disc_solid", "groove_solid", "fit_curve"]
 
 
-def _bspline_curve(knots: np.ndarray, poles: np.ndarray, z: float) -> Geom_BSplineCurve:
-    arr = Array1_gp_Pnt(1, len(poles))
-    for i, p in enumerate(poles):
-        arr.SetValue(i + 1, gp_Pnt(float(p[0]), float(p[1]), z))
-    k, mult = knots_arrays(knots)
-    return Geom_BSplineCurve(arr, k, mult, 3)
+def _interpolate(curve, a: float, b: float, n: int, piece: int | None, z: float) -> Geom_BSplineCurve:
+    """The clamped cubic B-spline through ``curve``'s points at n + 1 even parameters of [a, b] (its own
+    parameters), with the exact end derivatives: piece ``piece``'s one-sided values at its ends."""
+    t = np.linspace(a, b, n + 1)
+    at = (lambda u, k: curve.evaluate(u, k, piece)) if piece is not None else curve.evaluate
+    p, d = at(t, 0), at(np.array([a, b]), 1)
+    pts, params = HArray1_gp_Pnt(1, n + 1), HArray1_double(1, n + 1)
+    for i, (x, y) in enumerate(p):
+        pts.SetValue(i + 1, gp_Pnt(float(x), float(y), z))
+        params.SetValue(i + 1, float(t[i]))
+    interp = GeomAPI_Interpolate(pts, params, False, 1e-9)
+    interp.Load(gp_Vec(float(d[0, 0]), float(d[0, 1]), 0.0), gp_Vec(float(d[1, 0]), float(d[1, 1]), 0.0), False)
+    interp.Perform()
+    if not interp.IsDone():
+        raise GeometryError("OpenCascade could not interpolate the cam's profile")
+    return interp.Curve()
 
 
-def _wire(fit: CurveFit, z: float):
+def fit_curve(curve, tolerance_mm: float, z: float = 0.0) -> tuple[list[Geom_BSplineCurve], float]:
+    """Per-piece cubic B-splines (OpenCascade's, in the plane at ``z``) of the closed exact planar ``curve``,
+    each within ``tolerance_mm`` of it at every measured parameter (:func:`camcam.geometry.bspline_fit.refined`),
+    and the largest deviation measured (mm).  Neighbouring pieces share their end point exactly."""
+    one_sided = hasattr(curve, "jets")  # a JetCurve evaluates one piece at its ends (one-sided values)
+
+    def make(i, a, b, n):
+        return _interpolate(curve, a, b, n, i if one_sided else None, z)
+
+    def deviation(i, c):
+        u = check_params(np.array([c.Knot(k) for k in range(1, c.NbKnots() + 1)]))
+        exact = curve.evaluate(u, 0, i) if one_sided else curve.evaluate(u, 0)
+        got = np.array([[(p := c.Value(float(x))).X(), p.Y()] for x in u])
+        return float(np.max(np.hypot(*(got - exact).T)))
+
+    def join(c, nxt):
+        c.SetPole(c.NbPoles(), nxt.Pole(1))
+
+    return refined(np.asarray(curve.breaks, float), make, deviation, join, tolerance_mm, "curve")
+
+
+def _wire(curve, z: float):
     w = BRepBuilderAPI_MakeWire()
-    for piece in fit.pieces:
-        w.Add(BRepBuilderAPI_MakeEdge(_bspline_curve(piece.knots, piece.poles, z)).Edge())
+    for piece in fit_curve(curve, FIT_TOLERANCE_MM, z)[0]:
+        w.Add(BRepBuilderAPI_MakeEdge(piece).Edge())
     if not w.IsDone():
         raise GeometryError("the cam profile's B-spline pieces do not close a wire")
     return w.Wire()
@@ -69,7 +101,7 @@ def _prism(wire, z0: float, z1: float, hole=None) -> TopoDS_Shape:
 
 
 def _curve_prism(curve, z0: float, z1: float) -> TopoDS_Shape:
-    return _prism(_wire(fit_curve(curve, FIT_TOLERANCE_MM), z0), z0, z1)
+    return _prism(_wire(curve, z0), z0, z1)
 
 
 def _cylinder_z(centre: tuple[float, float], radius: float, z0: float, z1: float) -> TopoDS_Shape:
@@ -111,7 +143,7 @@ def groove_solid(cam, thickness: float, bore: float, outer_radius: float, keyway
     solid = _cylinder_z((0.0, 0.0), outer_radius, -thickness, 0.0)
     # the groove's tool is the ring between the flanks swept from its bottom to the top face exactly: where it
     # reached past the top face, the boolean would put intersection curves (approximations) in the top face
-    outer, inner = (_wire(fit_curve(f, FIT_TOLERANCE_MM), -h) for f in (cam.flanks[1], cam.flanks[0]))
+    outer, inner = (_wire(f, -h) for f in (cam.flanks[1], cam.flanks[0]))
     solid = cut(solid, _prism(outer, -h, 0.0, hole=inner))
     return _bore_cuts(solid, bore, keyway, -thickness - PAST_MM, PAST_MM)
 

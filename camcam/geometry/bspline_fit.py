@@ -1,26 +1,22 @@
 """Cubic B-splines interpolating the exact cam curves and surfaces within a stated deviation.
 
 A CAD solid (the STEP file, :mod:`camcam.export.step`) needs the cam's profile, flanks and
-groove walls as B-splines.  Each analytic piece of an exact curve (between two of its
-``breaks``, where a second derivative may jump) gets its own clamped cubic B-spline,
+groove walls as B-splines.  Each analytic piece of an exact curve or surface (between two
+of its ``breaks``, where a second derivative may jump) gets its own clamped cubic B-spline,
 parameterised by the cam angle θ itself and interpolating the exact points at evenly spaced
-nodes with the exact one-sided end derivatives, so that neighbouring pieces meet in the
-same point and tangent.  Because the spline's parameter is the curve's, |B(θ) − P(θ)| bounds
-the distance of each spline point from the exact curve; it is measured at
+nodes with the exact one-sided end derivatives along θ, so that neighbouring pieces meet in
+the same points and tangents.  Because the spline's parameter is the exact one, |B(θ) − P(θ)|
+bounds the distance of each spline point from the exact curve or surface; it is measured at
 :data:`CHECK_PER_SPAN` parameters in every span and the nodes are doubled until it is below
-the target.  A groove wall, an exact surface of (θ, ρ), is interpolated the same way
-(tensor product; ρ the roller cross-section's radius).
+the target (:func:`refined`).  The curves are interpolated by OpenCascade
+(:func:`camcam.export.step_solids.fit_curve`, where OCP is imported anyway); a groove wall,
+an exact surface of (θ, ρ) with ρ the roller cross-section's radius, here (tensor product,
+scipy's ``make_interp_spline``: :func:`fit_surface`).
 
 Examples
 --------
->>> import numpy as np
->>> from camcam.geometry.curve import FunctionCurve
->>> def circle(t, order):
-...     c, s = 5 * np.cos(t), 5 * np.sin(t)
-...     return np.stack([[c, s], [-s, c], [-c, -s], [s, -c]][order], axis=-1)
->>> fit = fit_curve(FunctionCurve(circle, 0.0, 2 * np.pi, closed=True), 1e-4)
->>> len(fit.pieces), fit.deviation_mm < 1e-4
-(1, True)
+>>> check_params(np.array([0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0]))[[0, 1, -1]]
+array([0.    , 0.0625, 1.    ])
 """
 
 from __future__ import annotations
@@ -29,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["SplinePiece", "CurveFit", "fit_curve", "SurfacePiece", "SurfaceFit", "fit_surface", "CHECK_PER_SPAN"]
+__all__ = ["SurfacePiece", "SurfaceFit", "fit_surface", "refined", "check_params", "CHECK_PER_SPAN"]
 
 #: Parameters per knot span at which a fit's deviation from the exact curve is measured.
 CHECK_PER_SPAN = 16
@@ -37,51 +33,22 @@ CHECK_PER_SPAN = 16
 START_NODES, MAX_NODES = 8, 4096
 
 
-@dataclass(frozen=True)
-class SplinePiece:
-    """One clamped cubic B-spline: ``knots`` (with their repeats, scipy's ``t``), ``poles`` (m, d) mm."""
-
-    knots: np.ndarray
-    poles: np.ndarray
-    degree: int = 3
-
-    def evaluate(self, t) -> np.ndarray:
-        from scipy.interpolate import BSpline
-
-        return BSpline(self.knots, self.poles, self.degree)(np.asarray(t, float))
-
-
-@dataclass(frozen=True)
-class CurveFit:
-    """A closed curve's pieces, in order, and the largest deviation measured (mm)."""
-
-    pieces: tuple[SplinePiece, ...]
-    deviation_mm: float
-
-
-def _piece_spline(curve, a: float, b: float, n: int, piece: int) -> SplinePiece:
-    from scipy.interpolate import make_interp_spline
-
-    t = np.linspace(a, b, n + 1)
-    p = curve.evaluate(t, 0, piece) if piece is not None else curve.evaluate(t, 0)
-    d = curve.evaluate(np.array([a, b]), 1, piece) if piece is not None else curve.evaluate(np.array([a, b]), 1)
-    s = make_interp_spline(t, p, k=3, bc_type=([(1, d[0])], [(1, d[1])]))
-    return SplinePiece(np.asarray(s.t), np.asarray(s.c))
-
-
-def _check_params(knots: np.ndarray) -> np.ndarray:
+def check_params(knots: np.ndarray) -> np.ndarray:
+    """The parameters a fit is measured at: :data:`CHECK_PER_SPAN` per span of the distinct ``knots``, and the end."""
     u = np.unique(knots)
     return np.concatenate([np.linspace(x, y, CHECK_PER_SPAN, endpoint=False) for x, y in zip(u, u[1:])] + [u[-1:]])
 
 
-def _evaluate(curve, t, piece):
-    return curve.evaluate(t, 0, piece) if piece is not None else curve.evaluate(t, 0)
-
-
-def _refined(breaks: np.ndarray, make, deviation, tolerance_mm: float, what: str) -> tuple[list, float]:
+def refined(breaks: np.ndarray, make, deviation, join, tolerance_mm: float, what: str) -> tuple[list, float]:
     """``make(i, a, b, n)``'s spline of each piece i between ``breaks`` with the fewest nodes n (doubling from
-    :data:`START_NODES`) whose ``deviation(i, spline)`` is under ``tolerance_mm``, their ends joined, and the
-    largest deviation."""
+    :data:`START_NODES`) whose ``deviation(i, spline)`` is under ``tolerance_mm``, each piece's end made the
+    next one's start by ``join(piece, next)`` (the last's the first's), and the largest deviation.
+
+    Raises
+    ------
+    ValueError
+        A piece needs more than :data:`MAX_NODES` nodes (the curve is not smooth between its breaks).
+    """
     pieces, worst = [], 0.0
     for i, (a, b) in enumerate(zip(breaks, breaks[1:])):
         n = START_NODES
@@ -93,33 +60,8 @@ def _refined(breaks: np.ndarray, make, deviation, tolerance_mm: float, what: str
         worst = max(worst, dev)
     # one end for two pieces: the values at a break agree to rounding (the curve or surface is continuous)
     for s, nxt in zip(pieces, pieces[1:] + pieces[:1]):
-        s.poles[-1] = nxt.poles[0]
+        join(s, nxt)
     return pieces, worst
-
-
-def fit_curve(curve, tolerance_mm: float) -> CurveFit:
-    """Per-piece cubic B-splines of the closed exact ``curve`` (:class:`~camcam.geometry.curve.PlanarCurve`
-    or a space curve) deviating from it by less than ``tolerance_mm`` at every measured parameter.
-
-    Neighbouring pieces share their end point exactly: piece i ends in the point piece i + 1
-    starts from, the last ends in the first's start.
-
-    Raises
-    ------
-    ValueError
-        A piece needs more than :data:`MAX_NODES` nodes (the curve is not smooth between its breaks).
-    """
-    br = np.asarray(curve.breaks, float)
-    one_sided = hasattr(curve, "jets")  # a JetCurve evaluates one piece at its ends (one-sided values)
-    def make(i, a, b, n):
-        return _piece_spline(curve, a, b, n, i if one_sided else None)
-
-    def deviation(i, s):
-        u = _check_params(s.knots)
-        return float(np.max(np.linalg.norm(s.evaluate(u) - _evaluate(curve, u, i if one_sided else None), axis=1)))
-
-    pieces, worst = _refined(br, make, deviation, tolerance_mm, "curve")
-    return CurveFit(tuple(pieces), worst)
 
 
 @dataclass(frozen=True)
@@ -181,8 +123,11 @@ def fit_surface(point, tangent, breaks, rho: np.ndarray, tolerance_mm: float) ->
         return _surface_piece(point, tangent, a, b, rho, n)
 
     def deviation(i, s):
-        u, v = _check_params(s.knots_u), _check_params(s.knots_v)
+        u, v = check_params(s.knots_u), check_params(s.knots_v)
         return float(np.max(np.linalg.norm(s.evaluate(u, v) - point(u, v), axis=-1)))
 
-    pieces, worst = _refined(np.asarray(breaks, float), make, deviation, tolerance_mm, "surface")
+    def join(s, nxt):
+        s.poles[-1] = nxt.poles[0]
+
+    pieces, worst = refined(np.asarray(breaks, float), make, deviation, join, tolerance_mm, "surface")
     return SurfaceFit(tuple(pieces), worst)
