@@ -25,6 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from camcam.errors import GeometryError
+
 __all__ = ["SurfacePiece", "SurfaceFit", "fit_surface", "refined", "check_params", "CHECK_PER_SPAN"]
 
 #: Parameters per knot span at which a fit's deviation from the exact curve is measured.
@@ -46,15 +48,16 @@ def refined(breaks: np.ndarray, make, deviation, join, tolerance_mm: float, what
 
     Raises
     ------
-    ValueError
-        A piece needs more than :data:`MAX_NODES` nodes (the curve is not smooth between its breaks).
+    GeometryError
+        A piece needs more than :data:`MAX_NODES` nodes (the curve is not smooth between its breaks): the run
+        writes no STEP and says so (:func:`camcam.export.step.step_files`).
     """
     pieces, worst = [], 0.0
     for i, (a, b) in enumerate(zip(breaks, breaks[1:])):
         n = START_NODES
         while (dev := deviation(i, s := make(i, a, b, n))) >= tolerance_mm:
             if n >= MAX_NODES:
-                raise ValueError(f"piece {i} of the {what} deviates {dev:.3g} mm from its B-spline at {n} nodes")
+                raise GeometryError(f"piece {i} of the {what} deviates {dev:.3g} mm from its B-spline at {n} nodes")
             n *= 2
         pieces.append(s)
         worst = max(worst, dev)
@@ -115,10 +118,11 @@ def fit_surface(point, tangent, breaks, rho: np.ndarray, tolerance_mm: float) ->
 
     Raises
     ------
-    ValueError
+    GeometryError
         A piece needs more than :data:`MAX_NODES` nodes in θ.
     """
     rho = np.asarray(rho, float)
+
     def make(i, a, b, n):
         return _surface_piece(point, tangent, a, b, rho, n)
 
