@@ -3,8 +3,8 @@ the exact roller envelope walls.
 
 Each groove wall is the exact surface S(θ, ρ) of
 :meth:`~camcam.geometry.cylindrical.CylindricalCam.wall_grid` (the roller's contact line at
-cam angle θ, on its cross-section of radius ρ), as bicubic B-spline surfaces, one per motion
-segment (:func:`camcam.geometry.bspline_fit.fit_surface`, within
+cam angle θ, on its cross-section of radius ρ), as bicubic B-spline surfaces, one per analytic
+span (:func:`camcam.geometry.bspline_fit.analytic_spans`, :func:`~camcam.geometry.bspline_fit.fit_surface`, within
 :data:`~camcam.export.occ_build.FIT_TOLERANCE_MM`), over radii reaching :data:`REACH_MM`
 past the groove bottom and the cylinder's surface.  The two walls and two ruled caps
 between them (below the bottom, above the surface) close a ring round the cam, the
@@ -28,7 +28,7 @@ from OCP.TopoDS import TopoDS, TopoDS_Shape
 
 from camcam.errors import GeometryError
 from camcam.export.occ_build import FIT_TOLERANCE_MM, cut, knots_arrays
-from camcam.geometry.bspline_fit import SurfacePiece, fit_surface
+from camcam.geometry.bspline_fit import SurfacePiece, analytic_spans, fit_surface
 
 __all__ = ["barrel_solid", "wall_fits", "REACH_MM", "RADIUS_NODES"]
 
@@ -73,12 +73,10 @@ def wall_fits(cam):
         def point(t, r, side=side):
             return cam.wall_grid(t, r, side)
 
-        def tangent(t, r, side=side):
-            # the ends' derivatives, one-sided: each piece's own law at its ends
-            piece = int(np.searchsorted(cam.breaks, 0.5 * (t[0] + t[-1])) - 1)
+        def tangent(t, r, piece, side=side):
             return cam.wall_grid(t, r, side, 1, piece)
 
-        fits.append(fit_surface(point, tangent, cam.breaks, rho, FIT_TOLERANCE_MM))
+        fits.append(fit_surface(point, tangent, analytic_spans(cam.breaks, cam.program), rho, FIT_TOLERANCE_MM))
     return tuple(fits)
 
 

@@ -1,6 +1,6 @@
 """The cams as OpenCascade solids (OCP), in the NC program's frame, for the STEP file.
 
-* disc cam: the exact profile as B-spline curves (:func:`fit_curve`, one per analytic piece,
+* disc cam: the exact profile as B-spline curves (:func:`fit_curve`, one per analytic span,
   within :data:`~camcam.export.occ_build.SURFACE_TOLERANCE_MM` of the exact curve) extruded
   through the thickness (faces that are B-spline curves swept along Z), the top face at
   Z0 and the part below it, as the program cuts it; the bore, its keyway and the dowel hole
@@ -34,7 +34,7 @@ from OCP.TopoDS import TopoDS_Shape
 
 from camcam.errors import GeometryError
 from camcam.export.occ_build import FIT_TOLERANCE_MM, PAST_MM, cut
-from camcam.geometry.bspline_fit import check_params, refined
+from camcam.geometry.bspline_fit import analytic_spans, check_params, end_parameters, refined
 from camcam.geometry.mesh import keyway_corners
 
 __all__ = ["cam_solid", "disc_solid", "groove_solid", "fit_curve"]
@@ -42,10 +42,10 @@ __all__ = ["cam_solid", "disc_solid", "groove_solid", "fit_curve"]
 
 def _interpolate(curve, a: float, b: float, n: int, piece: int | None, z: float) -> Geom_BSplineCurve:
     """The clamped cubic B-spline through ``curve``'s points at n + 1 even parameters of [a, b] (its own
-    parameters), with the exact end derivatives: piece ``piece``'s one-sided values at its ends."""
+    parameters), with the exact end derivatives: motion segment ``piece``'s, a hair inside the span."""
     t = np.linspace(a, b, n + 1)
     at = (lambda u, k: curve.evaluate(u, k, piece)) if piece is not None else curve.evaluate
-    p, d = at(t, 0), at(np.array([a, b]), 1)
+    p, d = at(t, 0), at(end_parameters(a, b), 1)
     pts, params = HArray1_gp_Pnt(1, n + 1), HArray1_double(1, n + 1)
     for i, (x, y) in enumerate(p):
         pts.SetValue(i + 1, gp_Pnt(float(x), float(y), z))
@@ -58,30 +58,32 @@ def _interpolate(curve, a: float, b: float, n: int, piece: int | None, z: float)
     return interp.Curve()
 
 
-def fit_curve(curve, tolerance_mm: float, z: float = 0.0) -> tuple[list[Geom_BSplineCurve], float]:
-    """Per-piece cubic B-splines (OpenCascade's, in the plane at ``z``) of the closed exact planar ``curve``,
-    each within ``tolerance_mm`` of it at every measured parameter (:func:`camcam.geometry.bspline_fit.refined`),
-    and the largest deviation measured (mm).  Neighbouring pieces share their end point exactly."""
-    one_sided = hasattr(curve, "jets")  # a JetCurve evaluates one piece at its ends (one-sided values)
+def fit_curve(curve, tolerance_mm: float, z: float = 0.0, program=None) -> tuple[list[Geom_BSplineCurve], float]:
+    """Per-span cubic B-splines (OpenCascade's, in the plane at ``z``) of the closed exact planar ``curve``, each
+    within ``tolerance_mm`` of it at every measured parameter (:func:`camcam.geometry.bspline_fit.refined`), and
+    the largest deviation measured (mm).  With the cam's motion ``program`` the spans are its segments split at
+    their laws' breaks, each evaluated on its segment (a JetCurve's one-sided values); without it, the curve's
+    ``breaks``.  Neighbouring spans share their end point exactly."""
+    spans = analytic_spans(curve.breaks, program)
 
-    def make(i, a, b, n):
-        return _interpolate(curve, a, b, n, i if one_sided else None, z)
+    def make(piece, a, b, n):
+        return _interpolate(curve, a, b, n, piece, z)
 
-    def deviation(i, c):
+    def deviation(piece, c):
         u = check_params(np.array([c.Knot(k) for k in range(1, c.NbKnots() + 1)]))
-        exact = curve.evaluate(u, 0, i) if one_sided else curve.evaluate(u, 0)
+        exact = curve.evaluate(u, 0, piece) if piece is not None else curve.evaluate(u, 0)
         got = np.array([[(p := c.Value(float(x))).X(), p.Y()] for x in u])
         return float(np.max(np.hypot(*(got - exact).T)))
 
     def join(c, nxt):
         c.SetPole(c.NbPoles(), nxt.Pole(1))
 
-    return refined(np.asarray(curve.breaks, float), make, deviation, join, tolerance_mm, "curve")
+    return refined(spans, make, deviation, join, tolerance_mm, "curve")
 
 
-def _wire(curve, z: float):
+def _wire(curve, z: float, program):
     w = BRepBuilderAPI_MakeWire()
-    for piece in fit_curve(curve, FIT_TOLERANCE_MM, z)[0]:
+    for piece in fit_curve(curve, FIT_TOLERANCE_MM, z, program)[0]:
         w.Add(BRepBuilderAPI_MakeEdge(piece).Edge())
     if not w.IsDone():
         raise GeometryError("the cam profile's B-spline pieces do not close a wire")
@@ -100,8 +102,8 @@ def _prism(wire, z0: float, z1: float, hole=None) -> TopoDS_Shape:
     return BRepPrimAPI_MakePrism(face, gp_Vec(0.0, 0.0, z1 - z0)).Shape()
 
 
-def _curve_prism(curve, z0: float, z1: float) -> TopoDS_Shape:
-    return _prism(_wire(curve, z0), z0, z1)
+def _curve_prism(curve, z0: float, z1: float, program) -> TopoDS_Shape:
+    return _prism(_wire(curve, z0, program), z0, z1)
 
 
 def _cylinder_z(centre: tuple[float, float], radius: float, z0: float, z1: float) -> TopoDS_Shape:
@@ -128,7 +130,7 @@ def _bore_cuts(shape: TopoDS_Shape, bore: float, keyway, z0: float, z1: float) -
 
 def disc_solid(cam, thickness: float, bore: float, keyway=None, dowel=None) -> TopoDS_Shape:
     """The disc cam's solid: the exact profile from z = −thickness to 0, the bore, keyway and dowel hole cut."""
-    solid = _curve_prism(cam.profile, -thickness, 0.0)
+    solid = _curve_prism(cam.profile, -thickness, 0.0, cam.program)
     lo, hi = -thickness - PAST_MM, PAST_MM
     solid = _bore_cuts(solid, bore, keyway, lo, hi)
     if dowel is not None:
@@ -143,7 +145,7 @@ def groove_solid(cam, thickness: float, bore: float, outer_radius: float, keyway
     solid = _cylinder_z((0.0, 0.0), outer_radius, -thickness, 0.0)
     # the groove's tool is the ring between the flanks swept from its bottom to the top face exactly: where it
     # reached past the top face, the boolean would put intersection curves (approximations) in the top face
-    outer, inner = (_wire(f, -h) for f in (cam.flanks[1], cam.flanks[0]))
+    outer, inner = (_wire(f, -h, cam.program) for f in (cam.flanks[1], cam.flanks[0]))
     solid = cut(solid, _prism(outer, -h, 0.0, hole=inner))
     return _bore_cuts(solid, bore, keyway, -thickness - PAST_MM, PAST_MM)
 

@@ -27,7 +27,8 @@ import numpy as np
 
 from camcam.errors import GeometryError
 
-__all__ = ["SurfacePiece", "SurfaceFit", "fit_surface", "refined", "check_params", "CHECK_PER_SPAN"]
+__all__ = ["SurfacePiece", "SurfaceFit", "fit_surface", "refined", "analytic_spans", "end_parameters", "check_params",
+           "CHECK_PER_SPAN"]
 
 #: Parameters per knot span at which a fit's deviation from the exact curve is measured.
 CHECK_PER_SPAN = 16
@@ -41,23 +42,47 @@ def check_params(knots: np.ndarray) -> np.ndarray:
     return np.concatenate([np.linspace(x, y, CHECK_PER_SPAN, endpoint=False) for x, y in zip(u, u[1:])] + [u[-1:]])
 
 
-def refined(breaks: np.ndarray, make, deviation, join, tolerance_mm: float, what: str) -> tuple[list, float]:
-    """``make(i, a, b, n)``'s spline of each piece i between ``breaks`` with the fewest nodes n (doubling from
-    :data:`START_NODES`) whose ``deviation(i, spline)`` is under ``tolerance_mm``, each piece's end made the
-    next one's start by ``join(piece, next)`` (the last's the first's), and the largest deviation.
+def analytic_spans(breaks, program=None) -> list[tuple[float, float, int | None]]:
+    """The spans (a, b, piece) between ``breaks`` (radians, ends included) on which a cam curve is analytic, and
+    the index of the motion segment each lies in (``None`` without a ``program``): with the program, each
+    segment is split further at its law's own breaks (a parabolic law's acceleration jumps at its middle, a
+    modified sine's at 1/8 and 7/8: the profile's second derivative jumps with it)."""
+    br = np.asarray(breaks, float)
+    if program is None:
+        return [(float(a), float(b), None) for a, b in zip(br, br[1:])]
+    spans = []
+    for i, (a, b) in enumerate(zip(br, br[1:])):
+        inner = [float(T) for T in getattr(program.segments[i].law, "breaks", ()) if 0.0 < T < 1.0]
+        edges = [float(a)] + [a + T * (b - a) for T in inner] + [float(b)]
+        spans += [(x, y, i) for x, y in zip(edges, edges[1:])]
+    return spans
+
+
+def end_parameters(a: float, b: float) -> np.ndarray:
+    """Where a span's end derivatives are taken: a hair inside it, so that they are its own at a law's inner break
+    (where the law gives the next piece's); the shift, 1e-10 of the span, moves them by about as little."""
+    e = 1e-10 * (b - a)
+    return np.array([a + e, b - e])
+
+
+def refined(spans, make, deviation, join, tolerance_mm: float, what: str) -> tuple[list, float]:
+    """``make(piece, a, b, n)``'s spline of each span (a, b, piece) of ``spans`` (:func:`analytic_spans`) with the
+    fewest nodes n (doubling from :data:`START_NODES`) whose ``deviation(piece, spline)`` is under
+    ``tolerance_mm``, each span's end made the next one's start by ``join(spline, next)`` (the last's the
+    first's), and the largest deviation.
 
     Raises
     ------
     GeometryError
-        A piece needs more than :data:`MAX_NODES` nodes (the curve is not smooth between its breaks): the run
-        writes no STEP and says so (:func:`camcam.export.step.step_files`).
+        A span needs more than :data:`MAX_NODES` nodes (the curve is not smooth on it): the run writes no STEP
+        and says so (:func:`camcam.export.step.step_files`).
     """
     pieces, worst = [], 0.0
-    for i, (a, b) in enumerate(zip(breaks, breaks[1:])):
+    for k, (a, b, piece) in enumerate(spans):
         n = START_NODES
-        while (dev := deviation(i, s := make(i, a, b, n))) >= tolerance_mm:
+        while (dev := deviation(piece, s := make(piece, a, b, n))) >= tolerance_mm:
             if n >= MAX_NODES:
-                raise GeometryError(f"piece {i} of the {what} deviates {dev:.3g} mm from its B-spline at {n} nodes")
+                raise GeometryError(f"span {k} of the {what} deviates {dev:.3g} mm from its B-spline at {n} nodes")
             n *= 2
         pieces.append(s)
         worst = max(worst, dev)
@@ -92,25 +117,27 @@ class SurfaceFit:
     deviation_mm: float
 
 
-def _surface_piece(point, tangent, a: float, b: float, rho: np.ndarray, n: int) -> SurfacePiece:
+def _surface_piece(point, tangent, a: float, b: float, piece, rho: np.ndarray, n: int) -> SurfacePiece:
     from scipy.interpolate import make_interp_spline
 
     t = np.linspace(a, b, n + 1)
     grid = point(t, rho)  # (n+1, len(rho), 3)
-    ends = tangent(np.array([a, b]), rho)  # (2, len(rho), 3)
+    ends = tangent(end_parameters(a, b), rho, piece)  # (2, len(rho), 3)
     along_u = make_interp_spline(t, grid, k=3, bc_type=([(1, ends[0])], [(1, ends[1])]))
     across = make_interp_spline(rho, np.moveaxis(np.asarray(along_u.c), 1, 0), k=3)
     return SurfacePiece(np.asarray(along_u.t), np.asarray(across.t), np.moveaxis(np.asarray(across.c), 0, 1))
 
 
-def fit_surface(point, tangent, breaks, rho: np.ndarray, tolerance_mm: float) -> SurfaceFit:
+def fit_surface(point, tangent, spans, rho: np.ndarray, tolerance_mm: float) -> SurfaceFit:
     """Per-piece bicubic B-spline surfaces of an exact surface S(θ, ρ), closed in θ.
 
     Parameters
     ----------
     point, tangent : callable
-        ``point(theta, rho)`` the exact points and ``tangent(theta, rho)`` ∂S/∂θ, each (len(θ), len(ρ), 3);
-        both analytic between ``breaks`` (θ, radians, ends included).
+        ``point(theta, rho)`` the exact points and ``tangent(theta, rho, piece)`` ∂S/∂θ (on motion segment
+        ``piece``), each (len(θ), len(ρ), 3); both analytic on each of ``spans``.
+    spans : list
+        (a, b, piece) spans in θ (radians) covering one turn (:func:`analytic_spans`).
     rho : ndarray
         The nodes across the band (increasing; at least four), mm.
     tolerance_mm : float
@@ -123,8 +150,8 @@ def fit_surface(point, tangent, breaks, rho: np.ndarray, tolerance_mm: float) ->
     """
     rho = np.asarray(rho, float)
 
-    def make(i, a, b, n):
-        return _surface_piece(point, tangent, a, b, rho, n)
+    def make(piece, a, b, n):
+        return _surface_piece(point, tangent, a, b, piece, rho, n)
 
     def deviation(i, s):
         u, v = check_params(s.knots_u), check_params(s.knots_v)
@@ -133,5 +160,5 @@ def fit_surface(point, tangent, breaks, rho: np.ndarray, tolerance_mm: float) ->
     def join(s, nxt):
         s.poles[-1] = nxt.poles[0]
 
-    pieces, worst = refined(np.asarray(breaks, float), make, deviation, join, tolerance_mm, "surface")
+    pieces, worst = refined(spans, make, deviation, join, tolerance_mm, "surface")
     return SurfaceFit(tuple(pieces), worst)

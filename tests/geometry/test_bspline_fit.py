@@ -47,12 +47,12 @@ def test_surface_fit_of_a_warped_band():
         T, R = np.meshgrid(t, r, indexing="ij")
         return np.stack([R * np.cos(T), R * np.sin(T), 3 * np.sin(2 * T) + 0.01 * R**2], axis=-1)
 
-    def tangent(t, r):
+    def tangent(t, r, piece):
         T, R = np.meshgrid(t, r, indexing="ij")
         return np.stack([-R * np.sin(T), R * np.cos(T), 6 * np.cos(2 * T)], axis=-1)
 
     rho = np.linspace(30, 40, 6)
-    fit = fit_surface(point, tangent, np.array([0.0, 2.0, 2 * np.pi]), rho, 5e-5)
+    fit = fit_surface(point, tangent, [(0.0, 2.0, None), (2.0, 2 * np.pi, None)], rho, 5e-5)
     assert fit.deviation_mm < 5e-5
     rng = np.random.default_rng(1)
     for (lo, hi), piece in zip([(0.0, 2.0), (2.0, 2 * np.pi)], fit.pieces):
