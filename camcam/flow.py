@@ -188,6 +188,11 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
         with progress.step("motion table and plot"):
             motion_outputs(out, spec.name, program, 0.5, svaj, dynamics)
         summary = {"name": spec.name, "motion": motion_summary(program)}
+        # the STEP in a child of its own, from now on (OCP's import is about a CPU second): nothing waits for it
+        # until the report (camcam.export.step.step_files: nothing where OCP is not installed)
+        from camcam.export.step import step_files
+
+        step_file = children.later(step_files, built, spec.name)
         if spec.machining is not None:
             # the drawing's child starts now, imports ezdxf and scipy (about a second) and makes the mesh and
             # STL (trimesh, which imports scipy too: once for both) beside the NC step; the program goes to it
@@ -235,6 +240,13 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
         report["verdict"] = verdict.as_dict()
         with progress.step("report"):
             out.add(f"{spec.name}.stl", files.pop(f"{spec.name}.stl"))
+            step, why_not = resolve(step_file)
+            for name, data in step.items():
+                out.add(name, data)
+            if why_not is not None:
+                from camcam.export.step import CAD_HINT
+
+                said.append(("note" if why_not == CAD_HINT else "warning", why_not))
             out.add(f"{spec.name}-profile.png", profile_png)
             page = job_report(spec.name, spec, program, svaj, built, report, profile_png, machining,
                               spec.report.inspection_step_deg, verdict, render=plots.submit, analysis=analysis)

@@ -14,4 +14,5 @@ __getattr__, __dir__, __all__ = lazy_exports(__name__, {
     **dict.fromkeys(("CylindricalCam", "BarrelTranslatingRoller", "BarrelOscillatingRoller"), "camcam.geometry.cylindrical"),
     **dict.fromkeys(("DiscAnalysis", "analyse"), "camcam.geometry.analysis"),
     **dict.fromkeys(("Sizing", "size_cam"), "camcam.geometry.smallest_cam"),
+    **dict.fromkeys(("cam_volume",), "camcam.geometry.exact_volume"),
 })

@@ -198,6 +198,16 @@ class CylindricalCam(CamBasics):
         p = self._to_cam(theta, self._contact(theta, 0, None, rho, index))
         return np.stack([j.value for j in p], axis=-1)
 
+    def wall_grid(self, theta, radii_mm, index: int, order: int = 0, piece: int | None = None) -> np.ndarray:
+        """Flank ``index``'s wall as an exact surface of (θ, ρ) on a grid: the cam-frame points (``order`` 0) or
+        their derivative along θ (``order`` 1), shape (len(θ), len(radii_mm), 3); ``piece`` evaluates one
+        segment's law (one-sided at its ends), as :class:`~camcam.geometry.jetcurve.LiftJet` does."""
+        theta = np.atleast_1d(np.asarray(theta, float))
+        radii = np.atleast_1d(np.asarray(radii_mm, float))
+        th, rho = np.repeat(theta, len(radii)), np.tile(radii, len(theta))
+        p = self._to_cam(th, self._contact(th, order, piece, rho, index))
+        return np.stack([j.d[order] for j in p], axis=-1).reshape(len(theta), len(radii), 3)
+
     def _developed(self, theta, K, piece, rho, p):
         delta = Jet.atan2(p[1], p[2])
         u = (Jet.variable(theta, K) + delta * self.sigma) * rho

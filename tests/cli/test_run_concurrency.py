@@ -26,7 +26,7 @@ def _loaded_after_run(spec: Path, out: Path) -> dict:
         "from camcam.cli import main\n"
         f"rc = main(['run', {str(spec)!r}, '-o', {str(out)!r}])\n"
         "sys.stdout.flush()\n"
-        "print(json.dumps({'rc': rc, 'loaded': [m for m in ('matplotlib', 'ezdxf', 'trimesh', 'scipy') "
+        "print(json.dumps({'rc': rc, 'loaded': [m for m in ('matplotlib', 'ezdxf', 'trimesh', 'scipy', 'OCP') "
         "if m in sys.modules]}))\n"
     )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
@@ -35,8 +35,8 @@ def _loaded_after_run(spec: Path, out: Path) -> dict:
 
 def test_the_fitting_process_imports_no_plot_or_export_library(tmp_path):
     result = _loaded_after_run(SAMPLE, tmp_path / "out")
-    # matplotlib is imported by the plot server, ezdxf, trimesh and scipy by the drawing's prepared child,
-    # which also makes the mesh and forks the material check (camcam.workers): the process that fits the
+    # matplotlib is imported by the plot server, ezdxf, trimesh and scipy (and OCP, for the STEP) by the drawing's
+    # prepared child, which also makes the mesh and forks the material check (camcam.workers): the process that fits the
     # NC path measures its deviations with shapely's STRtree, and imports no scipy at all
     assert result == {"rc": 0, "loaded": []}
     assert {p.name for p in (tmp_path / "out").iterdir()} >= {

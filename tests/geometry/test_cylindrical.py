@@ -90,3 +90,17 @@ def test_mesh_watertight_and_volume():
 def test_too_short_cylinder():
     with pytest.raises(GeometryError, match="cam.length 30 mm is too short"):
         CylindricalCam(BarrelTranslatingRoller(8.0), program("mm"), 50.0, length=30.0, groove_depth=10.0)
+
+
+@pytest.mark.parametrize("cam", cams(), ids=lambda c: f"{c.kind}-{c.rotation}")
+def test_wall_grid_is_the_wall_and_its_derivative_along_the_cam_angle(cam):
+    t, radii = np.linspace(0.05, 6.2, 40), np.array([cam.bottom_radius - 3.0, cam.reference_radius, cam.base_radius + 2])
+    for side in (0, 1):
+        grid = cam.wall_grid(t, radii, side)
+        for j, r in enumerate(radii):
+            # the grid's column j is wall_point on the cross-section r (the same formula, so to rounding)
+            assert np.allclose(grid[:, j], cam.wall_point(t, np.full(len(t), r), side), atol=1e-12)
+        h = 1e-6
+        fd = (cam.wall_grid(t + h, radii, side) - cam.wall_grid(t - h, radii, side)) / (2 * h)
+        # central difference: error ~h² · |S'''| (≈1e-10 mm/rad here) plus rounding ~1e-16·|S|/h ≈ 1e-8
+        assert np.allclose(cam.wall_grid(t, radii, side, 1), fd, atol=1e-6)

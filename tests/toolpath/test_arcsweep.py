@@ -109,7 +109,7 @@ def test_a_dwell_only_disc_cam_runs_on_every_post(tmp_path, post):
     spec.write_text(DWELL_ONLY.format(law="dwell", to=360, rise="", more="", base=40.0, post=post))
     code, out, err = run_inproc(["run", spec, "-o", tmp_path / "out"])
     assert code == 0, err
-    program = next(p for p in (tmp_path / "out").iterdir() if p.suffix not in (".dxf", ".stl", ".png", ".csv", ".html",
+    program = next(p for p in (tmp_path / "out").iterdir() if p.suffix not in (".dxf", ".stl", ".step", ".png", ".csv", ".html",
                                                                                ".json"))
     post_ = load_post(post)
     assert _largest_printed_sweep(program.read_text(), post_) <= post_.max_arc_sweep_deg
