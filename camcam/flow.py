@@ -192,7 +192,7 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
         # until the report (camcam.export.step.step_files: nothing where OCP is not installed)
         from camcam.export.step import step_files
 
-        step_file = children.later(step_files, built, spec.name)
+        step_file = children.later(step_files, built, spec.name) if spec.report.step_file else None
         if spec.machining is not None:
             # the drawing's child starts now, imports ezdxf and scipy (about a second) and makes the mesh and
             # STL (trimesh, which imports scipy too: once for both) beside the NC step; the program goes to it
@@ -240,7 +240,7 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
         report["verdict"] = verdict.as_dict()
         with progress.step("report"):
             out.add(f"{spec.name}.stl", files.pop(f"{spec.name}.stl"))
-            step, why_not = resolve(step_file)
+            step, why_not = resolve(step_file) if step_file is not None else ({}, None)
             for name, data in step.items():
                 out.add(name, data)
             if why_not is not None:

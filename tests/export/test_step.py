@@ -300,3 +300,21 @@ def test_a_law_whose_acceleration_jumps_inside_its_segment_gets_its_own_spans(tm
         p = face_points(f, uv)
         # within the tolerance of the exact profile (the spline's parameter is the cam angle: an upper bound)
         assert np.hypot(*(p[:, :2] - built.cam.profile.evaluate(uv[:, 0])).T).max() <= SURFACE_TOLERANCE_MM
+
+
+def test_step_file_false_writes_no_step_and_says_nothing(monkeypatch, tmp_path):
+    """``[report] step_file = false`` (for batches, issue 49: OpenCascade's import is about a CPU second a job):
+    no STEP, no note, and the STEP's function is never called (it would raise here)."""
+    import camcam.export.step as step
+    from camcam.flow import run_job
+
+    def never(built, name):
+        raise AssertionError("step_files called with step_file = false")
+
+    monkeypatch.setattr(step, "step_files", never)  # a forked child would see it too
+    spec = tmp_path / "nostep.toml"
+    spec.write_text((ROOT / "samples" / "disc-translating-roller.toml").read_text() + "\n[report]\nstep_file = false\n")
+    job = run_job(spec)
+    assert not any(n.endswith(".step") for n in job.files)
+    assert {"disc-translating-roller.stl", "disc-translating-roller.dxf"} <= set(job.files)
+    assert not any("STEP" in n for n in job.notes + job.warnings)
