@@ -391,13 +391,71 @@ def _far_moves(moves, tree, keep, near: float, top_z: float) -> list[bool]:
 
 def check_program(text: str, post, blank, m, built, workers: int = 1) -> RemovalReport:
     """Read the printed ``text`` back and check it against ``blank`` (the NC stage's in-process check), its
-    slabs swept by ``workers`` processes."""
+    slabs swept by ``workers`` processes.
+
+    Holes cut through the part (the helical bore, the dowel hole: ``bore`` passes) deeper than every other
+    pass — a face groove's bore goes through the cam, the groove only to its depth — are checked on their
+    own against the holes (:func:`_hole_split`): the 2.5-D design of one final depth would otherwise take
+    the groove as uncut below its bottom (design-space case 43:76 said FAIL, material left 109 mm).
+    """
     events = read_program(text, post)
-    keep, boundary, polygon_error = design_keep(blank, built, m.tolerance_mm)
-    r = check_moves(events, blank.region, blank.top_z_mm, keep, boundary, m.tool_diameter_mm / 2, m.stepover_mm,
-                    m.ramp_angle_deg, m.tolerance_mm, m.finish_allowance_mm if not blank.groove else 0.0,
-                    post.decimals, workers=workers)
-    return replace(r, polygon_error_mm=polygon_error)
+    allowance = m.finish_allowance_mm if not blank.groove else 0.0
+    args = (m.tool_diameter_mm / 2, m.stepover_mm, m.ramp_angle_deg, m.tolerance_mm, allowance, post.decimals)
+    split = _hole_split(events, blank.top_z_mm)
+    if split is None:
+        keep, boundary, polygon_error = design_keep(blank, built, m.tolerance_mm)
+        r = check_moves(events, blank.region, blank.top_z_mm, keep, boundary, *args, workers=workers)
+        return replace(r, polygon_error_mm=polygon_error)
+    others, holes = split
+    keep, boundary, polygon_error = design_keep(replace(blank, bore_machined=False, dowel=None), built, m.tolerance_mm)
+    r = check_moves(others, blank.region, blank.top_z_mm, keep, boundary, *args, workers=workers)
+    hole_keep, hole_boundary, hole_error = _hole_design(blank, blank.region, DEFAULT_BUDGET.polygon_mm(m.tolerance_mm))
+    h = check_moves(holes, blank.region, blank.top_z_mm, hole_keep, hole_boundary, *args, workers=workers)
+    return _joined(r, h, max(polygon_error, hole_error))
+
+
+def _hole_split(events, top_z: float):
+    """(the other passes' events, the hole passes' events) when the program's ``bore`` passes reach deeper than
+    every other pass, else None.  The moves before the first pass comment go with the others."""
+    others, holes, target = [], [], None
+    for e in events:
+        if isinstance(e, str) and e.startswith("pass "):
+            target = holes if e.partition(": ")[2].startswith("bore,") else others
+        (target if target is not None else others).append(e)
+    if not holes:
+        return None
+
+    def deepest(evs) -> float:
+        return min((e.z for e in evs if not isinstance(e, str) and e.kind != "rapid"), default=top_z)
+
+    return (others, holes) if deepest(holes) < deepest(others) - 1e-9 else None
+
+
+def _hole_design(blank, region, chord: float, spacing_mm: float = DENSE_MM):
+    """(``region`` less the holes the program cuts (the bore, the dowel hole), dense points (n, 2) on them, their
+    measuring polygons' largest chord error)."""
+    keep, pts, errors = region, [np.empty((0, 2))], [0.0]
+    holes = ([(blank.bore_mm / 2, (0.0, 0.0))] if blank.bore_machined else []) + (
+        [(blank.dowel.diameter / 2, blank.dowel.centre)] if blank.dowel is not None else [])
+    for r, (cx, cy) in holes:
+        hole = measuring_circle(r, chord)
+        errors.append(hole.error_mm)
+        keep = keep.difference(affinity.translate(hole.polygon, cx, cy))
+        a = np.linspace(0, 2 * math.pi, int(2 * math.pi * r / spacing_mm) + 1, endpoint=False)
+        pts.append(np.column_stack([cx + r * np.cos(a), cy + r * np.sin(a)]))
+    return keep, np.concatenate(pts), max(errors)
+
+
+def _joined(r: RemovalReport, h: RemovalReport, polygon_error_mm: float) -> RemovalReport:
+    """The report of a program checked in two parts (:func:`_hole_split`): the worse figure of each, counts added."""
+    left, left_at = max((r.material_left_mm, r.left_where), (h.material_left_mm, h.left_where))
+    over, over_at = max((r.overcut_mm, r.overcut_where), (h.overcut_mm, h.overcut_where))
+    return replace(r, levels=tuple(sorted(set(r.levels) | set(h.levels), reverse=True)), passes=r.passes + h.passes,
+                   max_slot_engagement_mm=max(r.max_slot_engagement_mm, h.max_slot_engagement_mm),
+                   plunges=r.plunges + h.plunges, plunge_where=r.plunge_where or h.plunge_where,
+                   rapid_touches=r.rapid_touches + h.rapid_touches, rapid_where=r.rapid_where or h.rapid_where,
+                   material_left_mm=left, left_where=left_at, overcut_mm=over, overcut_where=over_at,
+                   polygon_error_mm=polygon_error_mm)
 
 
 def design_keep(blank, built, tolerance_mm: float, spacing_mm: float = DENSE_MM, budget: FitBudget = DEFAULT_BUDGET):
@@ -419,21 +477,8 @@ def design_keep(blank, built, tolerance_mm: float, spacing_mm: float = DENSE_MM,
     else:
         keep = polys[0].polygon
     pts = [_dense(c, spacing_mm) for c in curves]
-    if blank.bore_machined:
-        r = blank.bore_mm / 2
-        bore = measuring_circle(r, chord)
-        polys.append(bore)
-        keep = keep.difference(bore.polygon)
-        a = np.linspace(0, 2 * math.pi, int(2 * math.pi * r / spacing_mm) + 1, endpoint=False)
-        pts.append(np.column_stack([r * np.cos(a), r * np.sin(a)]))
-    if blank.dowel is not None:  # the dowel hole the program cuts ([machining] dowel = true)
-        r, (cx, cy) = blank.dowel.diameter / 2, blank.dowel.centre
-        hole = measuring_circle(r, chord)
-        polys.append(hole)
-        keep = keep.difference(affinity.translate(hole.polygon, cx, cy))
-        a = np.linspace(0, 2 * math.pi, int(2 * math.pi * r / spacing_mm) + 1, endpoint=False)
-        pts.append(np.column_stack([cx + r * np.cos(a), cy + r * np.sin(a)]))
-    return keep, np.concatenate(pts), max(p.error_mm for p in polys)
+    keep, holes, hole_error = _hole_design(blank, keep, chord, spacing_mm)
+    return keep, np.concatenate(pts + [holes]), max(max(p.error_mm for p in polys), hole_error)
 
 
 def _dense(curve, spacing_mm: float) -> np.ndarray:

@@ -120,3 +120,17 @@ def test_dowel_cut_is_refused_on_a_barrel(tmp_path, capsys):
     assert main(["run", str(spec), "-o", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err.strip()
     assert err == "camcam: error: machining.dowel: applies to disc cams only (a cylindrical cam has no dowel hole)"
+
+
+def test_a_bore_through_a_face_groove_is_checked_against_the_holes_below_the_groove(tmp_path, capsys):
+    """Real failing data (design-space case 43:76): a face groove 5.3 mm deep with a helical bore through its
+    10.5 mm: the material check, one design at one final depth, took the groove as uncut below its bottom and
+    said FAIL, material left 109.1 mm.  The bore passes are checked on their own against the holes."""
+    spec = ROOT / "tests" / "nc" / "data" / "case-43-76-groove-bore.toml"
+    assert main(["run", str(spec), "-o", str(tmp_path / "out")]) == 0
+    report = json.loads((tmp_path / "out" / "case-43-76-report.json").read_text())
+    material = report["material"]
+    tolerance = report["tolerance_mm"]
+    assert material["material_left_mm"] <= tolerance and material["overcut_mm"] <= tolerance  # was 109.1 mm left
+    # both depths are checked: the groove's levels (to 5.3 mm) and the bore's, through the 10.5 mm cam
+    assert min(material["levels_mm"]) == pytest.approx(-10.5, abs=1e-6) and -5.3 in material["levels_mm"]  # 4 decimals
