@@ -34,6 +34,10 @@ __all__ = ["SurfacePiece", "SurfaceFit", "fit_surface", "refined", "analytic_spa
 CHECK_PER_SPAN = 16
 #: Nodes per piece to start from, and the most a piece may need.
 START_NODES, MAX_NODES = 8, 4096
+#: Spans shorter than this (radians) are folded into the span before them: OpenCascade cannot interpolate
+#: through nodes closer than its 1e-9 mm point tolerance, and a break this close to the next one (two equal
+#: break angles one rounding apart) bounds no analytic piece of its own worth the name.
+MIN_SPAN_RAD = 1e-9
 
 
 def check_params(knots: np.ndarray) -> np.ndarray:
@@ -48,14 +52,33 @@ def analytic_spans(breaks, program=None) -> list[tuple[float, float, int | None]
     segment is split further at its law's own breaks (a parabolic law's acceleration jumps at its middle, a
     modified sine's at 1/8 and 7/8: the profile's second derivative jumps with it)."""
     br = np.asarray(breaks, float)
-    if program is None:
-        return [(float(a), float(b), None) for a, b in zip(br, br[1:])]
     spans = []
     for i, (a, b) in enumerate(zip(br, br[1:])):
-        inner = [float(T) for T in getattr(program.segments[i].law, "breaks", ()) if 0.0 < T < 1.0]
-        edges = [float(a)] + [a + T * (b - a) for T in inner] + [float(b)]
-        spans += [(x, y, i) for x, y in zip(edges, edges[1:])]
-    return spans
+        inner = () if program is None else getattr(program.segments[i].law, "breaks", ())
+        edges = [float(a)] + [a + float(T) * (b - a) for T in inner if 0.0 < T < 1.0] + [float(b)]
+        spans += [(x, y, None if program is None else i) for x, y in zip(edges, edges[1:])]
+    return _folded(spans)
+
+
+def _folded(spans: list[tuple[float, float, int | None]]) -> list[tuple[float, float, int | None]]:
+    """``spans`` with each shorter than :data:`MIN_SPAN_RAD` joined to the one before it (the first to the one
+    after it): the pieces still cover the turn end to end.  Its few 1e-9 rad are evaluated on the neighbour's
+    motion segment, whose analytic law runs on past its end by as little.
+
+    Examples
+    --------
+    >>> _folded([(0.1, 0.1 + 1e-17, None), (0.1 + 1e-17, 3.0, None), (3.0, 6.0, None)])
+    [(0.1, 3.0, None), (3.0, 6.0, None)]
+    """
+    out = []
+    for a, b, piece in spans:
+        if out and b - a < MIN_SPAN_RAD:
+            out[-1] = (out[-1][0], b, out[-1][2])
+        elif out and out[-1][1] - out[-1][0] < MIN_SPAN_RAD:
+            out[-1] = (out[-1][0], b, piece)
+        else:
+            out.append((a, b, piece))
+    return out
 
 
 def end_parameters(a: float, b: float) -> np.ndarray:
