@@ -6,7 +6,9 @@ Runs ``camcam run SPEC`` once in this process's child (a fresh interpreter, as `
 with a benchmark-only hook: each forked process says what it runs (the function a
 :func:`camcam.workers.later` job, a :func:`~camcam.workers.parallel_map` worker or a
 :mod:`camcam.workers` child was given), when it was forked and when it left, its CPU seconds and
-how many of them its cyclic garbage collector took (a ``gc.callbacks`` hook); the run's own steps
+how many of them went to imports (the outermost ``importlib._bootstrap._find_and_load`` of each module not yet
+loaded: a module the parent loaded before the fork costs its child nothing), to the kernel (system time: a
+forked child's copy-on-write faults among it) and to its cyclic garbage collector (a ``gc.callbacks`` hook); the run's own steps
 (``Progress.step``) and each job a server child ran (its plots, the drawing) are timed too.  Seconds count from the start of the timed
 interpreter's first line (its own start-up, about 0.03 s, is before it).  ``--tolerance`` runs a copy of the spec at
 that ``[machining] tolerance`` (speed.py's copy).  A child that is killed (a run's children when
@@ -48,15 +50,36 @@ def collector(phase, info):
 
 gc.callbacks.append(collector)
 
+import importlib._bootstrap as bootstrap
+importing = [0.0, 0]  # this process's CPU seconds in imports (outermost only), and the depth of the current one
+real_find_and_load = bootstrap._find_and_load
+
+def find_and_load(*args, **kwargs):
+    importing[1] += 1
+    c = time.process_time() if importing[1] == 1 else 0.0
+    try:
+        return real_find_and_load(*args, **kwargs)
+    finally:
+        importing[1] -= 1
+        if importing[1] == 0:
+            importing[0] += time.process_time() - c
+
+bootstrap._find_and_load = find_and_load
+
 def after_fork():
     collecting[0] = 0.0
+    importing[0] = 0.0
     say("fork", os.getpid(), os.getppid(), f"{time.time() - T0:.3f}", label[0])
 
 os.register_at_fork(after_in_child=after_fork)
 real_exit = os._exit
 
+def bye():
+    say("exit", os.getpid(), f"{time.time() - T0:.3f}", f"{time.process_time():.3f}", f"{collecting[0]:.3f}",
+        f"{importing[0]:.3f}", f"{os.times().system:.3f}")
+
 def leave(status):
-    say("exit", os.getpid(), f"{time.time() - T0:.3f}", f"{time.process_time():.3f}", f"{collecting[0]:.3f}")
+    bye()
     real_exit(status)
 
 os._exit = leave
@@ -114,7 +137,7 @@ def step(self, what, *args, **kwargs):
 progress.Progress.step = step
 from camcam.cli import main
 status = main(sys.argv[1:])
-say("exit", os.getpid(), f"{time.time() - T0:.3f}", f"{time.process_time():.3f}", f"{collecting[0]:.3f}")
+bye()
 sys.exit(status)
 """
 
@@ -133,16 +156,16 @@ def timeline(spec: Path) -> str:
     for line in r.stderr.splitlines():
         if not line.startswith("@@ "):
             continue
-        kind, *rest = line[3:].split(" ", {"fork": 4, "job": 5, "exit": 4}.get(line[3:].split(" ", 1)[0], 3))
+        kind, *rest = line[3:].split(" ", {"fork": 4, "job": 5, "exit": 6}.get(line[3:].split(" ", 1)[0], 3))
         if kind == "fork":
             pid, parent, at, what = int(rest[0]), int(rest[1]), float(rest[2]), rest[3]
             procs[pid] = {"what": what, "parent": parent, "start": at}
         elif kind == "exit":
-            pid, at, cpu, gc_s = int(rest[0]), float(rest[1]), float(rest[2]), float(rest[3])
+            pid, at, cpu, gc_s, imp, system = (int(rest[0]), *map(float, rest[1:6]))
             if pid not in procs:  # the run's own process says only its exit
                 main_pid = pid
                 procs[pid] = {"what": "camcam run (the fitting process)", "parent": None, "start": 0.0}
-            procs[pid].update(end=at, cpu=cpu, gc=gc_s)
+            procs[pid].update(end=at, cpu=cpu, gc=gc_s, imports=imp, system=system)
         elif kind == "step":
             steps.append((float(rest[0]), float(rest[1]), rest[2]))
         elif kind == "job":
@@ -150,16 +173,22 @@ def timeline(spec: Path) -> str:
     names = {main_pid: "run"}
     for k, pid in enumerate(p for p in procs if p != main_pid):
         names[pid] = f"c{k + 1}"
-    rows = ["| process | forked by | what it runs | start s | end s | CPU s | of it GC s |", "|---|---|---|---|---|---|---|"]
+    rows = ["| process | forked by | what it runs | start s | end s | CPU s | of it imports s | of it system s | of it GC s |",
+            "|---|---|---|---|---|---|---|---|---|"]
     for pid, p in sorted(procs.items(), key=lambda kv: kv[1]["start"]):
         end = f"{p['end']:.2f}" if "end" in p else "killed"
         cpu = f"{p['cpu']:.2f}" if "cpu" in p else ""
         gc_s = f"{p['gc']:.3f}" if "gc" in p else ""
+        imp = f"{p['imports']:.2f}" if "imports" in p else ""
+        system = f"{p['system']:.2f}" if "system" in p else ""
         rows.append(f"| {names[pid]} | {names.get(p['parent'], '') if p['parent'] else ''} | {p['what']} | "
-                    f"{p['start']:.2f} | {end} | {cpu} | {gc_s} |")
+                    f"{p['start']:.2f} | {end} | {cpu} | {imp} | {system} | {gc_s} |")
     total = sum(p.get("cpu", 0.0) for p in procs.values())
     collected = sum(p.get("gc", 0.0) for p in procs.values())
-    rows.append(f"\nCPU of the processes that ended: {total:.2f} s, of it in the cyclic garbage collector {collected:.3f} s\n")
+    imported = sum(p.get("imports", 0.0) for p in procs.values())
+    system = sum(p.get("system", 0.0) for p in procs.values())
+    rows.append(f"\nCPU of the processes that ended: {total:.2f} s, of it imports {imported:.2f} s, the kernel (system time) "
+                f"{system:.2f} s, the cyclic garbage collector {collected:.3f} s\n")
     rows += ["| the run's step | start s | end s |", "|---|---|---|"]
     rows += [f"| {what} | {a:.2f} | {b:.2f} |" for a, b, what in steps]
     rows += ["", "| server job | process | start s | end s | CPU s |", "|---|---|---|---|---|"]
