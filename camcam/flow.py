@@ -59,8 +59,8 @@ def nc_step(spec, built):
 
 
 def model(built, name: str) -> tuple[dict, dict]:
-    """The STL and the mesh's figures: ({file: bytes}, figures).  The mesh is made and trimesh
-    imported here: `camcam run` calls this in a child process while the NC step runs (the drawing's
+    """The STL and the mesh's figures: ({file: bytes}, figures).  The mesh is checked and written here (numpy,
+    :mod:`camcam.export.stl`): `camcam run` calls this in a child process while the NC step runs (the drawing's
     prepared child when there is a program, see :func:`drawing_and_check`)."""
     from camcam.export.cam_report import mesh_figures
     from camcam.export.stl import program_frame, stl_bytes
@@ -194,8 +194,8 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
 
         step_file = children.later(step_files, built, spec.name) if spec.report.step_file else None
         if spec.machining is not None:
-            # the drawing's child starts now, imports ezdxf and scipy (about a second) and makes the mesh and
-            # STL (trimesh, which imports scipy too: once for both) beside the NC step; the program goes to it
+            # the drawing's child starts now, imports ezdxf and scipy.spatial (about half a second) and makes the
+            # mesh's STL beside the NC step; the program goes to it
             # pickled once it is printed, and it writes the drawing while its own children run the material check
             drawings = Prepared(DRAWING_MODULES, first=[(model, (built, spec.name), {})], opens=gate)
             model_files = drawings.first[0]
