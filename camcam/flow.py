@@ -82,17 +82,22 @@ def drawing_and_check(built, machining, machining_spec):
     without a blank): (files, part outline deviation, :class:`~camcam.verify.JobChecks` or None).
 
     `camcam run` calls this in a prepared child (:class:`camcam.workers.Prepared`) that imported ezdxf and
-    scipy while the NC step ran: the check runs in a child of its own (which inherits them) beside the
-    drawing, so the run's own process never imports scipy."""
+    scipy while the NC step ran, so the run's own process never imports scipy.  On three cores or more the
+    check runs in a child of its own (which inherits them) beside the drawing; on fewer, where the plot
+    server has the other core, in this process after it, without forks (each costs system CPU and the
+    processes would only share the one core)."""
     from camcam.workers import ChildGroup, resolve
     from camcam.verify import check_job
 
+    spare = _cores() >= 3
     with ChildGroup() as group:
         # the check's slabs are swept by two processes (camcam.verify.swept): the top slab, which every deeper
         # move cuts too, beside the others
-        check = group.later(check_job, machining, built, machining_spec, min(2, _cores())) \
-            if machining.blank is not None else None
+        check = group.later(check_job, machining, built, machining_spec, 2) \
+            if machining.blank is not None and spare else None
         files, part_deviation = drawing(built, machining)
+        if machining.blank is not None and not spare:
+            check = check_job(machining, built, machining_spec, 1)
         return files, part_deviation, resolve(check)
 
 

@@ -147,7 +147,8 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
     ``keep`` is the material that must remain at the final depth (shapely),
     ``boundary`` dense points (n, 2) on the parts of its outline the program
     machines (from the exact curves); the slabs are swept by ``workers``
-    processes (:func:`~camcam.verify.swept.sweep_slabs`: the same figures for any count).
+    processes (:func:`~camcam.verify.swept.sweep_slabs`: the same figures for any count), and with more
+    than one the figures at the finished surface are measured in a child of their own beside them.
     """
     r_t = tool_radius_mm
     keep = shapely.Polygon(keep) if keep.geom_type == "Polygon" else shapely.MultiPolygon(keep)
@@ -163,11 +164,13 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
     rounding = 2 * 10.0 ** -decimals
     slope = math.tan(math.radians(ramp_angle_deg))
     passes = len({m.pass_label for m in moves if m.pass_label})
-    # the figures at the finished surface need only the moves and the part, not the slabs: they are
-    # computed in a child process beside the move-by-move removal below (the same call, the same figures);
-    # stopped if the removal fails
+    # the figures at the finished surface need only the moves and the part, not the slabs: with workers to
+    # spare they are computed in a child process beside the move-by-move removal below (the same call, the
+    # same figures; stopped if the removal fails), else in this one (a fork costs system CPU: its
+    # copied page tables and pages)
+    at_finish = (cut_moves, levels, top_z, keep, boundary, r_t)
     with ChildGroup() as finishing:
-        finish = finishing.later(_finish_figures, cut_moves, levels, top_z, keep, boundary, r_t)
+        finish = finishing.later(_finish_figures, *at_finish) if workers > 1 else _finish_figures(*at_finish)
         swept = sweep_slabs(moves, slabs, bounds, r_t, slope, rounding, slot_kinds, workers)
         left, left_at, over, over_at, clearance, clear_at = resolve(finish)
     keep_band = keep.buffer(tolerance_mm, quad_segs=32)
