@@ -200,8 +200,8 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
         step_file = children.later(step_files, built, spec.name) if spec.report.step_file else None
         if spec.machining is not None:
             # the drawing's child starts now, imports ezdxf and scipy.spatial (about half a second) and makes the
-            # mesh's STL beside the NC step; the program goes to it
-            # pickled once it is printed, and it writes the drawing while its own children run the material check
+            # mesh's STL beside the NC step; the program goes to it pickled once it is printed, and it writes the
+            # drawing and runs the material check (drawing_and_check)
             drawings = Prepared(DRAWING_MODULES, first=[(model, (built, spec.name), {})], opens=gate)
             model_files = drawings.first[0]
         else:
@@ -296,8 +296,8 @@ def _cores() -> int:
 PRELOAD = "camcam.workers:preload"
 #: What the plot server imports before its first plot: matplotlib comes with them.
 PLOT_MODULES = ("camcam.plots.svaj", "camcam.plots.profile")
-#: What the drawing's child imports while the NC step runs: ezdxf, scipy.interpolate and the material
-#: check's scipy.spatial come with them.
+#: What the drawing's child imports while the NC step runs: ezdxf and the material check's scipy.spatial
+#: come with them (the STL is numpy's, the DXF's splines ezdxf's: no trimesh, no scipy.interpolate).
 DRAWING_MODULES = ("camcam.export.nc", "camcam.verify.removal", "camcam.verify.job_checks", "scipy.spatial")
 #: The drawing's and material check's function (run in its child, on the pickled cam and program).
 DRAWING = "camcam.flow:drawing_and_check"
