@@ -59,8 +59,8 @@ def nc_step(spec, built):
 
 
 def model(built, name: str) -> tuple[dict, dict]:
-    """The STL and the mesh's figures: ({file: bytes}, figures).  The mesh is made and trimesh
-    imported here: `camcam run` calls this in a child process while the NC step runs (the drawing's
+    """The STL and the mesh's figures: ({file: bytes}, figures).  The mesh is checked and written here (numpy,
+    :mod:`camcam.export.stl`): `camcam run` calls this in a child process while the NC step runs (the drawing's
     prepared child when there is a program, see :func:`drawing_and_check`)."""
     from camcam.export.cam_report import mesh_figures
     from camcam.export.stl import program_frame, stl_bytes
@@ -82,17 +82,22 @@ def drawing_and_check(built, machining, machining_spec):
     without a blank): (files, part outline deviation, :class:`~camcam.verify.JobChecks` or None).
 
     `camcam run` calls this in a prepared child (:class:`camcam.workers.Prepared`) that imported ezdxf and
-    scipy while the NC step ran: the check runs in a child of its own (which inherits them) beside the
-    drawing, so the run's own process never imports scipy."""
+    scipy while the NC step ran, so the run's own process never imports scipy.  On three cores or more the
+    check runs in a child of its own (which inherits them) beside the drawing; on fewer, where the plot
+    server has the other core, in this process after it, without forks (each costs system CPU and the
+    processes would only share the one core)."""
     from camcam.workers import ChildGroup, resolve
     from camcam.verify import check_job
 
+    spare = _cores() >= 3
     with ChildGroup() as group:
         # the check's slabs are swept by two processes (camcam.verify.swept): the top slab, which every deeper
         # move cuts too, beside the others
-        check = group.later(check_job, machining, built, machining_spec, min(2, _cores())) \
-            if machining.blank is not None else None
+        check = group.later(check_job, machining, built, machining_spec, 2) \
+            if machining.blank is not None and spare else None
         files, part_deviation = drawing(built, machining)
+        if machining.blank is not None and not spare:
+            check = check_job(machining, built, machining_spec, 1)
         return files, part_deviation, resolve(check)
 
 
@@ -194,9 +199,9 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
 
         step_file = children.later(step_files, built, spec.name) if spec.report.step_file else None
         if spec.machining is not None:
-            # the drawing's child starts now, imports ezdxf and scipy (about a second) and makes the mesh and
-            # STL (trimesh, which imports scipy too: once for both) beside the NC step; the program goes to it
-            # pickled once it is printed, and it writes the drawing while its own children run the material check
+            # the drawing's child starts now, imports ezdxf and scipy.spatial (about half a second) and makes the
+            # mesh's STL beside the NC step; the program goes to it pickled once it is printed, and it writes the
+            # drawing and runs the material check (drawing_and_check)
             drawings = Prepared(DRAWING_MODULES, first=[(model, (built, spec.name), {})], opens=gate)
             model_files = drawings.first[0]
         else:
@@ -291,8 +296,8 @@ def _cores() -> int:
 PRELOAD = "camcam.workers:preload"
 #: What the plot server imports before its first plot: matplotlib comes with them.
 PLOT_MODULES = ("camcam.plots.svaj", "camcam.plots.profile")
-#: What the drawing's child imports while the NC step runs: ezdxf, scipy.interpolate and the material
-#: check's scipy.spatial come with them.
+#: What the drawing's child imports while the NC step runs: ezdxf and the material check's scipy.spatial
+#: come with them (the STL is numpy's, the DXF's splines ezdxf's: no trimesh, no scipy.interpolate).
 DRAWING_MODULES = ("camcam.export.nc", "camcam.verify.removal", "camcam.verify.job_checks", "scipy.spatial")
 #: The drawing's and material check's function (run in its child, on the pickled cam and program).
 DRAWING = "camcam.flow:drawing_and_check"

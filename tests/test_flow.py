@@ -61,3 +61,23 @@ def test_bad_input_raises_the_users_error(tmp_path):
     bad.write_text(SPEC.read_text().replace("rpm = 120", "rpm = -1"))
     with pytest.raises(SpecError, match="motion.rpm"):
         run_job(bad)
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="counts the forks of the material check")
+def test_the_material_check_forks_only_with_cores_to_spare(job, monkeypatch):
+    """On fewer than three cores the drawing's child runs the material check itself, with one worker and no fork
+    (each costs system CPU, and the plot server has the other core: issue 49); on three or more, in a child of
+    its own with two workers.  The same files, outline deviation and checks either way."""
+    from camcam import flow
+    from camcam.spec import load_spec
+
+    real_fork, forks = os.fork, []
+    monkeypatch.setattr(os, "fork", lambda: forks.append(1) or real_fork())
+    args = (job.cam, job.machining, load_spec(SPEC).machining)
+    out = {}
+    for cores in (2, 4):
+        monkeypatch.setattr(flow, "_cores", lambda n=cores: n)
+        forks.clear()
+        out[cores] = flow.drawing_and_check(*args), len(forks)
+    assert out[2][1] == 0 and out[4][1] == 1  # none; the check's child (which forks its own, unseen here)
+    assert out[2][0] == out[4][0] and out[2][0][2] is not None  # a material check, the same either way

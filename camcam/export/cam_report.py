@@ -21,9 +21,10 @@ def _curv(c):
 
 
 def mesh_figures(built: BuiltCam) -> dict:
-    """The watertight check, volume and triangle count of the cam's mesh (makes the trimesh)."""
-    return {"watertight": bool(built.mesh.is_watertight), "volume_mm3": float(built.mesh.volume),
-            "triangles": int(len(built.mesh.faces))}
+    """The watertight check, volume and triangle count of the cam's mesh (numpy: ``built.closed_mesh``, which
+    raises :class:`~camcam.errors.GeometryError` for a mesh that closes no solid, so "watertight" is true)."""
+    mesh = built.closed_mesh
+    return {"watertight": True, "volume_mm3": mesh.volume_mm3(), "triangles": int(len(mesh.faces))}
 
 
 def cam_report(built: BuiltCam, mesh: bool = True) -> dict:

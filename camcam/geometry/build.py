@@ -27,9 +27,10 @@ __all__ = ["BuiltCam", "build_cam", "disc_follower", "groove_outer_radius"]
 class BuiltCam:
     """The cam value object, its analysis and its watertight mesh.
 
-    ``mesh_parts`` are the triangles (numpy); ``mesh`` is the watertight trimesh, made from them
-    the first time it is asked for (trimesh is imported then, and :class:`GeometryError` raised if
-    the triangles close no solid).
+    ``mesh_parts`` are the triangles (numpy); ``closed_mesh`` the same checked to close a solid and wound
+    outward (numpy), and ``mesh`` the watertight trimesh made from them, each the first time it is asked for
+    (:class:`GeometryError` if the triangles close no solid; trimesh is imported for ``mesh`` only, which
+    `camcam run` does not use: the tests' independent view of the STL).
     """
 
     cam: DiscCam | GrooveCam | CylindricalCam
@@ -40,6 +41,12 @@ class BuiltCam:
     @cached_property
     def mesh(self) -> "trimesh.Trimesh":
         return self.mesh_parts.solid()
+
+    @cached_property
+    def closed_mesh(self) -> MeshParts:
+        """``mesh_parts`` checked to close a solid and wound outward (numpy only: the STL and the report's
+        mesh figures, :meth:`~camcam.geometry.mesh.MeshParts.closed`)."""
+        return self.mesh_parts.closed()
 
 
 def disc_follower(f: FollowerSpec):

@@ -69,16 +69,63 @@ def _fan(ring: np.ndarray, centre: int, first: bool = True) -> np.ndarray:
     return tri if first else tri[:, ::-1]
 
 
+#: Decimals of mm to which two vertices are one (trimesh's merge of the same, ``trimesh.tol.merge``).
+MERGE_DECIMALS = 8
+
+
 @dataclass(frozen=True, eq=False)
 class MeshParts:
-    """A cam's triangles before trimesh sees them: ``vertices`` (n, 3) mm, ``faces`` (m, 3) indices.
+    """A cam's triangles: ``vertices`` (n, 3) mm, ``faces`` (m, 3) indices.
 
-    Cheap to make (numpy only); :meth:`solid` makes the watertight trimesh (and imports trimesh:
-    a `camcam run` does that in the child process that writes the STL, camcam.workers).
+    numpy only: :meth:`closed` checks that they close a solid and winds them outward (what `camcam run`
+    uses for the STL and the mesh figures); :meth:`solid` makes the watertight trimesh (and imports
+    trimesh), the tests' independent view of the same triangles.
     """
 
     vertices: np.ndarray
     faces: np.ndarray
+
+    @property
+    def triangles(self) -> np.ndarray:
+        """(m, 3, 3) the faces' corners, mm."""
+        return self.vertices[self.faces]
+
+    def crosses(self) -> np.ndarray:
+        """(m, 3) each face's edge cross product (v1 − v0) × (v2 − v1): twice its area along its normal."""
+        t = self.triangles
+        return np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 1])
+
+    def volume_mm3(self) -> float:
+        """The signed volume the faces enclose (divergence theorem: Σ (c_x · Σ x) / 6 over the faces; trimesh's
+        sum), positive when they are wound outward."""
+        t = self.triangles
+        return float(np.sum(self.crosses()[:, 0] * (t[:, 0, 0] + t[:, 1, 0] + t[:, 2, 0])) / 6.0)
+
+    def closed(self) -> "MeshParts":
+        """These triangles wound outward, once checked to close a solid: vertices that agree to
+        :data:`MERGE_DECIMALS` are one, and then every directed edge occurs once and its reverse once
+        (every edge between two faces, wound the same way), and the volume is positive.
+
+        Raises
+        ------
+        GeometryError
+            The triangles do not close a solid (a groove or profile that intersects itself).
+        """
+        key = np.round(self.vertices * 10.0 ** MERGE_DECIMALS)
+        _, one = np.unique(key, axis=0, return_inverse=True)
+        f = one.reshape(-1)[self.faces]
+        a, b = f.reshape(-1), np.roll(f, -1, axis=1).reshape(-1)
+        n = np.int64(len(self.vertices))
+        edges, back = np.sort(a * n + b), np.sort(b * n + a)
+        paired = len(edges) > 0 and bool(np.all(edges[1:] != edges[:-1])) and bool(np.array_equal(edges, back))
+        parts = self if self.volume_mm3() >= 0 else MeshParts(self.vertices, self.faces[:, ::-1].copy())
+        if not (paired and parts.volume_mm3() > 0):
+            raise GeometryError("the cam mesh is not a closed solid (the groove or profile intersects itself)")
+        return parts
+
+    def moved(self, offset) -> "MeshParts":
+        """The same triangles moved by ``offset`` (3,) mm."""
+        return MeshParts(self.vertices + np.asarray(offset, dtype=float), self.faces)
 
     def solid(self) -> "trimesh.Trimesh":
         """The watertight, consistently wound trimesh with positive volume.

@@ -30,6 +30,7 @@ whatever the cam's size (:func:`design_keep`).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
@@ -147,7 +148,8 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
     ``keep`` is the material that must remain at the final depth (shapely),
     ``boundary`` dense points (n, 2) on the parts of its outline the program
     machines (from the exact curves); the slabs are swept by ``workers``
-    processes (:func:`~camcam.verify.swept.sweep_slabs`: the same figures for any count).
+    processes (:func:`~camcam.verify.swept.sweep_slabs`: the same figures for any count), and with more
+    than one the figures at the finished surface are measured in a child of their own beside them.
     """
     r_t = tool_radius_mm
     keep = shapely.Polygon(keep) if keep.geom_type == "Polygon" else shapely.MultiPolygon(keep)
@@ -163,14 +165,18 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
     rounding = 2 * 10.0 ** -decimals
     slope = math.tan(math.radians(ramp_angle_deg))
     passes = len({m.pass_label for m in moves if m.pass_label})
-    # the figures at the finished surface need only the moves and the part, not the slabs: they are
-    # computed in a child process beside the move-by-move removal below (the same call, the same figures);
-    # stopped if the removal fails
+    # the figures at the finished surface need only the moves and the part, not the slabs: with workers to
+    # spare they are computed in a child process beside the move-by-move removal below (the same call, the
+    # same figures; stopped if the removal fails), else in this one (a fork costs system CPU: its
+    # copied page tables and pages)
+    at_finish = (cut_moves, levels, top_z, keep, boundary, r_t)
     with ChildGroup() as finishing:
-        finish = finishing.later(_finish_figures, cut_moves, levels, top_z, keep, boundary, r_t)
+        finish = finishing.later(_finish_figures, *at_finish) if workers > 1 else _finish_figures(*at_finish)
         swept = sweep_slabs(moves, slabs, bounds, r_t, slope, rounding, slot_kinds, workers)
         left, left_at, over, over_at, clearance, clear_at = resolve(finish)
     keep_band = keep.buffer(tolerance_mm, quad_segs=32)
+    # the feed moves' tool centres every DENSE_MM, sampled once for every slab that needs them (not once a slab)
+    path = functools.cache(lambda: np.concatenate([np.empty((0, 3)), *(m.samples(DENSE_MM) for m in cut_moves)]))
     for i, s in enumerate(swept.slabs):
         rest = s.difference(keep_band)
         if rest.area <= 1e-6:
@@ -184,7 +190,7 @@ def check_moves(events, region, top_z: float, keep, boundary: np.ndarray, tool_r
         pieces = shapely.get_parts(rest)
         pts, owner = shapely.get_coordinates(pieces, return_index=True)
         dist = polygon_distance(keep, pts)  # shapely.distance's figures, through an R-tree of keep's edges
-        j = _first_uncut(pieces, pts, owner, dist, left, lambda: _centre_tree(cut_moves, bounds[i + 1]), r_t)
+        j = _first_uncut(pieces, pts, owner, dist, left, lambda: _centre_tree(path(), bounds[i + 1]), r_t)
         if j is not None:
             left = float(dist[j])
             left_at = (f"slab Z{bounds[i + 1]:g}…Z{bounds[i]:g}: material at X{pts[j, 0]:.3f} Y{pts[j, 1]:.3f} "
@@ -232,11 +238,10 @@ def _first_uncut(pieces, pts: np.ndarray, owner: np.ndarray, dist: np.ndarray, l
     return int(first[k] + np.argmax(dist[first[k]:first[k + 1]]))
 
 
-def _centre_tree(moves, floor_z: float):
-    """A k-d tree of tool-centre points every :data:`DENSE_MM` along the feed ``moves``, where the tool is at or
-    below ``floor_z`` (the criterion :func:`_remove` cuts a slab by); None if there are none."""
-    centres = [p[p[:, 2] <= floor_z + 1e-6, :2] for p in (m.samples(DENSE_MM) for m in moves)]
-    centres = np.concatenate([np.empty((0, 2)), *centres])
+def _centre_tree(path: np.ndarray, floor_z: float):
+    """A k-d tree of the tool-centre points ``path`` (n, 3) (every :data:`DENSE_MM` along the feed moves) where
+    the tool is at or below ``floor_z`` (the criterion :func:`_remove` cuts a slab by); None if there are none."""
+    centres = path[path[:, 2] <= floor_z + 1e-6, :2]
     return _tree(centres) if len(centres) else None
 
 

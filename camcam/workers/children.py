@@ -2,7 +2,7 @@
 
 A `camcam run` has three kinds of work that nothing else waits for until the
 files are written: drawing the plots (matplotlib: importing it alone costs
-about as much as the NC fitting), writing the DXF and STL (ezdxf, trimesh), and
+about as much as the NC fitting), writing the DXF and STL (ezdxf; the STL numpy), and
 the material-removal check of the printed program.  On a machine with two or
 more cores they can run beside the NC work:
 

@@ -35,14 +35,36 @@ def _loaded_after_run(spec: Path, out: Path) -> dict:
 
 def test_the_fitting_process_imports_no_plot_or_export_library(tmp_path):
     result = _loaded_after_run(SAMPLE, tmp_path / "out")
-    # matplotlib is imported by the plot server, ezdxf, trimesh and scipy (and OCP, for the STEP) by the drawing's
-    # prepared child, which also makes the mesh and forks the material check (camcam.workers): the process that fits the
-    # NC path measures its deviations with shapely's STRtree, and imports no scipy at all
+    # matplotlib is imported by the plot server, ezdxf and scipy.spatial by the drawing's prepared child (OCP, for
+    # the STEP, by a child of its own), which also makes the STL and runs the material check (camcam.workers): the
+    # process that fits the NC path measures its deviations with shapely's STRtree, and imports no scipy at all
     assert result == {"rc": 0, "loaded": []}
     assert {p.name for p in (tmp_path / "out").iterdir()} >= {
         "disc-translating-roller.ngc", "disc-translating-roller.dxf", "disc-translating-roller.stl",
         "disc-translating-roller-svaj.png", "disc-translating-roller-profile.png",
         "disc-translating-roller-deviation.png", "disc-translating-roller-fitted-motion.png"}
+
+
+def test_the_drawing_model_and_material_check_import_no_trimesh_nor_scipy_interpolate():
+    # what the drawing's child runs (camcam.flow.model, drawing_and_check), here in one fresh process: the STL and
+    # its figures are numpy's (trimesh, 0.2 CPU s beside scipy.spatial, stays the tests' reader), the DXF's splines
+    # ezdxf's; only the material check's k-d trees need scipy (issue 49)
+    code = (
+        "import json, sys\n"
+        "from camcam.spec import load_spec\n"
+        "from camcam.geometry.build import build_cam\n"
+        "from camcam import flow\n"
+        f"spec = load_spec({str(SAMPLE)!r})\n"
+        "built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))\n"
+        "machining = flow.nc_step(spec, built)\n"
+        "files, figures = flow.model(built, spec.name)\n"
+        "drawn, deviation, checks = flow.drawing_and_check(built, machining, spec.machining)\n"
+        "print(json.dumps({'stl': len(files), 'dxf': sum(n.endswith('.dxf') for n in drawn), 'checked': checks is not None,\n"
+        "                  'loaded': [m for m in ('trimesh', 'scipy.interpolate', 'scipy.spatial') if m in sys.modules]}))\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
+    assert json.loads(r.stdout.strip().splitlines()[-1]) == {"stl": 1, "dxf": 1, "checked": True,
+                                                              "loaded": ["scipy.spatial"]}
 
 
 def test_a_barrel_job_with_the_rollers_tool_imports_no_scipy(tmp_path):

@@ -21,12 +21,12 @@ R_T = 5.0  # tool radius of the closed cases (Ø10)
 RECT = shapely.box(0.0, 0.0, 100.0, 50.0)  # the blank of the closed cases, top at Z0
 
 
-def _check(events, keep_top: float, ramp_deg: float = 3.0, stepover: float = 4.0):
+def _check(events, keep_top: float, ramp_deg: float = 3.0, stepover: float = 4.0, workers: int = 1):
     """Check ``events`` on RECT; the part to keep is RECT below y = keep_top, its machined edge that line."""
     keep = shapely.box(0.0, 0.0, 100.0, keep_top)
     xs = np.linspace(20.0, 80.0, 3001)  # away from the cut's ends, where the tool's round end leaves its arc
     boundary = np.column_stack([xs, np.full_like(xs, keep_top)])
-    return check_moves(events, RECT, 0.0, keep, boundary, R_T, stepover, ramp_deg, 0.01, 0.0, 4)
+    return check_moves(events, RECT, 0.0, keep, boundary, R_T, stepover, ramp_deg, 0.01, 0.0, 4, workers=workers)
 
 
 def _line(x, y, z):
@@ -151,8 +151,8 @@ def test_roughing_that_never_comes_near_is_measured_exactly():
 @pytest.mark.skipif(not hasattr(os, "fork") or not Path("/proc/self/stat").exists(),
                     reason="counts the child that computes the finished-surface figures (fork, /proc)")
 def test_a_failing_removal_stops_the_finishing_child(monkeypatch):
-    """The finished-surface figures run in a child beside the move-by-move removal; if the removal fails,
-    that child is killed and reaped, not left running."""
+    """With two workers the finished-surface figures run in a child beside the move-by-move removal; if the
+    removal fails, that child is killed and reaped, not left running."""
     import camcam.verify.removal as removal
     from tests.test_workers import _children
 
@@ -164,8 +164,20 @@ def test_a_failing_removal_stops_the_finishing_child(monkeypatch):
               _line(110.0, 20.0 + R_T, -1.0)]
     before = _children()
     with pytest.raises(ZeroDivisionError):
-        _check(events, 20.0)
+        _check(events, 20.0, workers=2)
     assert _children() <= before
+
+
+def test_one_worker_or_two_give_the_same_figures():
+    """One worker measures everything in this process, two fork the finished-surface figures and a slab
+    sweeper: the same report (equal dataclasses, every figure and "where"), on two levels of rough and finish."""
+    events = ["pass 1/3: rough, test", _rapid(-10.0, 45.0, 5.0), _line(-10.0, 45.0, -1.0), _line(110.0, 45.0, -1.0),
+              "pass 2/3: rough, test", _line(110.0, 45.0, -2.0), _line(-10.0, 45.0, -2.0),
+              "pass 3/3: finish, test", _rapid(-10.0, 20.0 + R_T, 5.0), _line(-10.0, 20.0 + R_T, -2.0),
+              _line(110.0, 20.0 + R_T, -2.0)]
+    one = _check(events, 20.0)
+    assert len(one.levels) == 2 and one.rough_clearance_mm is not None  # two slabs to share, a roughing measured
+    assert _check(events, 20.0, workers=2) == one
 
 
 def _centre_path(moves, floor_z: float, step_mm: float = 0.002) -> np.ndarray:
