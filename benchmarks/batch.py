@@ -17,8 +17,9 @@ both alike,
 
 Printed: the medians of wall and CPU seconds (user + system of the batch process and
 every process under it), the CPU seconds per cam (the total over the number of cams:
-the batch's own start, imports and cluster included), and the cluster's wall time over
-the in-process one against the issue's target (≤ 0.6).
+the batch's own start, imports and cluster included), the least wall time (see
+:func:`timed`: a figure the load of other users does not move), and the cluster's wall
+time over the in-process one against the issue's target (≤ 0.6).
 
 How the CPU is counted.  ``resource.getrusage(RUSAGE_CHILDREN)`` of this script, before
 and after each batch, which adds a process's CPU to its parent's once the parent has
@@ -109,15 +110,21 @@ class Poll:
             for key, s in _proc_cpu(self._pid).items():
                 self.seen[key] = max(s, self.seen.get(key, 0.0))
 
-    def total_s(self) -> float:
+    def stop(self) -> tuple[float, float]:
+        """(CPU s of all the processes seen, CPU s of the busiest one)."""
         self._stop.set()
         self._thread.join()
-        return sum(self.seen.values())
+        return sum(self.seen.values()), max(self.seen.values(), default=0.0)
 
 
-def timed(argv: list[str], root: Path) -> tuple[float, float, float]:
-    """(wall s, CPU s by getrusage, CPU s polled from /proc) of one whole batch with ``root``'s camcam (its
-    folder is the working directory too: ``python -m`` looks there first); raises if it fails."""
+def timed(argv: list[str], root: Path) -> tuple[float, float, float, float]:
+    """(wall s, CPU s by getrusage, CPU s polled from /proc, least wall s) of one whole batch with ``root``'s
+    camcam (its folder is the working directory too: ``python -m`` looks there first); raises if it fails.
+
+    The least wall is the longest any scheduling on the machine's cores could make it end: the CPU over the
+    cores, or the CPU of its busiest process (the batch process in-process, a worker on the cluster), which
+    runs on one core at a time, whichever is more.  Unlike the wall time, it does not move with the load
+    of other users' processes (the CPU seconds do, a little: caches and memory bandwidth are shared)."""
     env = {**os.environ, "PYTHONPATH": str(root)}
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
@@ -126,11 +133,11 @@ def timed(argv: list[str], root: Path) -> tuple[float, float, float]:
     out, err = proc.communicate()
     wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    polled = poll.total_s() if poll is not None else float("nan")
+    polled, busiest = poll.stop() if poll is not None else (float("nan"), 0.0)
     if proc.returncode != 0:
         raise SystemExit(f"{' '.join(argv)} failed ({proc.returncode}): {err.strip()[-500:]}")
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    return wall, cpu, polled
+    return wall, cpu, polled, max(cpu / (os.cpu_count() or 1), busiest)
 
 
 def tree(root: Path) -> dict[str, bytes]:
@@ -159,7 +166,7 @@ def main() -> None:
     modes = {"in-process": (ROOT, ["--in-process"])}
     for tag, root in roots.items():
         modes[f"Dask, {args.workers} workers{tag}"] = (root, ["--workers", str(args.workers)])
-    figures: dict[str, list[tuple[float, float, float]]] = {m: [] for m in modes}
+    figures: dict[str, list[tuple[float, float, float, float]]] = {m: [] for m in modes}
     with tempfile.TemporaryDirectory() as d:
         reference: dict[str, bytes] | None = None
         differing: dict[str, set[str]] = {m: set() for m in modes}
@@ -168,26 +175,27 @@ def main() -> None:
                 folder = Path(d) / f"{k}-{m}"
                 argv = [sys.executable, "-m", "camcam", "batch", *map(str, specs), "-o", str(folder), *flags]
                 figures[mode].append(timed(argv, root))
-                w, c, p = figures[mode][-1]
-                print(f"  repeat {k + 1} {mode}: {w:.2f} s wall, {c:.2f} CPU s (polled {p:.2f}), "
+                w, c, p, least = figures[mode][-1]
+                print(f"  repeat {k + 1} {mode}: {w:.2f} s wall, {c:.2f} CPU s (polled {p:.2f}), least wall {least:.2f} s, "
                       f"load {os.getloadavg()[0]:.2f}", flush=True)
                 files = tree(folder)
                 if reference is None:
                     reference = files
                 differing[mode].update(differences(reference, files))
     n = len(specs)
-    med = {m: tuple(statistics.median(f[i] for f in figs) for i in range(3)) for m, figs in figures.items()}
-    base_wall, base_cpu = med["in-process"][0], med["in-process"][1]
-    print(f"\n| mode | wall s | CPU s | CPU s polled | CPU s per cam | wall × in-process | CPU × in-process | "
-          f"target wall ≤ {TARGET_RATIO} × | met | files differing from in-process |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    med = {m: tuple(statistics.median(f[i] for f in figs) for i in range(4)) for m, figs in figures.items()}
+    base_wall, base_cpu, base_least = med["in-process"][0], med["in-process"][1], med["in-process"][3]
+    print(f"\n| mode | wall s | CPU s | CPU s polled | CPU s per cam | least wall s | wall × in-process | "
+          f"CPU × in-process | least wall × in-process | target wall ≤ {TARGET_RATIO} × | met | files differing from in-process |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for mode in modes:
-        w, c, p = med[mode]
+        w, c, p, least = med[mode]
         ratio = w / base_wall
         target = f"≤ {TARGET_RATIO * base_wall:.2f} s" if mode != "in-process" else ""
         met = ("yes" if ratio <= TARGET_RATIO else "NO") if mode != "in-process" else ""
         diff = ", ".join(sorted(differing[mode])[:5]) or "none"
-        print(f"| {mode} | {w:.2f} | {c:.2f} | {p:.2f} | {c / n:.2f} | {ratio:.2f} | {c / base_cpu:.2f} | {target} | "
+        print(f"| {mode} | {w:.2f} | {c:.2f} | {p:.2f} | {c / n:.2f} | {least:.2f} | {ratio:.2f} | {c / base_cpu:.2f} | "
+              f"{least / base_least:.2f} | {target} | "
               f"{met} | {diff} |")
     print(f"\n{len(reference or {})} files compared in each of {args.repeat * len(modes)} output folders; "
           f"load average after {os.getloadavg()[0]:.2f}")
