@@ -392,6 +392,40 @@ def test_prepared_without_fork_runs_in_process(monkeypatch):
     p.kill()
 
 
+@needs_fork
+def test_single_process_runs_every_job_here_and_only_within_its_block():
+    """A `camcam batch` job on a Dask worker (issue 49): no fork, every kind of job in the calling process."""
+    from camcam.workers import Prepared, parallel_map, single_process
+
+    here = os.getpid()
+    with single_process():
+        assert later(os.getpid) == here  # a value, not a Pending: nothing was forked
+        assert parallel_map(lambda _: os.getpid(), range(4), workers=2) == [here] * 4
+        s = Server([("os:getpid", (), {})], gate=Gate())
+        assert s.first == (here,) and s.submit("os:getpid") == here
+        s.close()
+        p = Prepared(["fractions"], first=[(os.getpid, (), {})])
+    # a prepared child made in the block runs its job where its first jobs ran, also after the block
+    assert resolve(p.first[0]) == resolve(p.submit("os:getpid")) == here
+    elsewhere = later(os.getpid)
+    assert resolve(elsewhere) != here  # forking again after the block
+
+
+@needs_fork
+def test_single_process_holds_in_its_own_thread_only():
+    """A context variable: a Dask worker's task thread switches itself, not the worker's other threads."""
+    from camcam.workers import single_process
+    from camcam.workers.children import forking
+
+    seen = []
+    with single_process():
+        worker = threading.Thread(target=lambda: seen.append(forking()))
+        worker.start()
+        worker.join()
+        assert not forking()
+    assert seen == [True] and forking()
+
+
 # --- cancel: a job whose result is no longer wanted ------------------------------------------------------------
 
 

@@ -17,6 +17,7 @@ from pathlib import Path
 from camcam.cli.output import add_output_arguments, output_set, print_json, to_json
 from camcam.cli.commands import help_of
 from camcam.cli.dask_options import add_scale_arguments, executor_from_args, tell_scale_note
+from camcam.dask_batch.engine import InProcess
 
 __all__ = ["register", "batch_task", "summary_row", "COLUMNS"]
 
@@ -54,16 +55,23 @@ def summary_row(spec_arg: str, folder: str, summary: dict | None, verdict, warni
     return row
 
 
-def batch_task(item: tuple[str, str]) -> tuple[dict, dict[str, bytes]]:
+def batch_task(item: tuple[str, str], forks: bool = True) -> tuple[dict, dict[str, bytes]]:
     """Run one spec like `camcam run` (:func:`camcam.flow.run_job`) and return (summary row, files by name);
-    never raises for a bad spec."""
+    never raises for a bad spec.
+
+    ``forks=False`` runs the whole job in this process (:func:`camcam.workers.single_process`): what a Dask
+    worker does, the cluster's workers being the batch's parallelism.  The same files either way."""
+    from contextlib import nullcontext
+
     from camcam.errors import CamcamError
     from camcam.flow import run_job
+    from camcam.workers import single_process
 
     spec_arg, folder = item
     job, error = None, ""
     try:
-        job = run_job(spec_arg)
+        with nullcontext() if forks else single_process():
+            job = run_job(spec_arg)
     except CamcamError as e:
         error = " ".join(str(e).splitlines())
     except Exception as e:  # noqa: BLE001 - one spec's fault must not stop the batch; the row names it
@@ -129,7 +137,10 @@ def run(args) -> int:
     folders = _folders(specs)
     top = output_set(args, "batch")  # checked before the work: a folder it cannot use fails at once
     with executor_from_args(args) as executor:
-        results = executor.map(batch_task, list(zip(specs, folders)), what=f"{len(specs)} specs")
+        # in this process a job forks its plot server and drawing child onto the other cores, as `camcam run`
+        # does; on a cluster, whose workers fill the cores already, each job runs in its worker alone
+        results = executor.map(batch_task, list(zip(specs, folders)), what=f"{len(specs)} specs",
+                               forks=isinstance(executor, InProcess))
         note = executor.note
         tell_scale_note(executor)
     root = Path(args.output)

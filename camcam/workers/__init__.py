@@ -11,12 +11,13 @@ Two kinds, one module each:
   prepared child (:class:`Prepared`).
 
 Every job is the very same call on the very same data as in process, so the
-results are the same; without ``os.fork`` every job runs at once, in process.
+results are the same; without ``os.fork``, or within :func:`single_process` (a `camcam batch`
+job on a Dask worker), every job runs at once, in process.
 """
 
 from camcam.workers.children import (ChildError, ChildGroup, Pending, ProcessMap, call_target, freeze_start_up, later,
-                                     parallel_map, preload, resolve)
+                                     parallel_map, preload, resolve, single_process)
 from camcam.workers.servers import Gate, Prepared, Server
 
 __all__ = ["ChildError", "Pending", "later", "resolve", "ChildGroup", "parallel_map", "call_target", "preload",
-           "freeze_start_up", "ProcessMap", "Server", "Prepared", "Gate"]
+           "freeze_start_up", "single_process", "ProcessMap", "Server", "Prepared", "Gate"]

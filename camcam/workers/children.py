@@ -46,17 +46,50 @@ import signal
 import struct
 import sys
 import traceback
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import Any, Callable
 
 from camcam.interrupts import SIGNALS, Interrupted
 
 __all__ = ["ChildError", "Pending", "later", "resolve", "ChildGroup", "parallel_map", "ProcessMap", "call_target",
-           "preload", "freeze_start_up",
+           "preload", "freeze_start_up", "single_process", "forking",
            # the child protocol camcam.workers.servers shares: a job's payload, its decoding, the fork, whole writes
            "child_payload", "decode_payload", "fork_child", "write_all", "PAYLOAD_OK", "PAYLOAD_FAILED"]
 
 PAYLOAD_OK, PAYLOAD_FAILED = b"K", b"E"
+
+#: False inside :func:`single_process` (per thread and task: a context variable).
+_FORKING: ContextVar[bool] = ContextVar("camcam_forking", default=True)
+
+
+def forking() -> bool:
+    """Whether jobs go to forked children here: the platform has ``os.fork`` and no :func:`single_process` is on."""
+    return _FORKING.get() and hasattr(os, "fork")
+
+
+@contextmanager
+def single_process():
+    """Within the block every job of this module and :mod:`camcam.workers.servers` runs at once, in this process,
+    as without ``os.fork``: the same calls on the same data, so the same results.
+
+    For a process that is itself one of a pool's workers (a `camcam batch` task on a Dask worker): the pool
+    already fills the cores, and a job's forked children would only share them with the other workers and
+    import their modules (matplotlib, ezdxf, scipy) again for every job, where the worker imports them once.
+
+    Examples
+    --------
+    >>> with single_process():
+    ...     job = later(os.getpid)
+    >>> job == os.getpid()
+    True
+    """
+    token = _FORKING.set(False)
+    try:
+        yield
+    finally:
+        _FORKING.reset(token)
 
 
 class ChildError(RuntimeError):
@@ -206,7 +239,7 @@ def later(fn: Callable, *args, **kwargs) -> Pending | Any:
     >>> resolve(later(sum, [2, 3]))
     5
     """
-    if not hasattr(os, "fork"):
+    if not forking():
         return fn(*args, **kwargs)
     read_fd, write_fd = os.pipe()
 
@@ -304,7 +337,7 @@ def parallel_map(fn: Callable, items, workers: int = 1) -> list:
     """
     items = list(items)
     workers = max(1, min(int(workers), len(items)))
-    if workers == 1 or not hasattr(os, "fork"):
+    if workers == 1 or not forking():
         return [fn(x) for x in items]
     if len(items) > _MAX_TICKETS:
         raise ValueError(f"parallel_map takes at most {_MAX_TICKETS} items, got {len(items)}")

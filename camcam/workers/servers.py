@@ -17,8 +17,8 @@
 Requests and replies travel as frames: an 8-byte length, then the pickled
 body (an empty frame ends a child's jobs).  The children run their jobs as
 :mod:`camcam.workers.children` runs a :func:`~camcam.workers.children.later` job (the same
-payload, failures and interrupts); without ``os.fork`` every job runs at once,
-in process.
+payload, failures and interrupts); without ``os.fork``, or within
+:func:`~camcam.workers.children.single_process`, every job runs at once, in process.
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ from typing import Any
 
 # the forked-child protocol of camcam.workers.children (a job's payload, its decoding, the fork itself), shared here
 from camcam.workers.children import (PAYLOAD_OK, ChildError, Pending, call_target, child_payload, decode_payload,
-                                     fork_child, preload, write_all)
+                                     fork_child, forking, preload, write_all)
 
 __all__ = ["Server", "Prepared", "Gate"]
 
@@ -170,7 +170,7 @@ class Gate:
     """
 
     def __init__(self) -> None:
-        self._read, self._write = os.pipe() if hasattr(os, "fork") else (None, None)
+        self._read, self._write = os.pipe() if forking() else (None, None)
 
     def open(self) -> None:
         """Let the waiter go on (it may have gone on already, or be gone) and let go of both ends here."""
@@ -236,7 +236,7 @@ class Server:
         self._names: list[str] = []
         self._next_reply = 0
         self._pid: int | None = None
-        if not hasattr(os, "fork"):
+        if not forking():
             self.first = tuple(call_target(t, *a, **k) for t, a, k in first)
             return
         (req_r, req_w), (rep_r, rep_w) = _pipes()
@@ -355,7 +355,8 @@ class Prepared:
         self._pid: int | None = None
         self._sent = False  # the job, or an empty frame, was sent
         self._replies: list[bytes] = []
-        if not hasattr(os, "fork"):
+        self._forked = forking()  # its job goes where ``first`` went, whatever the caller's mode is by then
+        if not self._forked:
             preload(*self._modules)
             self.first = tuple(fn(*a, **k) for fn, a, k in first)
             return
@@ -432,7 +433,7 @@ class Prepared:
         One job per child."""
         if self._sent:
             raise RuntimeError("a prepared child runs one job")
-        if not hasattr(os, "fork"):
+        if not self._forked:
             self._sent = True
             return call_target(target, *args, **kwargs)
         self._names.append(target)

@@ -70,3 +70,39 @@ def test_batch_force_replaces_an_earlier_batch_and_the_loser_of_a_race_is_told(t
     monkeypatch.setattr(flow, "run_job", job)
     code, _, err = cli("batch", demo, "-o", str(tmp_path / "race"))
     assert code == 2 and "another camcam run published its files there while this one ran" in err, err
+
+
+def test_a_job_without_forks_gives_the_same_row_and_bytes():
+    """Issue 49: on a Dask worker a batch job runs in its worker alone (camcam.workers.single_process); a disc
+    and a barrel cam (whose NC step and 3-D measurement share their work between processes when they fork)."""
+    from camcam.cli.batch import batch_task
+
+    for name in ("disc-translating-roller", "cylindrical-translating"):
+        item = (str(ROOT / "samples" / f"{name}.toml"), name)
+        forked_row, forked_files = batch_task(item, forks=True)
+        alone_row, alone_files = batch_task(item, forks=False)
+        assert forked_row["verdict"] in ("PASS", "WARN") and len(forked_files) > 5, forked_row  # WARN: a design limit
+        assert alone_row == forked_row
+        assert sorted(alone_files) == sorted(forked_files)
+        assert [n for n in forked_files if alone_files[n] != forked_files[n]] == []
+
+
+def test_jobs_fork_in_process_and_run_alone_on_a_cluster(tmp_path, monkeypatch):
+    """`batch --in-process` forks as `camcam run` does; on a Dask cluster, whose workers fill the cores, it does not."""
+    import contextlib
+
+    import camcam.cli.batch as batch
+
+    asked = []
+    real = batch.batch_task
+    monkeypatch.setattr(batch, "batch_task", lambda item, forks=True: asked.append(forks) or real(item, forks))
+
+    class Cluster(engine.Executor):  # stands for a DaskExecutor: the tasks run here
+        def map(self, fn, items, what="tasks", **shared):
+            return [fn(item, **shared) for item in items]
+
+    demo = str(ROOT / "samples" / "demo.toml")
+    for executor in (engine.InProcess(), Cluster()):
+        monkeypatch.setattr(batch, "executor_from_args", lambda args, e=executor: contextlib.nullcontext(e))
+        assert cli("batch", demo, "-o", str(tmp_path / type(executor).__name__))[0] == 0
+    assert asked == [True, False]

@@ -74,3 +74,18 @@ def test_a_scheduler_without_workers_is_given_up_after_the_timeout(tmp_path):
     assert code == 2 and err.count("\n") == 1, err
     assert err.startswith("camcam: error: --timeout: no worker joined the Dask scheduler") and "within 1 s" in err
     assert not (tmp_path / "out").exists()
+
+
+def test_the_local_clusters_workers_keep_mallocs_sliding_mmap_threshold(monkeypatch):
+    """Issue 49: Dask's MALLOC_TRIM_THRESHOLD_=65536 made every large numpy array a fresh mmap in the workers (4.6×
+    the system time of a batch); our local cluster starts its workers without it, a user's own value still counts."""
+    import os
+
+    from camcam.dask_batch import engine
+
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
+    with engine.open_executor(workers=1) as executor:
+        assert list(executor.client.run(os.environ.get, "MALLOC_TRIM_THRESHOLD_").values()) == [None]
+    monkeypatch.setenv("MALLOC_TRIM_THRESHOLD_", "131072")
+    with engine.open_executor(workers=1) as executor:
+        assert list(executor.client.run(os.environ.get, "MALLOC_TRIM_THRESHOLD_").values()) == ["131072"]
