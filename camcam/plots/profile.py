@@ -41,7 +41,7 @@ def _draw_disc(ax, cam) -> None:
             ax.plot(*np.array([q - tang, q + tang]).T, color="C2", lw=1.2, label="face" if k == 0 else None)
     ax.plot([0], [0], "k+")
     ax.set_aspect("equal")
-    ax.set_title("cam at cam angle 0 (mm)")
+    ax.set_title("cam at cam angle 0 (mm)", y=1.0)
     ax.legend(fontsize=7, loc="upper right")
 
 
@@ -72,7 +72,7 @@ def cam_png(built: BuiltCam, title: str = "") -> bytes:
     p = an.max_pressure_angle_deg
     ax1.axvline(p.angle_deg, color="0.5", lw=0.7, ls="--")
     ax1.set_ylabel("pressure angle [deg]")
-    ax1.set_title(f"max |pressure angle| {p.value:.3f}° at {p.angle_deg:.2f}°", fontsize=9)
+    ax1.set_title(f"max |pressure angle| {p.value:.3f}° at {p.angle_deg:.2f}°", fontsize=9, y=1.0)
     if cyl:
         k = convex_curvature(cam.developed_centre(cam.bottom_radius), 1, t)[0]
         with np.errstate(divide="ignore"):
@@ -85,7 +85,7 @@ def cam_png(built: BuiltCam, title: str = "") -> bytes:
     ax2.plot(deg, rho, color="C4")
     c = an.profile
     ax2.set_ylabel("radius of curvature [mm]")
-    ax2.set_title(f"min convex radius of curvature {c.describe()}", fontsize=9)
+    ax2.set_title(f"min convex radius of curvature {c.describe()}", fontsize=9, y=1.0)
     for ax in (ax1, ax2):
         ax.grid(True, alpha=0.3)
         ax.set_xlim(0, 360)

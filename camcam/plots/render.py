@@ -12,10 +12,14 @@ from __future__ import annotations
 
 import io
 
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
-from matplotlib.lines import Line2D
-from matplotlib.patches import Circle, Rectangle
+from camcam.plots.mpl_import import load_matplotlib
+
+load_matplotlib()  # before matplotlib's modules below: the cheap import (camcam.plots.mpl_import)
+
+from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.patches import Circle, Rectangle  # noqa: E402
 
 __all__ = ["subplots", "figure", "png_bytes", "Circle", "Line2D", "Rectangle"]
 

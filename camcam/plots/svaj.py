@@ -6,6 +6,7 @@ import numpy as np
 
 from camcam.motion.program import MotionProgram
 from camcam.plots.render import png_bytes, subplots
+from camcam.plots.stacked import angle_axis
 
 __all__ = ["svaj_png", "LAYOUT"]
 
@@ -15,7 +16,7 @@ LAYOUT = dict(left=0.14, right=0.965, bottom=0.07, top=0.945, hspace=0.15)
 
 def svaj_png(program: MotionProgram, title: str = "", points_per_degree: int = 4) -> bytes:
     """Four stacked axes with units; segment boundaries dashed; jumps drawn as jumps."""
-    fig, axes = subplots(4, 1, figsize=(8, 8.5), sharex=True)
+    fig, axes = subplots(4, 1, figsize=(8, 8.5))
     names = ["displacement", "velocity", "acceleration", "jerk"]
     for seg in program.segments:
         n = max(2, int((seg.end_deg - seg.start_deg) * points_per_degree) + 1)
@@ -30,9 +31,7 @@ def svaj_png(program: MotionProgram, title: str = "", points_per_degree: int = 4
         for seg in program.segments[1:]:
             ax.axvline(seg.start_deg, color="0.5", ls="--", lw=0.8)
         ax.axhline(0.0, color="0.3", lw=0.6)
-    axes[-1].set_xlabel("cam angle [deg]")
-    axes[-1].set_xlim(0, 360)
-    axes[-1].set_xticks(np.arange(0, 361, 30))
+    angle_axis(axes, grid_alpha=0.3)
     fig.suptitle(title or f"Motion program at {program.rpm:g} rpm")
     # fixed margins, not tight_layout (a second draw: 0.1–0.3 s a plot); tests/plots check nothing is cut off
     fig.subplots_adjust(**LAYOUT)
