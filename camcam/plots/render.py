@@ -4,13 +4,20 @@ Figures are :class:`matplotlib.figure.Figure` objects made directly, not through
 here needs pyplot's figure registry or an interactive backend, each figure gets an Agg canvas
 of its own, and pyplot's import is the dearer one (0.33 against
 0.29 CPU s for matplotlib.figure with the Agg backend, best of 5 on the 2-core benchmark
-machine, numpy and shapely loaded first).  The bytes are the same as through pyplot
-(``tests/data/sample_checksums.json``).
+machine, numpy and shapely loaded first).
+
+:func:`png_bytes` draws the canvas and writes its pixels with Pillow itself: RGB (the figures are
+opaque; matplotlib writes RGBA) at zlib level 3 (Pillow's default is 6): 0.012 instead of 0.022 CPU s
+for the SVAJ plot's 768 × 816 pixels, and 76 instead of 78 kB (best of 5); the pixels are those
+``Figure.savefig`` makes (``tests/plots/test_render.py``).
 """
 
 from __future__ import annotations
 
 import io
+
+import numpy as np
+from PIL import Image
 
 from camcam.plots.mpl_import import load_matplotlib
 
@@ -21,7 +28,7 @@ from matplotlib.figure import Figure  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Circle, Rectangle  # noqa: E402
 
-__all__ = ["subplots", "figure", "png_bytes", "Circle", "Line2D", "Rectangle"]
+__all__ = ["subplots", "figure", "png_bytes", "Circle", "Line2D", "Rectangle", "PNG_COMPRESS_LEVEL"]
 
 
 def figure(figsize: tuple[float, float]) -> Figure:
@@ -44,8 +51,15 @@ def subplots(nrows: int = 1, ncols: int = 1, *, figsize: tuple[float, float], **
     return fig, fig.subplots(nrows, ncols, **kwargs)
 
 
+#: zlib level of the PNGs (module notes).
+PNG_COMPRESS_LEVEL = 3
+
+
 def png_bytes(fig: Figure, dpi: int = 96) -> bytes:
-    """Render ``fig``; no timestamp or software tag, so output is reproducible."""
+    """Render ``fig`` at ``dpi`` (which it keeps) as an RGB PNG; no timestamp or software tag, so output is reproducible."""
+    fig.set_dpi(dpi)
+    fig.canvas.draw()
+    rgb = np.asarray(fig.canvas.buffer_rgba())[..., :3]
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi, metadata={"Software": None})
+    Image.fromarray(np.ascontiguousarray(rgb)).save(buf, format="png", compress_level=PNG_COMPRESS_LEVEL, dpi=(dpi, dpi))
     return buf.getvalue()
