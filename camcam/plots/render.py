@@ -27,8 +27,10 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Circle, Rectangle  # noqa: E402
+from matplotlib.ticker import AutoLocator  # noqa: E402
 
-__all__ = ["subplots", "figure", "png_bytes", "Circle", "Line2D", "Rectangle", "PNG_COMPRESS_LEVEL"]
+__all__ = ["subplots", "figure", "png_bytes", "ticks_in_view", "InViewLocator", "Circle", "Line2D", "Rectangle",
+           "PNG_COMPRESS_LEVEL"]
 
 
 def figure(figsize: tuple[float, float]) -> Figure:
@@ -51,12 +53,38 @@ def subplots(nrows: int = 1, ncols: int = 1, *, figsize: tuple[float, float], **
     return fig, fig.subplots(nrows, ncols, **kwargs)
 
 
+class InViewLocator(AutoLocator):
+    """matplotlib's default tick locator, less the ticks outside the view.
+
+    :class:`~matplotlib.ticker.AutoLocator` gives a tick beyond each end of the view, and matplotlib makes a
+    tick object of three lines and two texts for each, formats its label, and does not draw it: two an axes,
+    26 in a disc cam's four report plots.  The ticks drawn and their labels are the same
+    (``tests/plots/test_render.py``).
+    """
+
+    def __call__(self):
+        locs = super().__call__()
+        lo, hi = sorted(self.axis.get_view_interval())
+        slack = 1e-10 * (hi - lo)  # matplotlib's own test of a tick in view (transforms._interval_contains_close)
+        return locs[(locs >= lo - slack) & (locs <= hi + slack)]
+
+
+def ticks_in_view(fig: Figure) -> None:
+    """Give every axis of ``fig`` that has matplotlib's default tick locator an :class:`InViewLocator`."""
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            if type(axis.get_major_locator()) is AutoLocator:
+                axis.set_major_locator(InViewLocator())
+
+
 #: zlib level of the PNGs (module notes).
 PNG_COMPRESS_LEVEL = 3
 
 
 def png_bytes(fig: Figure, dpi: int = 96) -> bytes:
-    """Render ``fig`` at ``dpi`` (which it keeps) as an RGB PNG; no timestamp or software tag, so output is reproducible."""
+    """Render ``fig`` at ``dpi`` (which it keeps; its default tick locators become :class:`InViewLocator`) as an RGB
+    PNG; no timestamp or software tag, so output is reproducible."""
+    ticks_in_view(fig)
     fig.set_dpi(dpi)
     fig.canvas.draw()
     rgb = np.asarray(fig.canvas.buffer_rgba())[..., :3]
