@@ -30,7 +30,7 @@ from matplotlib.patches import Circle, Rectangle  # noqa: E402
 from matplotlib.ticker import AutoLocator  # noqa: E402
 
 __all__ = ["subplots", "figure", "png_bytes", "ticks_in_view", "InViewLocator", "Circle", "Line2D", "Rectangle",
-           "PNG_COMPRESS_LEVEL"]
+           "PNG_COMPRESS_LEVEL", "TITLE_Y"]
 
 
 def figure(figsize: tuple[float, float]) -> Figure:
@@ -76,6 +76,11 @@ def ticks_in_view(fig: Figure) -> None:
             if type(axis.get_major_locator()) is AutoLocator:
                 axis.set_major_locator(InViewLocator())
 
+
+#: The height of axes titles, given explicitly (``ax.set_title(..., y=TITLE_Y)``, where matplotlib puts them
+#: anyway): matplotlib then skips lifting a title over tick labels or an offset text at its axes' top, a pass
+#: that lays out every tick label of the axes once more at each draw (camcam's plots have none there).
+TITLE_Y = 1.0
 
 #: zlib level of the PNGs (module notes).
 PNG_COMPRESS_LEVEL = 3

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from camcam.plots.render import png_bytes, subplots
+from camcam.plots.render import TITLE_Y, png_bytes, subplots
 from camcam.plots.stacked import angle_axis
 
 __all__ = ["deviation_png", "fitted_motion_png", "DEVIATION_LAYOUT", "FITTED_LAYOUT"]
@@ -28,7 +28,7 @@ def deviation_png(angles_deg: np.ndarray, deviation_mm: np.ndarray, tolerance_mm
     ax.set_ylim(-1.3 * tolerance_mm, 1.3 * tolerance_mm)
     ax.legend(loc="upper right", fontsize=8)
     ax.grid(True, alpha=0.3)
-    ax.set_title(title, fontsize=10)
+    ax.set_title(title, fontsize=10, y=TITLE_Y)
     fig.subplots_adjust(**DEVIATION_LAYOUT)
     return png_bytes(fig)
 
@@ -49,9 +49,10 @@ def fitted_motion_png(angles_deg: np.ndarray, design: np.ndarray, fitted: np.nda
     err = np.abs(np.asarray(fitted) - np.asarray(design))
     i_a, i_j = int(np.argmax(err[2])), int(np.argmax(err[3]))
     axes[0].legend(loc="upper right", fontsize=8)
-    axes[2].set_title(f"largest acceleration error {err[2][i_a]:.4g} {units[2]} at {angles_deg[i_a]:g}°", fontsize=9)
+    axes[2].set_title(f"largest acceleration error {err[2][i_a]:.4g} {units[2]} at {angles_deg[i_a]:g}°", fontsize=9,
+                      y=TITLE_Y)
     axes[3].set_title(f"largest jerk error {err[3][i_j]:.4g} {units[3]} at {angles_deg[i_j]:g}° "
-                      f"(jerk is impulsive at every arc join)", fontsize=9)
+                      f"(jerk is impulsive at every arc join)", fontsize=9, y=TITLE_Y)
     angle_axis(axes, grid_alpha=0.3)
     fig.suptitle(title)
     fig.subplots_adjust(**FITTED_LAYOUT)

@@ -18,7 +18,7 @@ from matplotlib.collections import LineCollection
 from matplotlib.lines import TICKDOWN, TICKUP, Line2D
 from matplotlib.ticker import NullLocator
 
-__all__ = ["angle_axis", "REVOLUTION_DEG"]
+__all__ = ["angle_axis", "vertical_lines", "REVOLUTION_DEG"]
 
 #: The x range of every stacked plot: one revolution of cam angle.
 REVOLUTION_DEG = (0.0, 360.0)
@@ -36,12 +36,18 @@ def _tick_marks(ax, ticks: np.ndarray) -> Line2D:
                   clip_on=False, zorder=ax.xaxis.get_zorder(), label="_nolegend_")
 
 
+def vertical_lines(ax, x, **style) -> LineCollection:
+    """Lines across the whole height of ``ax`` at data ``x``, one artist for all (``ax.axvline`` makes one each);
+    ``style`` as for a LineCollection (``color``, ``ls``, ``lw``, ``alpha``, ``zorder``).  Add it with
+    ``ax.add_collection(lines, autolim=False)``: its y is the axes' height, not data."""
+    segments = [((v, 0.0), (v, 1.0)) for v in x]
+    return LineCollection(segments, transform=ax.get_xaxis_transform("grid"), label="_nolegend_", **style)
+
+
 def _grid_lines(ax, ticks: np.ndarray, alpha: float) -> LineCollection:
     """The vertical grid lines of ``ax`` at ``ticks``, as matplotlib's XTick draws them with ``grid(alpha=…)``."""
-    segments = [((x, 0.0), (x, 1.0)) for x in ticks]
-    return LineCollection(segments, transform=ax.get_xaxis_transform("grid"), colors=rcParams["grid.color"],
-                          linewidths=rcParams["grid.linewidth"], linestyles=rcParams["grid.linestyle"], alpha=alpha,
-                          zorder=ax.xaxis.get_zorder(), label="_nolegend_")
+    return vertical_lines(ax, ticks, colors=rcParams["grid.color"], linewidths=rcParams["grid.linewidth"],
+                          linestyles=rcParams["grid.linestyle"], alpha=alpha, zorder=ax.xaxis.get_zorder())
 
 
 def angle_axis(axes, *, step_deg: float = 30.0, grid_alpha: float | None = None,

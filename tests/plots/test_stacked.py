@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from camcam.plots.render import subplots
-from camcam.plots.stacked import angle_axis
+from camcam.plots.stacked import angle_axis, vertical_lines
 
 
 def pixels(fig) -> np.ndarray:
@@ -53,3 +53,16 @@ def test_upper_axes_make_no_ticks_and_keep_the_legend_clean():
     assert [len(ax.xaxis.get_major_ticks()) for ax in axes] == [0, 0, 13]
     assert [t.get_text() for t in axes[0].legend().get_texts()] == ["only"]
     assert all(ax.get_xlim() == (0.0, 360.0) for ax in axes)
+
+
+def test_vertical_lines_span_the_axes_and_leave_the_data_limits_alone():
+    fig, (a, b) = subplots(2, 1, figsize=(4, 3))
+    for ax in (a, b):
+        ax.plot([0, 360], [100.0, 200.0])
+    a.add_collection(vertical_lines(a, [120.0, 300.0], color="0.5", ls="--", lw=0.8), autolim=False)
+    for ax in (a, b):
+        ax.axvline(120.0, color="0.5", ls="--", lw=0.8)  # the same as the collection's first line
+    pixels(fig)
+    assert a.get_ylim() == b.get_ylim()  # no data limit stretched to y = 0..1
+    lines = a.collections[0]
+    assert [seg[:, 0].tolist() for seg in lines.get_segments()] == [[120.0, 120.0], [300.0, 300.0]]
