@@ -11,6 +11,7 @@ from camcam.geometry.analysis import convex_curvature, flat_radius
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.cylindrical import CylindricalCam
 from camcam.plots.render import TITLE_Y, Circle, figure, png_bytes
+from camcam.plots.stacked import angle_axis
 
 __all__ = ["cam_png", "LAYOUT"]
 
@@ -88,9 +89,7 @@ def cam_png(built: BuiltCam, title: str = "") -> bytes:
     ax2.set_title(f"min convex radius of curvature {c.describe()}", fontsize=9, y=TITLE_Y)
     for ax in (ax1, ax2):
         ax.grid(True, alpha=0.3)
-        ax.set_xlim(0, 360)
-        ax.set_xticks(np.arange(0, 361, 60))
-    ax2.set_xlabel("cam angle [deg]")
+    angle_axis((ax1, ax2), step_deg=60.0, grid_alpha=0.3)  # the angles labelled once, under the lower one
     fig.suptitle(title)
     # fixed margins, not tight_layout (a second draw); tests/plots check nothing is cut off
     fig.subplots_adjust(**LAYOUT)
