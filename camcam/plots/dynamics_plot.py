@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from camcam.plots.render import png_bytes, subplots
+from camcam.plots.stacked import angle_axis
 
 __all__ = ["dynamics_png", "DYNAMICS_LAYOUT"]
 
@@ -15,7 +16,7 @@ DYNAMICS_LAYOUT = dict(left=0.12, right=0.965, bottom=0.08, top=0.93, hspace=0.3
 def dynamics_png(angles_deg, contact_force_n, torque_nm, stress_mpa, title: str, *, return_flank_n=None,
                  allowable_mpa: float | None = None, jump_angle_deg: float | None = None) -> bytes:
     """Three stacked panels over the cam angle: contact force (a groove's two flanks), torque, Hertz stress."""
-    fig, axes = subplots(3, 1, figsize=(8, 7.5), sharex=True)
+    fig, axes = subplots(3, 1, figsize=(8, 7.5))
     f = np.asarray(contact_force_n, float)
     if return_flank_n is not None:
         axes[0].plot(angles_deg, np.maximum(f, 0.0), color="C0", lw=1.1, label="lift flank")
@@ -37,9 +38,7 @@ def dynamics_png(angles_deg, contact_force_n, torque_nm, stress_mpa, title: str,
     axes[2].set_ylabel("Hertz contact\nstress [MPa]")
     for ax in axes:
         ax.grid(True, alpha=0.3)
-    axes[-1].set_xlim(0, 360)
-    axes[-1].set_xticks(np.arange(0, 361, 30))
-    axes[-1].set_xlabel("cam angle [deg]")
+    angle_axis(axes, grid_alpha=0.3)
     fig.suptitle(title)
     fig.subplots_adjust(**DYNAMICS_LAYOUT)
     return png_bytes(fig)

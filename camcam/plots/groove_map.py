@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from camcam.plots.render import png_bytes, subplots
+from camcam.plots.stacked import angle_axis
 
 __all__ = ["groove_map_png"]
 
@@ -18,7 +19,7 @@ def groove_map_png(groove, tolerance_mm: float, title: str) -> bytes:
     dev = np.asarray(groove.deviation_mm)
     finite = np.abs(dev[np.isfinite(dev)])
     span = max(2.0 * tolerance_mm, float(np.percentile(finite, 99.5)) if finite.size else tolerance_mm)
-    fig, axes = subplots(2, 1, figsize=(8.5, 5.4), sharex=True)
+    fig, axes = subplots(2, 1, figsize=(8.5, 5.4))
     ang, rad = np.asarray(groove.cam_angle_deg), np.asarray(groove.radii_mm)
     mesh = None
     for w, ax in zip(groove.walls, axes):
@@ -32,9 +33,7 @@ def groove_map_png(groove, tolerance_mm: float, title: str) -> bytes:
                 mfc="w", ls="none", label=f"largest material left {w.material_left_mm:.4f} mm")
         ax.set_ylabel(f"{w.label}\nradius [mm]", fontsize=9)
         ax.legend(loc="upper right", fontsize=7, framealpha=0.85)
-    axes[-1].set_xlim(0, 360)
-    axes[-1].set_xticks(np.arange(0, 361, 30))
-    axes[-1].set_xlabel("cam angle [deg]")
+    angle_axis(axes)
     bar = fig.colorbar(mesh, ax=list(axes), shrink=0.9)
     bar.set_label(f"deviation normal to the wall [mm]\n(+ overcut, − material left; black: ±{tolerance_mm:g} mm)",
                   fontsize=8)

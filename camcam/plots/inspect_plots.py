@@ -93,7 +93,7 @@ def polar_deviation_png(nominal_xy, nominal_normal, foot_xy, normal_xy, deviatio
 
 def motion_error_png(checks, title: str = "") -> bytes:
     """Recovered − design lift, velocity and acceleration along the cam angle, one line per check (wall)."""
-    fig, axes = subplots(3, 1, figsize=(8, 7), sharex=True)
+    fig, axes = subplots(3, 1, figsize=(8, 7))
     names = ["lift", "velocity", "acceleration"]
     for m in checks:
         units = [m.unit, f"{m.unit}/deg", f"{m.unit}/deg²"]

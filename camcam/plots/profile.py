@@ -10,7 +10,8 @@ import numpy as np
 from camcam.geometry.analysis import convex_curvature, flat_radius
 from camcam.geometry.build import BuiltCam
 from camcam.geometry.cylindrical import CylindricalCam
-from camcam.plots.render import Circle, figure, png_bytes
+from camcam.plots.render import TITLE_Y, Circle, figure, png_bytes
+from camcam.plots.stacked import angle_axis
 
 __all__ = ["cam_png", "LAYOUT"]
 
@@ -41,7 +42,7 @@ def _draw_disc(ax, cam) -> None:
             ax.plot(*np.array([q - tang, q + tang]).T, color="C2", lw=1.2, label="face" if k == 0 else None)
     ax.plot([0], [0], "k+")
     ax.set_aspect("equal")
-    ax.set_title("cam at cam angle 0 (mm)")
+    ax.set_title("cam at cam angle 0 (mm)", y=TITLE_Y)
     ax.legend(fontsize=7, loc="upper right")
 
 
@@ -54,7 +55,7 @@ def _draw_developed(ax, cam: CylindricalCam) -> None:
     ax.plot(u, x, color="C1", lw=0.8, ls=":", label="centre line")
     ax.set_xlabel("developed length u [mm]")
     ax.set_ylabel("axial x [mm]")
-    ax.set_title("developed groove")
+    ax.set_title("developed groove", y=TITLE_Y)
     ax.legend(fontsize=7)
 
 
@@ -72,7 +73,7 @@ def cam_png(built: BuiltCam, title: str = "") -> bytes:
     p = an.max_pressure_angle_deg
     ax1.axvline(p.angle_deg, color="0.5", lw=0.7, ls="--")
     ax1.set_ylabel("pressure angle [deg]")
-    ax1.set_title(f"max |pressure angle| {p.value:.3f}° at {p.angle_deg:.2f}°", fontsize=9)
+    ax1.set_title(f"max |pressure angle| {p.value:.3f}° at {p.angle_deg:.2f}°", fontsize=9, y=TITLE_Y)
     if cyl:
         k = convex_curvature(cam.developed_centre(cam.bottom_radius), 1, t)[0]
         with np.errstate(divide="ignore"):
@@ -85,12 +86,10 @@ def cam_png(built: BuiltCam, title: str = "") -> bytes:
     ax2.plot(deg, rho, color="C4")
     c = an.profile
     ax2.set_ylabel("radius of curvature [mm]")
-    ax2.set_title(f"min convex radius of curvature {c.describe()}", fontsize=9)
+    ax2.set_title(f"min convex radius of curvature {c.describe()}", fontsize=9, y=TITLE_Y)
     for ax in (ax1, ax2):
         ax.grid(True, alpha=0.3)
-        ax.set_xlim(0, 360)
-        ax.set_xticks(np.arange(0, 361, 60))
-    ax2.set_xlabel("cam angle [deg]")
+    angle_axis((ax1, ax2), step_deg=60.0, grid_alpha=0.3)  # the angles labelled once, under the lower one
     fig.suptitle(title)
     # fixed margins, not tight_layout (a second draw); tests/plots check nothing is cut off
     fig.subplots_adjust(**LAYOUT)

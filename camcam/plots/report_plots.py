@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from camcam.plots.render import png_bytes, subplots
+from camcam.plots.render import TITLE_Y, png_bytes, subplots
+from camcam.plots.stacked import angle_axis
 
 __all__ = ["deviation_png", "fitted_motion_png", "DEVIATION_LAYOUT", "FITTED_LAYOUT"]
 
@@ -27,7 +28,7 @@ def deviation_png(angles_deg: np.ndarray, deviation_mm: np.ndarray, tolerance_mm
     ax.set_ylim(-1.3 * tolerance_mm, 1.3 * tolerance_mm)
     ax.legend(loc="upper right", fontsize=8)
     ax.grid(True, alpha=0.3)
-    ax.set_title(title, fontsize=10)
+    ax.set_title(title, fontsize=10, y=TITLE_Y)
     fig.subplots_adjust(**DEVIATION_LAYOUT)
     return png_bytes(fig)
 
@@ -38,7 +39,7 @@ def fitted_motion_png(angles_deg: np.ndarray, design: np.ndarray, fitted: np.nda
     ``design`` and ``fitted`` are (4, n) over ``angles_deg`` (n,), in ``units`` (4 strings).
     """
     names = ["lift", "velocity", "acceleration", "jerk"]
-    fig, axes = subplots(4, 1, figsize=(8, 8.5), sharex=True)
+    fig, axes = subplots(4, 1, figsize=(8, 8.5))
     for k, ax in enumerate(axes):
         ax.plot(angles_deg, design[k], color="0.2", lw=1.6, label="design")
         style = dict(ls="none", marker=".", ms=2.5) if k == 3 else dict(lw=0.9)
@@ -48,12 +49,11 @@ def fitted_motion_png(angles_deg: np.ndarray, design: np.ndarray, fitted: np.nda
     err = np.abs(np.asarray(fitted) - np.asarray(design))
     i_a, i_j = int(np.argmax(err[2])), int(np.argmax(err[3]))
     axes[0].legend(loc="upper right", fontsize=8)
-    axes[2].set_title(f"largest acceleration error {err[2][i_a]:.4g} {units[2]} at {angles_deg[i_a]:g}°", fontsize=9)
+    axes[2].set_title(f"largest acceleration error {err[2][i_a]:.4g} {units[2]} at {angles_deg[i_a]:g}°", fontsize=9,
+                      y=TITLE_Y)
     axes[3].set_title(f"largest jerk error {err[3][i_j]:.4g} {units[3]} at {angles_deg[i_j]:g}° "
-                      f"(jerk is impulsive at every arc join)", fontsize=9)
-    axes[-1].set_xlim(0, 360)
-    axes[-1].set_xticks(np.arange(0, 361, 30))
-    axes[-1].set_xlabel("cam angle [deg]")
+                      f"(jerk is impulsive at every arc join)", fontsize=9, y=TITLE_Y)
+    angle_axis(axes, grid_alpha=0.3)
     fig.suptitle(title)
     fig.subplots_adjust(**FITTED_LAYOUT)
     return png_bytes(fig)

@@ -2,16 +2,15 @@
 
 from __future__ import annotations
 
-import numpy as np
-
 from camcam.plots.render import png_bytes, subplots
+from camcam.plots.stacked import angle_axis
 
 __all__ = ["reverse_png", "stacked_png"]
 
 
 def reverse_png(angles_deg, recovered, unit: str, point_angles_deg, point_lift, design=None, title: str = "") -> bytes:
     """Three stacked axes; ``recovered`` and ``design`` are (n, 3) columns (lift, per-degree velocity, acceleration)."""
-    fig, axes = subplots(3, 1, figsize=(8, 7.5), sharex=True)
+    fig, axes = subplots(3, 1, figsize=(8, 7.5))
     units = [unit, f"{unit}/deg", f"{unit}/deg²"]
     names = ["lift", "velocity", "acceleration"]
     for k, ax in enumerate(axes):
@@ -25,14 +24,12 @@ def reverse_png(angles_deg, recovered, unit: str, point_angles_deg, point_lift, 
 
 
 def stacked_png(fig, axes, title: str) -> bytes:
-    """Finish stacked axes over one revolution of cam angle (grid, legend on the top one, 0-360° in 30° ticks,
-    the title) and render them."""
+    """Finish stacked axes over one revolution of cam angle, made without ``sharex`` (grid, legend on the top
+    one, 0-360° in 30° ticks: :func:`~camcam.plots.stacked.angle_axis`, the title) and render them."""
     for ax in axes:
         ax.grid(True, alpha=0.3)
     axes[0].legend(loc="best", fontsize=8)
-    axes[-1].set_xlabel("cam angle [deg]")
-    axes[-1].set_xlim(0, 360)
-    axes[-1].set_xticks(np.arange(0, 361, 30))
+    angle_axis(axes, grid_alpha=0.3)
     fig.suptitle(title)
     fig.tight_layout()
     return png_bytes(fig)
