@@ -256,9 +256,7 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho, gamma: np.
         chunk = max(1, int(_PAIRS_PER_CHUNK // max(1, (int(cnt.mean()) if cnt.size else 0) + 1)))
         # every grid index a pair may take (before its wrap onto [0, k)): the angles g0 + i·dg as the pairs had
         # them, with their sines and cosines; and each kept sample's pose with the sines and cosines of its a
-        # and B (taken for every angle it reaches).  A chunk's pairs take their columns of these with one
-        # np.repeat (a sample's for each of its angles) and one np.take (the angles'): the same values as a
-        # gather per array, in two calls instead of ten
+        # and B (taken for every angle it reaches)
         i_min = int(i0.min(initial=0))
         grid = g0 + np.arange(i_min, int((i0 + np.maximum(cnt, 1)).max(initial=1))) * dg
         grid_sc = np.stack([np.sin(grid), np.cos(grid)])
@@ -266,18 +264,25 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho, gamma: np.
         kept = np.stack([X[keep], Y[keep], Z[keep], np.sin(Bk), np.cos(Bk), np.sin(ak), np.cos(ak)])
         for s0 in range(0, len(keep), chunk):
             c = cnt[s0:s0 + chunk]
-            # pairs: sample j of the chunk with grid angles i0[j], i0[j] + 1, …, i0[j] + c[j] − 1
-            js = np.repeat(keep[s0:s0 + chunk], c)
-            ii = np.arange(c.sum()) - np.repeat(np.cumsum(c) - c - i0[s0:s0 + chunk], c)
-            Xj, Yj, Zj, sin_b, cos_b, sin_a, cos_a = np.repeat(kept[:, s0:s0 + chunk], c, axis=1)
-            sin_g, cos_g = np.take(grid_sc, ii - i_min, axis=1)
+            width = int(c.max())
+            if width == 0:
+                continue
+            # a chunk's pairs as a table: sample j of the chunk (a row) with grid angles i0[j], i0[j] + 1, …,
+            # i0[j] + c[j] − 1 (its first c[j] columns; the rest padding, no pair).  A sample's pose is one
+            # column broadcast along its row, where a list of pairs repeated it for each angle
+            ii = i0[s0:s0 + chunk, None] + np.arange(width)
+            pad = np.arange(width) >= c[:, None]
+            sin_g, cos_g = np.take(grid_sc, np.where(pad, i_min, ii) - i_min, axis=1)
+            Xj, Yj, Zj, sin_b, cos_b, sin_a, cos_a = kept[:, s0:s0 + chunk, None]
             # sin and cos of β = γ + a by the angle-addition formulas: one sine and cosine per grid angle and
             # per sample instead of per pair (groove_motion.sincos_sum)
             lo, hi = section_interval(Xj, Yj, Zj, None, None, r, L, rho, None, (sin_b, cos_b),
                                       sincos_sum(sin_g, cos_g, sin_a, cos_a))
-            ii = np.mod(ii, k)
+            ii = np.mod(ii, k).ravel()
+            js = np.repeat(keep[s0:s0 + chunk], width)
             for side, v in enumerate(wall_extents(lo, hi)):
-                _scatter_best(ii, v, js, best_v[side], best_j[side])
+                v[pad] = -np.inf  # padding never beats anything: the pairs' figures and order as in a list
+                _scatter_best(ii, v.ravel(), js, best_v[side], best_j[side])
     else:
         _scattered_best(poses, motion.r, motion.L, rho, gamma, best_v, best_j)
     return _refine_motion(motion, samples, rho, gamma, best_v, best_j, iterations)
