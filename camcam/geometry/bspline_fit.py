@@ -96,7 +96,8 @@ def next_nodes(n: int, deviation_mm: float, tolerance_mm: float, order: int | No
     """The node count to try after ``n`` nodes deviated ``deviation_mm`` (≥ ``tolerance_mm``): twice ``n``, or
     with the interpolant's ``order`` of convergence (the deviation ∝ hᵒʳᵈᵉʳ, h the node spacing) the count
     that brings it to :data:`AIM` × the tolerance, at least 1.25 × ``n`` (a deviation that falls more slowly
-    still grows the count fast) and at most 8 × ``n``; never above :data:`MAX_NODES`.
+    still grows the count fast) and at most 8 × ``n`` (twice ``n`` for a deviation that is not finite); never
+    above :data:`MAX_NODES`.
 
     Examples
     --------
@@ -106,8 +107,10 @@ def next_nodes(n: int, deviation_mm: float, tolerance_mm: float, order: int | No
     18
     >>> next_nodes(40, 5.1e-5, 5e-5, 4)  # just over: 1.25 × n
     50
+    >>> next_nodes(8, float("inf"), 5e-5, 4)
+    16
     """
-    if order is None:
+    if order is None or not math.isfinite(deviation_mm):  # no order, or no figure to scale by: doubled
         grown = 2 * n
     else:
         grown = min(8 * n, max(math.ceil(1.25 * n), math.ceil(n * (deviation_mm / (AIM * tolerance_mm)) ** (1 / order))))

@@ -288,8 +288,8 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho, gamma: np.
     return _refine_motion(motion, samples, rho, gamma, best_v, best_j, iterations)
 
 
-#: (angle, sample) window tests of a scattered envelope made at once: its boolean table stays about 4 MB.
-_SCATTERED_TESTS = 4_000_000
+#: (angle, sample) window tests of a scattered envelope made at once: its tables stay about 8 MB each.
+_SCATTERED_TESTS = 1_000_000
 
 
 def _scattered_best(poses, r, L, rho, gamma, best_v, best_j) -> None:
