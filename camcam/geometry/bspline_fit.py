@@ -21,6 +21,7 @@ array([0.    , 0.0625, 1.    ])
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -28,12 +29,15 @@ import numpy as np
 from camcam.errors import GeometryError
 
 __all__ = ["SurfacePiece", "SurfaceFit", "fit_surface", "refined", "analytic_spans", "end_parameters", "check_params",
-           "CHECK_PER_SPAN"]
+           "CHECK_PER_SPAN", "next_nodes"]
 
 #: Parameters per knot span at which a fit's deviation from the exact curve is measured.
 CHECK_PER_SPAN = 16
 #: Nodes per piece to start from, and the most a piece may need.
 START_NODES, MAX_NODES = 8, 4096
+#: With a known order of convergence, the deviation a fit's next node count aims at, as a share of the target
+#: (:func:`next_nodes`): a margin for the error constant's change between the two counts.
+AIM = 0.8
 #: Spans shorter than this (radians) are folded into the span before them: OpenCascade cannot interpolate
 #: through nodes closer than its 1e-9 mm point tolerance, and a break this close to the next one (two equal
 #: break angles one rounding apart) bounds no analytic piece of its own worth the name.
@@ -88,11 +92,36 @@ def end_parameters(a: float, b: float) -> np.ndarray:
     return np.array([a + e, b - e])
 
 
-def refined(spans, make, deviation, join, tolerance_mm: float, what: str) -> tuple[list, float]:
-    """``make(piece, a, b, n)``'s spline of each span (a, b, piece) of ``spans`` (:func:`analytic_spans`) with the
-    fewest nodes n (doubling from :data:`START_NODES`) whose ``deviation(piece, spline)`` is under
-    ``tolerance_mm``, each span's end made the next one's start by ``join(spline, next)`` (the last's the
-    first's), and the largest deviation.
+def next_nodes(n: int, deviation_mm: float, tolerance_mm: float, order: int | None) -> int:
+    """The node count to try after ``n`` nodes deviated ``deviation_mm`` (≥ ``tolerance_mm``): twice ``n``, or
+    with the interpolant's ``order`` of convergence (the deviation ∝ hᵒʳᵈᵉʳ, h the node spacing) the count
+    that brings it to :data:`AIM` × the tolerance, at least 1.25 × ``n`` (a deviation that falls more slowly
+    still grows the count fast) and at most 8 × ``n`` (twice ``n`` for a deviation that is not finite); never
+    above :data:`MAX_NODES`.
+
+    Examples
+    --------
+    >>> next_nodes(8, 1e-4, 1e-5, None)
+    16
+    >>> next_nodes(8, 1e-3, 5e-5, 4)  # 8 · (1e-3 / 4e-5)^¼ = 17.8
+    18
+    >>> next_nodes(40, 5.1e-5, 5e-5, 4)  # just over: 1.25 × n
+    50
+    >>> next_nodes(8, float("inf"), 5e-5, 4)
+    16
+    """
+    if order is None or not math.isfinite(deviation_mm):  # no order, or no figure to scale by: doubled
+        grown = 2 * n
+    else:
+        grown = min(8 * n, max(math.ceil(1.25 * n), math.ceil(n * (deviation_mm / (AIM * tolerance_mm)) ** (1 / order))))
+    return min(grown, MAX_NODES)
+
+
+def refined(spans, make, deviation, join, tolerance_mm: float, what: str, order: int | None = None) -> tuple[list, float]:
+    """``make(piece, a, b, n)``'s spline of each span (a, b, piece) of ``spans`` (:func:`analytic_spans`) with
+    few nodes n (from :data:`START_NODES`, grown by :func:`next_nodes`: doubled, or to the count ``order``
+    predicts) whose ``deviation(piece, spline)`` is under ``tolerance_mm``, each span's end made the next
+    one's start by ``join(spline, next)`` (the last's the first's), and the largest deviation.
 
     Raises
     ------
@@ -106,7 +135,7 @@ def refined(spans, make, deviation, join, tolerance_mm: float, what: str) -> tup
         while (dev := deviation(piece, s := make(piece, a, b, n))) >= tolerance_mm:
             if n >= MAX_NODES:
                 raise GeometryError(f"span {k} of the {what} deviates {dev:.3g} mm from its B-spline at {n} nodes")
-            n *= 2
+            n = next_nodes(n, dev, tolerance_mm, order)
         pieces.append(s)
         worst = max(worst, dev)
     # one end for two pieces: the values at a break agree to rounding (the curve or surface is continuous)
@@ -183,5 +212,7 @@ def fit_surface(point, tangent, spans, rho: np.ndarray, tolerance_mm: float) -> 
     def join(s, nxt):
         s.poles[-1] = nxt.poles[0]
 
-    pieces, worst = refined(spans, make, deviation, join, tolerance_mm, "surface")
+    # a clamped cubic interpolant's error falls as h⁴ (de Boor, A Practical Guide to Splines, ch. V): the
+    # count that meets the tolerance is predicted from the last one, not doubled past it
+    pieces, worst = refined(spans, make, deviation, join, tolerance_mm, "surface", order=4)
     return SurfaceFit(tuple(pieces), worst)

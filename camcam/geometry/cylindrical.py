@@ -205,7 +205,9 @@ class CylindricalCam(CamBasics):
         theta = np.atleast_1d(np.asarray(theta, float))
         radii = np.atleast_1d(np.asarray(radii_mm, float))
         th, rho = np.repeat(theta, len(radii)), np.tile(radii, len(theta))
-        p = self._to_cam(th, self._contact(th, order, piece, rho, index))
+        # the lift depends on θ alone: evaluated once per θ, then taken for each radius
+        lift = Jet(np.repeat(self.lift(theta, order + 1, piece).d, len(radii), axis=1))
+        p = self._to_cam(th, self._contact(th, order, piece, rho, index, lift))
         return np.stack([j.d[order] for j in p], axis=-1).reshape(len(theta), len(radii), 3)
 
     def _developed(self, theta, K, piece, rho, p):

@@ -219,27 +219,36 @@ def _reachable(poses: tuple, r: float, rho: float) -> np.ndarray:
     return (Z - r * np.abs(np.sin(B)) <= rho) & (np.abs(Y) <= rho + r)
 
 
-def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gamma: np.ndarray,
+def _windows(poses: tuple, r: float, rho):
+    """Each sample's β window [lo, hi] on r = ρ (|ρ sin β + Y| ≤ r) and whether it may reach r = ρ at all:
+    (keep, lo, hi), each (n,) for a scalar ``rho`` or (len(rho), n) for an array of radii."""
+    Y = poses[1]
+    rho = rho if np.ndim(rho) == 0 else np.asarray(rho, float)[:, None]
+    lo_s = np.arcsin(np.clip((-r - Y) / rho, -1, 1))
+    hi_s = np.arcsin(np.clip((r - Y) / rho, -1, 1))
+    return _reachable(poses, r, rho), lo_s, hi_s
+
+
+def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho, gamma: np.ndarray,
               iterations: int = _MOTION_STEPS) -> tuple[_Envelope, _Envelope]:
     """The extreme wall extents over the motion at each γ: (side 0: −lo, side 1: hi).
 
-    ``gamma`` is either a full periodic grid (ascending or descending) or a few scattered angles.
+    ``gamma`` is either a full periodic grid (ascending or descending) at one radius ``rho``, or a few
+    scattered angles, each at ``rho`` or at its own radius (``rho`` an array like ``gamma``).
     """
     g0, dg, regular = _grid_of(gamma)
-    if regular and dg < 0:
+    if regular and np.ndim(rho) == 0 and dg < 0:
         e = _envelope(motion, samples, poses, rho, gamma[::-1], iterations)
         return tuple(_Envelope(x.value[::-1], x.p[::-1]) for x in e)
-    X, Y, Z, a, B = poses
-    r, L = motion.r, motion.L
     k = len(gamma)
-    keep = np.nonzero(_reachable(poses, r, rho))[0]
-    # β window of a sample: |ρ sin β + Y| ≤ r
-    lo_s = np.arcsin(np.clip((-r - Y[keep]) / rho, -1, 1))
-    hi_s = np.arcsin(np.clip((r - Y[keep]) / rho, -1, 1))
-    ak = a[keep]
     best_v = np.full((2, k), -np.inf)
     best_j = np.full((2, k), -1)
-    if regular:
+    if regular and np.ndim(rho) == 0:
+        X, Y, Z, a, B = poses
+        r, L = motion.r, motion.L
+        reach, lo_s, hi_s = _windows(poses, r, rho)
+        keep = np.nonzero(reach)[0]
+        lo_s, hi_s, ak = lo_s[keep], hi_s[keep], a[keep]
         i0 = np.ceil((lo_s - ak - g0) / dg).astype(int)
         i1 = np.minimum(np.floor((hi_s - ak - g0) / dg).astype(int), i0 + k - 1)
         cnt = np.maximum(i1 - i0 + 1, 0)
@@ -247,9 +256,7 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
         chunk = max(1, int(_PAIRS_PER_CHUNK // max(1, (int(cnt.mean()) if cnt.size else 0) + 1)))
         # every grid index a pair may take (before its wrap onto [0, k)): the angles g0 + i·dg as the pairs had
         # them, with their sines and cosines; and each kept sample's pose with the sines and cosines of its a
-        # and B (taken for every angle it reaches).  A chunk's pairs take their columns of these with one
-        # np.repeat (a sample's for each of its angles) and one np.take (the angles'): the same values as a
-        # gather per array, in two calls instead of ten
+        # and B (taken for every angle it reaches)
         i_min = int(i0.min(initial=0))
         grid = g0 + np.arange(i_min, int((i0 + np.maximum(cnt, 1)).max(initial=1))) * dg
         grid_sc = np.stack([np.sin(grid), np.cos(grid)])
@@ -257,33 +264,71 @@ def _envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho: float, gam
         kept = np.stack([X[keep], Y[keep], Z[keep], np.sin(Bk), np.cos(Bk), np.sin(ak), np.cos(ak)])
         for s0 in range(0, len(keep), chunk):
             c = cnt[s0:s0 + chunk]
-            # pairs: sample j of the chunk with grid angles i0[j], i0[j] + 1, …, i0[j] + c[j] − 1
-            js = np.repeat(keep[s0:s0 + chunk], c)
-            ii = np.arange(c.sum()) - np.repeat(np.cumsum(c) - c - i0[s0:s0 + chunk], c)
-            Xj, Yj, Zj, sin_b, cos_b, sin_a, cos_a = np.repeat(kept[:, s0:s0 + chunk], c, axis=1)
-            sin_g, cos_g = np.take(grid_sc, ii - i_min, axis=1)
+            width = int(c.max())
+            if width == 0:
+                continue
+            # a chunk's pairs as a table: sample j of the chunk (a row) with grid angles i0[j], i0[j] + 1, …,
+            # i0[j] + c[j] − 1 (its first c[j] columns; the rest padding, no pair).  A sample's pose is one
+            # column broadcast along its row, where a list of pairs repeated it for each angle
+            ii = i0[s0:s0 + chunk, None] + np.arange(width)
+            pad = np.arange(width) >= c[:, None]
+            sin_g, cos_g = np.take(grid_sc, np.where(pad, i_min, ii) - i_min, axis=1)
+            Xj, Yj, Zj, sin_b, cos_b, sin_a, cos_a = kept[:, s0:s0 + chunk, None]
             # sin and cos of β = γ + a by the angle-addition formulas: one sine and cosine per grid angle and
             # per sample instead of per pair (groove_motion.sincos_sum)
             lo, hi = section_interval(Xj, Yj, Zj, None, None, r, L, rho, None, (sin_b, cos_b),
                                       sincos_sum(sin_g, cos_g, sin_a, cos_a))
-            ii = np.mod(ii, k)
+            ii = np.mod(ii, k).ravel()
+            js = np.repeat(keep[s0:s0 + chunk], width)
             for side, v in enumerate(wall_extents(lo, hi)):
-                _scatter_best(ii, v, js, best_v[side], best_j[side])
+                v[pad] = -np.inf  # padding never beats anything: the pairs' figures and order as in a list
+                _scatter_best(ii, v.ravel(), js, best_v[side], best_j[side])
     else:
-        sincos = np.sin(B), np.cos(B)  # each sample's, taken for every angle it reaches
-        for i in range(k):
-            d_lo = np.mod(gamma[i] + ak - lo_s + math.pi, 2 * math.pi) - math.pi
-            d_hi = np.mod(hi_s - gamma[i] - ak + math.pi, 2 * math.pi) - math.pi
-            js = keep[(d_lo >= 0) & (d_hi >= 0)]
-            if len(js) == 0:
-                continue
-            lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, rho, gamma[i],
-                                      (sincos[0][js], sincos[1][js]))
-            for side, v in enumerate(wall_extents(lo, hi)):
-                m = int(np.argmax(v))
-                if np.isfinite(v[m]):
-                    best_v[side, i], best_j[side, i] = v[m], js[m]
+        _scattered_best(poses, motion.r, motion.L, rho, gamma, best_v, best_j)
     return _refine_motion(motion, samples, rho, gamma, best_v, best_j, iterations)
+
+
+#: (angle, sample) window tests of a scattered envelope made at once: its tables stay about 8 MB each.
+_SCATTERED_TESTS = 1_000_000
+
+
+def _scattered_best(poses, r, L, rho, gamma, best_v, best_j) -> None:
+    """Each scattered angle's best sample on both sides, into ``best_v`` and ``best_j`` (2, k): of the samples
+    that may reach r = ρ and whose β window holds γ + a (:func:`_windows`), the one with the largest extent
+    (the first of equals, as ``np.argmax``), where it is finite.  ``rho`` is one radius or one per angle.
+
+    Every (angle, sample) pair of a block of angles is one array: the same section of each pair, element
+    by element, as one :func:`section_interval` per angle and radius, in a few calls instead of a loop.
+    """
+    X, Y, Z, a, B = poses
+    sin_b, cos_b = np.sin(B), np.cos(B)  # each sample's, taken for every angle it reaches
+    # each distinct radius's windows once: (radii, n), and each angle's row of them
+    radii, row = (np.asarray([rho], float), np.zeros(len(gamma), int)) if np.ndim(rho) == 0 else \
+        np.unique(np.asarray(rho, float), return_inverse=True)
+    reach, lo_s, hi_s = _windows(poses, r, radii)
+    step = max(1, _SCATTERED_TESTS // max(len(a), 1))
+    for i0 in range(0, len(gamma), step):
+        g, w = gamma[i0:i0 + step, None], row[i0:i0 + step]
+        d_lo = np.mod(g + a - lo_s[w] + math.pi, 2 * math.pi) - math.pi
+        d_hi = np.mod(hi_s[w] - g - a + math.pi, 2 * math.pi) - math.pi
+        # by angle, then sample: each angle's pairs in a run
+        ii, js = np.nonzero(reach[w] & (d_lo >= 0) & (d_hi >= 0))
+        if len(ii) == 0:
+            continue
+        rr = rho if np.ndim(rho) == 0 else radii[w[ii]]
+        lo, hi = section_interval(X[js], Y[js], Z[js], a[js], None, r, L, rr, gamma[i0 + ii],
+                                  (sin_b[js], cos_b[js]))
+        starts = np.flatnonzero(np.r_[True, ii[1:] != ii[:-1]])
+        rows = i0 + ii[starts]
+        counts = np.diff(np.r_[starts, len(ii)])
+        for side, v in enumerate(wall_extents(lo, hi)):
+            top = np.maximum.reduceat(v, starts)
+            # the first pair of each run at its run's largest value (np.argmax's choice among equals)
+            at = np.where(v == np.repeat(top, counts), np.arange(len(v)), len(v))
+            first = np.minimum.reduceat(at, starts)
+            ok = np.isfinite(top)
+            best_v[side, rows[ok]] = top[ok]
+            best_j[side, rows[ok]] = js[first[ok]]
 
 
 def _refine_motion(motion, samples, rho, gamma, best_v, best_j, iterations) -> tuple[_Envelope, _Envelope]:
@@ -308,6 +353,7 @@ def _refine_motion(motion, samples, rho, gamma, best_v, best_j, iterations) -> t
         hi_p = samples[np.minimum(j + 1, n - 1)]
     g = np.broadcast_to(gamma, (2, k))[found]
     side = np.broadcast_to(np.array([[0], [1]]), (2, k))[found]
+    rho = rho if np.ndim(rho) == 0 else np.broadcast_to(rho, (2, k))[found]
 
     def f(pp):
         return side_extent(*motion.pose(motion.clamp(pp)), motion.r, motion.L, rho, g, side)
@@ -447,7 +493,7 @@ def _refine(setup: _Setup, side: int, rho0: float, th0: float, sign: float, rho_
     th = best_th(rho0, th0, d_th, 33)
     lo, hi = max(rho_lo, rho0 - d_rho), min(rho_hi, rho0 + d_rho)
     rr = np.linspace(lo, hi, 9)
-    vals = np.array([sign * setup.deviation(float(x), np.array([th]), side)[0] for x in rr])
+    vals = sign * setup.deviation(rr, np.full(len(rr), th), side)  # each radius at θc: one scattered envelope
     rho = float(rr[int(np.argmax(vals))])
     th = best_th(rho, th, d_th / 8, 17)
     return rho, th, setup.exact_deviation(rho, th, side)

@@ -35,7 +35,8 @@ def section_interval(X, Y, Z, a, B, r, L, rho, gamma, sincos_B=None, sincos_beta
     done in place: at tens of thousands of (pose, angle) pairs a call, fresh
     temporaries cost more than the arithmetic; sin and cos are most of the rest.
     """
-    shape = np.broadcast_shapes(np.shape(gamma), np.shape(a), np.shape(X), np.shape(Y), np.shape(Z), np.shape(B))
+    shape = np.broadcast_shapes(np.shape(gamma), np.shape(a), np.shape(X), np.shape(Y), np.shape(Z), np.shape(B),
+                                *(np.shape(x) for x in (sincos_B or ()) + (sincos_beta or ())))
     sb, cb = (np.sin(B), np.cos(B)) if sincos_B is None else sincos_B
     if sincos_beta is None:
         beta = np.add(gamma, a, out=np.empty(shape))  # every result below is an array of this shape (0-d too)

@@ -264,6 +264,24 @@ def test_importing_camcam_and_its_step_module_leaves_opencascade_unloaded():
     assert run.stdout.strip() == "[]"
 
 
+@pytest.mark.parametrize("sample,scipy_loaded", [("disc-translating-roller", False), ("cylindrical-translating", True)])
+def test_a_step_loads_scipy_only_for_a_barrel_and_leaves_the_collector_running(sample, scipy_loaded):
+    # a disc's STEP child needs no scipy (its curves are OpenCascade's): a second's import it must not pay; a
+    # barrel's loads its splines up front, with the collector paused only while the modules load
+    code = ("import gc, sys\n"
+            "from camcam.flow import load_job_spec\n"
+            "from camcam.geometry.build import build_cam\n"
+            "from camcam.export.step import step_files\n"
+            f"spec = load_job_spec({str(ROOT / 'samples' / (sample + '.toml'))!r})\n"
+            "built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))\n"
+            "files, why = step_files(built, spec.name)\n"
+            "print(why, sorted(files), 'scipy.interpolate' in sys.modules, gc.isenabled())")
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600,
+                         env={**os.environ, "PYTHONPATH": str(ROOT)})
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.split() == ["None", f"['{sample}.step']", str(scipy_loaded), "True"]
+
+
 def test_a_solid_opencascade_cannot_make_leaves_the_rest_of_the_run_with_a_warning(monkeypatch):
     import camcam.export.step_solids as solids
     from camcam.errors import GeometryError

@@ -331,3 +331,31 @@ def test_section_interval_from_angle_sums_is_the_plain_formula(seed, n, tilted, 
         assert np.array_equal(np.isnan(g[clear]), np.isnan(w[clear]))
         both = clear & ~np.isnan(w) & ~np.isnan(g)
         assert np.all(np.abs(g[both] - w[both]) <= 1e-9)
+
+
+@pytest.mark.parametrize("sample", ["cylindrical-translating", "cylindrical-oscillating"])
+def test_scattered_envelope_at_many_radii_is_each_alone_and_the_map(sample):
+    """A scattered envelope of points each at its own radius (the refinement's radii in one call) against one
+    call per point, and against the regular map at those angles."""
+    from camcam.verify.groove3d import _envelope
+    from camcam.verify.groove_motion import ProgramMotion, RollerMotion
+
+    cam = cam_of(sample)
+    spec = load_spec(ROOT / "samples" / f"{sample}.toml")
+    program = poses_from_program((DATA / f"legacy-{sample}.ngc").read_text(), assume={"Y": 0.0})
+    tool = CylinderTool(spec.machining.tool_diameter_mm / 2, 40.0)
+    grid = np.radians(np.arange(1440) * 0.25)
+    at = np.array([40, 380, 720, 1000, 1439])
+    for motion in (RollerMotion(cam), ProgramMotion(program, tool)):
+        s = motion.samples(0.1, cam.base_radius)
+        poses = motion.pose(s)
+        rho = np.linspace(cam.bottom_radius, cam.base_radius, len(at))
+        both = _envelope(motion, s, poses, rho, grid[at])
+        for i in range(len(at)):
+            alone = _envelope(motion, s, poses, float(rho[i]), grid[at[i]:at[i] + 1])
+            mapped = _envelope(motion, s, poses, float(rho[i]), grid)
+            for side in (0, 1):
+                # exactly: each (point, sample) pair's section is the same arithmetic, element by element
+                np.testing.assert_allclose(both[side].value[i], alone[side].value[0], rtol=0, atol=0)
+                # the map takes sin(γ + a) by the angle-addition formulas: a few ulps of 50 mm apart
+                np.testing.assert_allclose(both[side].value[i], mapped[side].value[at[i]], rtol=0, atol=1e-9)
