@@ -83,3 +83,25 @@ def test_children_give_the_in_process_bytes(tmp_path, monkeypatch, capsys):
     inline = {p.name: p.read_bytes() for p in (tmp_path / "inline").iterdir()}
     assert forked.keys() == inline.keys() and len(forked) >= 12
     assert [n for n in forked if forked[n] != inline[n]] == []
+
+
+def test_single_process_forks_nothing_and_gives_the_same_bytes(tmp_path):
+    # `--single-process` (issue 49: the fewest CPU seconds on a shared machine) runs the plot server's, the drawing
+    # child's, the STEP's and the NC step's jobs in this one process: no fork at all, and every file the very bytes
+    # of a default run, whose jobs run in child processes
+    code = (
+        "import json, os, sys\n"
+        "forks = []\n"
+        "os.register_at_fork(before=lambda: forks.append(1))\n"
+        "from camcam.cli import main\n"
+        f"rc = main(['run', {str(SAMPLE)!r}, '-o', {str(tmp_path / 'single')!r}, '--single-process'])\n"
+        "sys.stdout.flush()\n"
+        "print(json.dumps({'rc': rc, 'forks': len(forks)}))\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
+    assert json.loads(r.stdout.strip().splitlines()[-1]) == {"rc": 0, "forks": 0}
+    assert main(["run", str(SAMPLE), "-o", str(tmp_path / "default")]) == 0
+    single = {p.name: p.read_bytes() for p in (tmp_path / "single").iterdir()}
+    default = {p.name: p.read_bytes() for p in (tmp_path / "default").iterdir()}
+    assert single.keys() == default.keys() and len(single) >= 12
+    assert [n for n in single if single[n] != default[n]] == []
