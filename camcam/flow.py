@@ -305,7 +305,7 @@ PLOT_MODULES = ("camcam.plots.svaj", "camcam.plots.profile")
 #: medians of 5 alternated runs; a motion-only run pays them here instead of in the server).
 PLOT_INHERITS = ("camcam.motion.program", "camcam.geometry.build", "camcam.geometry.analysis")
 #: What the drawing's child imports while the NC step runs: ezdxf and the material check's scipy.spatial
-#: come with them (the STL is numpy's, the DXF's splines ezdxf's: no trimesh, no scipy.interpolate).
+#: and the DXF's scipy.interpolate come with them (the STL is numpy's: no trimesh).
 DRAWING_MODULES = ("camcam.export.nc", "camcam.verify.removal", "camcam.verify.job_checks", "scipy.spatial")
 #: The drawing's and material check's function (run in its child, on the pickled cam and program).
 DRAWING = "camcam.flow:drawing_and_check"

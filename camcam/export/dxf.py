@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import ezdxf
 import numpy as np
 from ezdxf import bbox, units
-from ezdxf.math import global_bspline_interpolation
+from scipy.interpolate import make_interp_spline
 
 from camcam.toolpath.elements import Arc, Line
 
@@ -68,21 +68,20 @@ class DxfDrawing:
 def spline_of_curve(curve, lo: float, hi: float, deviation_mm: float = 1e-4):
     """Cubic B-spline interpolating ``curve`` on [lo, hi]; more points until max |S(t) − P(t)| ≤ ``deviation_mm``.
 
-    The points are equally spaced in the curve's parameter t, and the spline is ezdxf's global interpolation
-    with the uniform parametrization (:func:`ezdxf.math.global_bspline_interpolation`: for degree 3 the
-    "natural" knots, the interior points but the second and the last but one, which is the not-a-knot
-    interpolant), on u = (t − lo) / (hi − lo) ∈ [0, 1].  The check samples 8 points per interval;
-    |S(t) − P(t)| bounds the distance both ways between the spline and the curve.  Returns (spline: an
-    :class:`ezdxf.math.BSpline` in u, deviation).
+    The check samples 8 points per interval; |S(t) − P(t)| bounds the distance
+    both ways between the spline and the curve.  Returns (spline, deviation).
+
+    scipy's interpolant solves its banded system in O(n): ezdxf's ``global_bspline_interpolation`` (tried for
+    issue 49, to spare the drawing's child scipy.interpolate's import, about 0.1 CPU s) builds the dense n × n
+    matrix as Python lists first, and a curve that needs 20 000 points (design-space case 43:57's profile)
+    took 23 GB and the run with it.
     """
     n = 17
     while True:
         t = np.linspace(lo, hi, n)
-        xy = curve.evaluate(t, 0)
-        spl = global_bspline_interpolation(np.column_stack([xy, np.zeros(n)]), degree=3, method="uniform")
+        spl = make_interp_spline(t, curve.evaluate(t, 0), k=3)
         tt = np.linspace(lo, hi, 8 * n)
-        on = np.array(list(spl.points((tt - lo) / (hi - lo))))[:, :2]
-        dev = float(np.hypot(*(on - curve.evaluate(tt, 0)).T).max())
+        dev = float(np.hypot(*(spl(tt) - curve.evaluate(tt, 0)).T).max())
         if dev <= deviation_mm or n > 20000:
             return spl, dev
         n = int(n * 1.8)
@@ -120,9 +119,7 @@ def _add_splines(msp, curve, layer, deviation_mm) -> tuple[float, int]:
     for lo, hi in zip(br, br[1:]):
         spl, dev = spline_of_curve(curve, lo, hi, deviation_mm)
         worst = max(worst, dev)
-        # the knots in the curve's own parameter t (u scaled back to [lo, hi]): the same spline
-        msp.add_open_spline([(p.x, p.y) for p in spl.control_points], degree=3,
-                            knots=[lo + (hi - lo) * k for k in spl.knots()], dxfattribs={"layer": layer})
+        msp.add_open_spline([tuple(p) for p in spl.c], degree=3, knots=list(spl.t), dxfattribs={"layer": layer})
         count += 1
     return worst, count
 
