@@ -68,7 +68,9 @@ def test_interrupt_before_anything_is_written(tmp_path, monkeypatch):
     ("motion", "camcam.spec.motion"),  # loaded inside the command
     ("motion", "matplotlib.figure"),   # loaded by the child process that draws the plot (camcam.workers)
     ("run", "shapely"),                # loaded inside the command, by the NC stage
-    ("run", "trimesh.path"),           # in the model child, swallowed by trimesh's own ``except BaseException``
+    # in the drawing's prepared child (a run imported trimesh.path there, whose own ``except BaseException``
+    # swallowed the signal, until issue 49 wrote the STL with numpy: no run imports trimesh now)
+    ("run", "ezdxf"),
 ])
 def test_ctrl_c_while_importing(tmp_path, command, module):
     """Ctrl-C while a module loads: one line, 130, nothing written — also when a library swallows it,
