@@ -337,7 +337,7 @@ def test_section_interval_from_angle_sums_is_the_plain_formula(seed, n, tilted, 
 def test_scattered_envelope_at_many_radii_is_each_alone_and_the_map(sample):
     """A scattered envelope of points each at its own radius (the refinement's radii in one call) against one
     call per point, and against the regular map at those angles."""
-    from camcam.verify.groove3d import _envelope
+    from camcam.verify.groove_envelope import envelope as _envelope
     from camcam.verify.groove_motion import ProgramMotion, RollerMotion
 
     cam = cam_of(sample)
