@@ -7,10 +7,19 @@
   distance to the nearest printed element (the element of its nearest path
   sample and that element's neighbours).
 
-Between samples a distance function can exceed the sampled maximum by at most
-h²/8 · max|g″| with |g″| ≤ max|κ_curve| + max|κ_path| (g is smooth where it is
-small); that bound is ``margin_mm`` and is added to the reported maximum, so
-``max_deviation_mm`` bounds the true two-sided (Hausdorff) deviation.
+Between two samples h apart a distance function g can exceed the larger of
+its two sampled values by at most h²/8 · max|g″| there, with |g″| ≤ |κ_curve| +
+|κ_path| near them (g is smooth where it is small).  The sample step h is set
+from the largest curvatures of either, so that bound is at most the caller's
+``margin_mm``; the bound is then taken interval by interval, from the printed
+element's own curvature and the curve's largest on the pilot grid about the
+interval's feet (one pilot step either side), and added to that interval's
+larger sample: ``max_deviation_mm`` is the largest such sum, and bounds the true
+two-sided (Hausdorff) deviation.  Taken over the whole curve instead, the bound
+let one sharp place (a flat-faced profile at its cusp limit, radius of
+curvature 0.004 mm, where the memory cap widens the step) add 3.9e-4 mm
+everywhere: campaign case 43:15's part outline, 0.004664 mm from the profile,
+measured 0.005058 mm, over its 0.0049 mm tolerance.
 """
 
 from __future__ import annotations
@@ -44,6 +53,43 @@ def _dense(curve: PlanarCurve, lo: float, hi: float, spacing: float, min_n: int 
     vmax = float(v.max())
     n = max(min_n, int(np.ceil((hi - lo) * vmax * 1.05 / spacing)) + 1)
     return np.linspace(lo, hi, n)
+
+
+class _PilotMax:
+    """The largest of ``values`` (the pilot grid's, n even parameters on [lo, hi]) about a parameter interval.
+
+    ``self(ta, tb)`` (arrays alike) is the largest value at the pilot points from one step below min(ta, tb) to
+    one step above max(ta, tb), by a sparse table (two lookups an interval).  An interval longer than half
+    of [lo, hi] (feet on either side of a closed curve's seam) takes the largest of all.
+
+    Examples
+    --------
+    >>> m = _PilotMax(np.array([0.0, 1.0, 5.0, 2.0, 0.0, 0.0, 0.0, 3.0]), 0.0, 7.0)
+    >>> m(np.array([4.2, 0.0, 6.5]), np.array([4.8, 0.0, 0.5])).tolist()
+    [2.0, 1.0, 5.0]
+    """
+
+    def __init__(self, values: np.ndarray, lo: float, hi: float):
+        v = np.asarray(values, float)
+        self.lo, self.step, self.n = lo, (hi - lo) / (len(v) - 1), len(v)
+        levels = [v]
+        w = 1
+        while 2 * w <= len(v):
+            prev = levels[-1]
+            levels.append(np.maximum(prev[:-w], prev[w:]))
+            w *= 2
+        self.table = np.full((len(levels), len(v)), -np.inf)
+        for k, row in enumerate(levels):
+            self.table[k, :len(row)] = row
+
+    def __call__(self, ta, tb) -> np.ndarray:
+        t0, t1 = np.minimum(ta, tb), np.maximum(ta, tb)
+        i = np.clip(np.floor((t0 - self.lo) / self.step).astype(np.intp) - 1, 0, self.n - 1)
+        j = np.clip(np.ceil((t1 - self.lo) / self.step).astype(np.intp) + 1, 0, self.n - 1)
+        wide = (t1 - t0) > 0.5 * self.step * (self.n - 1)
+        i, j = np.where(wide, 0, i), np.where(wide, self.n - 1, j)
+        k = np.floor(np.log2(j - i + 1)).astype(np.intp)
+        return np.maximum(self.table[k, i], self.table[k, j - (1 << k) + 1])
 
 
 def _nearest(points: np.ndarray, q: np.ndarray) -> np.ndarray:
@@ -142,12 +188,11 @@ def measure_deviation(curve: PlanarCurve, elements, lo: float | None = None, hi:
     kk = 1.05 * k_curve + k_path + 1e-12
     h = float(np.sqrt(8.0 * margin_mm / kk))
     total = sum(e.length for e in elements)
-    h = max(h, total / 400000.0)  # memory cap; the margin below is recomputed from the h used
-    margin = h * h / 8.0 * kk
+    h = max(h, total / 400000.0)  # memory cap; the bound below is taken with the h used
     # path -> curve
     pts, idx = element_points(elements, h)
     seeds = _dense(curve, lo, hi, h)
-    _, d_pc = closest_params(curve, pts, lo, hi, seeds)
+    t_pc, d_pc = closest_params(curve, pts, lo, hi, seeds)
     # curve -> path
     cp = curve.evaluate(seeds, 0)
     near = _nearest(pts, cp)
@@ -170,8 +215,25 @@ def measure_deviation(curve: PlanarCurve, elements, lo: float | None = None, hi:
         cuts = np.flatnonzero(np.diff(sorted_cand)) + 1
         for rows in (np.split(order, cuts) if len(order) else ()):
             d_cp[rows] = np.minimum(d_cp[rows], element_distance(elements[cand[rows[0]]], cp[rows]))
-    i_pc, i_cp = int(np.argmax(d_pc)), int(np.argmax(d_cp))
-    worst = pts[i_pc] if d_pc[i_pc] >= d_cp[i_cp] else cp[i_cp]
-    a, b = float(d_pc[i_pc]), float(d_cp[i_cp])
-    return Deviation(max_deviation_mm=max(a, b) + margin, path_to_curve_mm=a, curve_to_path_mm=b, margin_mm=margin,
+    # the between-sample bound interval by interval (module docstring)
+    k_el = np.array([max(1.0 / e.radius, 1.0 / e.end_radius) if isinstance(e, Arc) else 0.0 for e in elements])
+    k_curve_near = _PilotMax(np.abs(curvature(curve, pilot)), lo, hi)
+    same = idx[1:] == idx[:-1]  # consecutive samples of one element
+    step_el = np.array([e.length for e in elements]) / (np.bincount(idx, minlength=n_el) - 1)
+    m_pc = step_el[idx[:-1]] ** 2 / 8.0 * (k_el[idx[:-1]] + 1.05 * k_curve_near(t_pc[:-1], t_pc[1:]))
+    b_pc = np.where(same, np.maximum(d_pc[:-1], d_pc[1:]) + m_pc, -np.inf)
+    k_path_near = np.zeros(len(cp))
+    for off in range(-reach, reach + 1):
+        k_path_near = np.maximum(k_path_near, k_el[np.mod(eidx + off, n_el)])
+    m_cp = h * h / 8.0 * (1.05 * k_curve_near(seeds[:-1], seeds[1:]) + np.maximum(k_path_near[:-1], k_path_near[1:]))
+    b_cp = np.maximum(d_cp[:-1], d_cp[1:]) + m_cp
+    i_pc, i_cp = int(np.argmax(b_pc)), int(np.argmax(b_cp))
+    if b_pc[i_pc] >= b_cp[i_cp]:
+        j = i_pc if d_pc[i_pc] >= d_pc[i_pc + 1] else i_pc + 1
+        worst, bound, margin = pts[j], float(b_pc[i_pc]), float(m_pc[i_pc])
+    else:
+        j = i_cp if d_cp[i_cp] >= d_cp[i_cp + 1] else i_cp + 1
+        worst, bound, margin = cp[j], float(b_cp[i_cp]), float(m_cp[i_cp])
+    a, b = float(d_pc.max()), float(d_cp.max())
+    return Deviation(max_deviation_mm=bound, path_to_curve_mm=a, curve_to_path_mm=b, margin_mm=margin,
                      worst_point=(float(worst[0]), float(worst[1])))

@@ -102,7 +102,9 @@ def test_points_at_their_fixed_point_are_left_there_with_the_same_bits(seed, spa
 def test_measured_deviation_of_many_lines_is_the_recorded_one():
     """The curve-to-path side measures each curve point against its nearest path sample's element and that
     element's neighbours, grouped by element.  Regression against the figures of camcam at 1c7d3af (one
-    mask over all points per element): 600 chords of the ellipse, read to the bit."""
+    mask over all points per element): 600 chords of the ellipse, read to the bit.  The total with the
+    between-sample bound is the one taken interval by interval (issue 49's session, case 43:15): 9.44e-6 mm
+    where the curve is most curved near the worst interval, not the 1e-5 mm of its largest curvature anywhere."""
     E = ellipse()
     t = np.linspace(0.0, 2 * math.pi, 601)
     p = E.evaluate(t, 0) + 1e-4 * np.column_stack([np.sin(7 * t), np.cos(5 * t)])
@@ -112,4 +114,43 @@ def test_measured_deviation_of_many_lines_is_the_recorded_one():
 
 
 #: measure_deviation of the 600 chords above at 1c7d3af: (path → curve, curve → path, with the margin), mm.
-RECORDED_MANY_LINES = (0.0005034897772427819, 0.0005113244257237478, 0.0005213244257237478)
+RECORDED_MANY_LINES = (0.0005034897772427819, 0.0005113244257237478, 0.0005207644783140712)
+
+
+def thin_ellipse(a=400.0, b=1.0):
+    """x = a cos t, y = b sin t: radius of curvature b²/a = 0.0025 mm at its ends, a²/b = 160 m mid-side."""
+    from camcam.geometry.curve import FunctionCurve
+
+    def f(t, k):
+        c, s = np.cos(t), np.sin(t)
+        return np.stack([[a * c, b * s], [-a * s, b * c], [-a * c, -b * s], [a * s, -b * c]][k], axis=-1)
+
+    return FunctionCurve(f, 0.0, 2 * math.pi, closed=True)
+
+
+def test_one_sharp_place_does_not_inflate_the_bound_everywhere():
+    """Real failing data, campaign case 43:15 after its own advice (a flat-faced disc at its cusp limit, radius
+    of curvature 0.0066 mm at 206°): its part outline lay 0.004664 mm from the profile, but the bound between
+    samples, taken with the largest curvature anywhere and the memory cap's step, added 3.9e-4 mm everywhere
+    and the run said FAIL at 0.005058 mm over 0.0049.  Here a 1600 mm thin ellipse, radius 0.0025 mm at its
+    ends (the cap's step is 4 µm, where 0.4 µm would be needed there), and chords through points lifted off it
+    along its normal by 0.004·sin²t mm: exactly 0.004 mm off at the flat mid-sides (t = π/2, 3π/2, vertices
+    there: the offset of a flat curve), nothing at the sharp ends."""
+    E = thin_ellipse()
+    t = np.linspace(0.0, 2 * math.pi, 4001)
+    p, d1 = E.evaluate(t, 0), E.evaluate(t, 1)
+    normal = np.column_stack([d1[:, 1], -d1[:, 0]]) / np.hypot(d1[:, 0], d1[:, 1])[:, None]  # outward (ccw curve)
+    q = p + (0.004 * np.sin(t) ** 2)[:, None] * normal
+    q[-1] = q[0]
+    lines = [Line(tuple(a), tuple(b)) for a, b in zip(q[:-1], q[1:])]
+    d = measure_deviation(E, lines, margin_mm=1e-5)
+    # the vertex at t = π/2 is 0.004 mm off (to rounding); nothing is farther (the lift is at most that, and a
+    # chord across the flat side sags 1e-6 mm towards the curve at most)
+    assert abs(max(d.path_to_curve_mm, d.curve_to_path_mm) - 0.004) < 1e-9
+    # the bound adds what the flat side's curvature and the sample step allow there, not the ends' 8e-4 mm
+    assert d.margin_mm < 1e-7
+    assert 0.004 <= d.max_deviation_mm < 0.004 + 1e-7
+    # the bound still holds where the ends are sharp: ten times as many path points, each measured exactly
+    dense = np.concatenate([np.linspace(a, b, 40, endpoint=False) for a, b in zip(q[:-1], q[1:])])
+    _, exact = closest_params(E, dense, 0.0, 2 * math.pi)
+    assert exact.max() <= d.max_deviation_mm
