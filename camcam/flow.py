@@ -199,7 +199,7 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
 
         step_file = children.later(step_files, built, spec.name) if spec.report.step_file else None
         if spec.machining is not None:
-            # the drawing's child starts now, imports ezdxf and scipy.spatial (about half a second) and makes the
+            # the drawing's child starts now, imports ezdxf and scipy's k-d tree (about a third of a second) and makes the
             # mesh's STL beside the NC step; the program goes to it pickled once it is printed, and it writes the
             # drawing and runs the material check (drawing_and_check)
             drawings = Prepared(DRAWING_MODULES, first=[(model, (built, spec.name), {})], opens=gate)
@@ -304,9 +304,10 @@ PLOT_MODULES = ("camcam.plots.svaj", "camcam.plots.profile")
 #: server is forked, it inherits them instead of importing them again (0.02-0.03 CPU s of its preload,
 #: medians of 5 alternated runs; a motion-only run pays them here instead of in the server).
 PLOT_INHERITS = ("camcam.motion.program", "camcam.geometry.build", "camcam.geometry.analysis")
-#: What the drawing's child imports while the NC step runs: ezdxf and the material check's scipy.spatial
-#: and the DXF's scipy.interpolate come with them (the STL is numpy's: no trimesh).
-DRAWING_MODULES = ("camcam.export.nc", "camcam.verify.removal", "camcam.verify.job_checks", "scipy.spatial")
+#: What the drawing's child imports while the NC step runs: ezdxf comes with them, and the material check's
+#: k-d tree is scipy's loaded alone (camcam.verify.kdtree); the STL is numpy's (no trimesh) and the DXF's
+#: splines too (camcam.export.dxf.HermiteSpline): the child imports no more of scipy.
+DRAWING_MODULES = ("camcam.export.nc", "camcam.verify.removal", "camcam.verify.job_checks", "camcam.verify.kdtree")
 #: The drawing's and material check's function (run in its child, on the pickled cam and program).
 DRAWING = "camcam.flow:drawing_and_check"
 

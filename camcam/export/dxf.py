@@ -2,8 +2,8 @@
 
 Layers: ``CONTOUR`` (or the caller's ``contour_layer``) holds the fitted
 lines and arcs exactly as machined (the printed numbers), ``EXACT`` the exact
-curve as cubic SPLINEs (one per analytic piece, interpolating the curve; their
-measured deviation is returned and written as a text), plus any extra layers
+curve as cubic SPLINEs (one per analytic piece, the cubic Hermite interpolant of the
+curve's points and exact tangents; their measured deviation is returned and written as a text), plus any extra layers
 the caller supplies (part outline, pitch curve, base circle, bore, roller
 circles, angle-zero mark, title block).  Every layer gets its own colour
 (:data:`LAYER_COLOURS`, in the order the layers are made) and the header's
@@ -19,11 +19,10 @@ from dataclasses import dataclass
 import ezdxf
 import numpy as np
 from ezdxf import bbox, units
-from scipy.interpolate import make_interp_spline
 
 from camcam.toolpath.elements import Arc, Line
 
-__all__ = ["Polyline", "Circle", "Text", "ExactCurve", "DxfDrawing", "contour_dxf", "spline_of_curve", "LAYER_COLOURS"]
+__all__ = ["Polyline", "Circle", "Text", "ExactCurve", "DxfDrawing", "contour_dxf", "HermiteSpline", "spline_of_curve", "LAYER_COLOURS"]
 
 #: AutoCAD colour indices given to the layers in the order they are made (red, green, blue, magenta,
 #: cyan, yellow, then darker shades); all distinct and visible on a white or a black background.
@@ -65,23 +64,83 @@ class DxfDrawing:
     entities: int
 
 
-def spline_of_curve(curve, lo: float, hi: float, deviation_mm: float = 1e-4):
-    """Cubic B-spline interpolating ``curve`` on [lo, hi]; more points until max |S(t) − P(t)| ≤ ``deviation_mm``.
+@dataclass(frozen=True, eq=False)
+class HermiteSpline:
+    """The cubic spline through ``points_at_nodes`` (m + 1, 2) with the tangents ``tangents`` (m + 1, 2) there, at
+    the increasing parameters ``nodes`` (m + 1,): each interval's cubic is the Hermite one, and the spline is C1.
 
-    The check samples 8 points per interval; |S(t) − P(t)| bounds the distance
-    both ways between the spline and the curve.  Returns (spline, deviation).
+    As a B-spline (what a DXF SPLINE holds): ``knots`` (2m + 6,) are the ends four times and each interior node
+    twice; ``control_points`` (2m + 2, 2) are each interval's inner Bézier points P + h/3·P′ and P − h/3·P′ (h its
+    length), between the first and the last point.  An interior node's point is where the B-spline's two
+    control points either side of it meet in the ratio of the intervals, so it is not stored.
 
-    scipy's interpolant solves its banded system in O(n): ezdxf's ``global_bspline_interpolation`` (tried for
-    issue 49, to spare the drawing's child scipy.interpolate's import, about 0.1 CPU s) builds the dense n × n
-    matrix as Python lists first, and a curve that needs 20 000 points (design-space case 43:57's profile)
+    Examples
+    --------
+    The parabola (t, t²) is a cubic: two intervals reproduce it exactly.
+
+    >>> t = np.array([0.0, 0.5, 1.0])
+    >>> s = HermiteSpline(t, np.stack([t, t * t], -1), np.stack([np.ones(3), 2 * t], -1))
+    >>> s.knots.tolist()
+    [0.0, 0.0, 0.0, 0.0, 0.5, 0.5, 1.0, 1.0, 1.0, 1.0]
+    >>> s.control_points.round(6).tolist()
+    [[0.0, 0.0], [0.166667, 0.0], [0.333333, 0.083333], [0.666667, 0.416667], [0.833333, 0.666667], [1.0, 1.0]]
+    >>> s.points(np.array([0.25, 0.8])).round(12).tolist()
+    [[0.25, 0.0625], [0.8, 0.64]]
+    """
+
+    nodes: np.ndarray
+    points_at_nodes: np.ndarray
+    tangents: np.ndarray
+
+    @property
+    def knots(self) -> np.ndarray:
+        t = self.nodes
+        return np.concatenate([np.full(4, t[0]), np.repeat(t[1:-1], 2), np.full(4, t[-1])])
+
+    @property
+    def control_points(self) -> np.ndarray:
+        P, D = self.points_at_nodes, self.tangents
+        h = np.diff(self.nodes)[:, None]
+        inner = np.stack([P[:-1] + h / 3 * D[:-1], P[1:] - h / 3 * D[1:]], 1).reshape(-1, 2)
+        return np.concatenate([P[:1], inner, P[-1:]])
+
+    def points(self, t) -> np.ndarray:
+        """The spline at the parameters ``t`` (k,) within the nodes, (k, 2): each interval's Bézier form."""
+        t = np.asarray(t, float)
+        nodes = self.nodes
+        i = np.clip(np.searchsorted(nodes, t, side="right") - 1, 0, len(nodes) - 2)
+        h = (nodes[i + 1] - nodes[i])[:, None]
+        u = (t - nodes[i])[:, None] / h
+        P0, P3 = self.points_at_nodes[i], self.points_at_nodes[i + 1]
+        P1, P2 = P0 + h / 3 * self.tangents[i], P3 - h / 3 * self.tangents[i + 1]
+        v = 1.0 - u
+        return v ** 3 * P0 + 3 * u * v * v * P1 + 3 * u * u * v * P2 + u ** 3 * P3
+
+
+def spline_of_curve(curve, lo: float, hi: float, deviation_mm: float = 1e-4) -> tuple[HermiteSpline, float]:
+    """The cubic Hermite spline of ``curve`` on [lo, hi] at even nodes; more nodes until max |S(t) − P(t)| ≤
+    ``deviation_mm``.
+
+    The curve's own points and exact tangents (``curve.evaluate(t, 1)``) fix each interval's cubic, so no
+    system is solved and numpy alone makes it: the drawing's child imports no scipy.interpolate (with
+    :mod:`camcam.verify.kdtree`, 0.27 CPU s a run, issue 49).  Its error bound, h⁴/384 · max |P⁗| an interval h,
+    is a fifth of the C2 not-a-knot interpolant's through as many points (5h⁴/384 · max |P⁗|, de Boor), which it
+    replaces.  The check samples 8 points per interval; |S(t) − P(t)| bounds the distance both ways between
+    the spline and the curve.  Memory is O(nodes): ezdxf's ``global_bspline_interpolation``, tried for issue
+    49, built a dense n × n matrix, and a curve that needs 20 000 points (design-space case 43:57's profile)
     took 23 GB and the run with it.
+
+    Returns
+    -------
+    (HermiteSpline, float)
+        The spline and its largest sampled deviation (mm).
     """
     n = 17
     while True:
         t = np.linspace(lo, hi, n)
-        spl = make_interp_spline(t, curve.evaluate(t, 0), k=3)
+        spl = HermiteSpline(t, curve.evaluate(t, 0), curve.evaluate(t, 1))
         tt = np.linspace(lo, hi, 8 * n)
-        dev = float(np.hypot(*(spl(tt) - curve.evaluate(tt, 0)).T).max())
+        dev = float(np.hypot(*(spl.points(tt) - curve.evaluate(tt, 0)).T).max())
         if dev <= deviation_mm or n > 20000:
             return spl, dev
         n = int(n * 1.8)
@@ -119,7 +178,8 @@ def _add_splines(msp, curve, layer, deviation_mm) -> tuple[float, int]:
     for lo, hi in zip(br, br[1:]):
         spl, dev = spline_of_curve(curve, lo, hi, deviation_mm)
         worst = max(worst, dev)
-        msp.add_open_spline([tuple(p) for p in spl.c], degree=3, knots=list(spl.t), dxfattribs={"layer": layer})
+        msp.add_open_spline([tuple(p) for p in spl.control_points.tolist()], degree=3, knots=spl.knots.tolist(),
+                            dxfattribs={"layer": layer})
         count += 1
     return worst, count
 

@@ -42,7 +42,7 @@ def test_dxf_reads_back_and_audits_clean(tmp_path):
 
 
 def test_exact_splines_follow_the_curve_in_its_own_parameter():
-    """Each EXACT spline read back from the file, evaluated by ezdxf's B-spline (not scipy's, which made it), at
+    """Each EXACT spline read back from the file, evaluated by ezdxf's B-spline (not camcam's Bézier form, which made it), at
     the exact curve's parameter t (its knots run over the piece's [lo, hi]) lies within the stated deviation of
     the curve there, at 20 points per knot interval."""
     from ezdxf.math import BSpline
@@ -68,7 +68,7 @@ def test_exact_splines_follow_the_curve_in_its_own_parameter():
 def test_a_curve_that_needs_twenty_thousand_points_is_drawn_in_bounded_memory():
     """Real failing data, design-space case 43:57 (tests/cli/test_small_wrongs.py): a profile piece that needs over
     20 000 spline points.  ezdxf's global interpolation, tried for issue 49, built the dense n × n matrix as Python
-    lists (23 GB, the run killed); scipy's banded interpolant needs O(n).  Run in a child limited to 2 GB of
+    lists (23 GB, the run killed); the Hermite spline camcam draws needs O(n).  Run in a child limited to 2 GB of
     address space, where the dense one fails at once with MemoryError."""
     import subprocess
     import sys
@@ -83,7 +83,7 @@ def test_a_curve_that_needs_twenty_thousand_points_is_drawn_in_bounded_memory():
         "    return np.stack([[t, 0.5 * np.sign(t)], [np.ones_like(t), 0 * t]][k], -1)\n"
         "C = FunctionCurve(step, -1.0, 1.0)\n"
         "spl, dev = spline_of_curve(C, -1.0, 1.0)\n"
-        "print(len(spl.c), dev)\n"
+        "print(len(spl.control_points), dev)\n"
     )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr[-800:]
