@@ -72,6 +72,11 @@ class IncrementalLp:
     simplex : bool
         The dual simplex (linprog's ``highs-ds``), or HiGHS's own choice of
         solver (linprog's ``highs``).
+    presolve : bool
+        HiGHS's presolve before each solve (its default).
+    devex : bool
+        Devex pricing in the dual simplex instead of HiGHS's choice (dual steepest edge): cheaper
+        iterations, usually more of them.
 
     Examples
     --------
@@ -84,16 +89,19 @@ class IncrementalLp:
     """
 
     def __init__(self, c, lower, upper, *, primal_tolerance: float | None = None,
-                 dual_tolerance: float | None = None, simplex: bool = True) -> None:
+                 dual_tolerance: float | None = None, simplex: bool = True, presolve: bool = True,
+                 devex: bool = False) -> None:
         c = np.ascontiguousarray(c, dtype=float)
         # the binding's core class, as scipy's own HiGHS wrapper uses it: the public ``highspy.Highs`` writes
         # HiGHS's banner to the process's standard output (C level) when it is made, before any option can be set
         h = _Highs()
         h.setOptionValue("output_flag", False)
-        h.setOptionValue("presolve", "on")
+        h.setOptionValue("presolve", "on" if presolve else "off")
         if simplex:
             h.setOptionValue("solver", "simplex")
             h.setOptionValue("simplex_strategy", 1)  # dual
+        if devex:
+            h.setOptionValue("simplex_dual_edge_weight_strategy", 1)
         if primal_tolerance is not None:
             h.setOptionValue("primal_feasibility_tolerance", float(primal_tolerance))
         if dual_tolerance is not None:
