@@ -1,6 +1,6 @@
 """Wall time and CPU seconds of `camcam run` on this tree against an earlier commit, the two alternated.
 
-    PYTHONPATH=. python benchmarks/ab.py REV [--repeat 6] [--no-step] [SAMPLE ...]
+    PYTHONPATH=. python benchmarks/ab.py REV [--repeat 6] [--no-step] [--floor] [SAMPLE ...]
 
 `benchmarks/speed.py` gives ratios to the import floor from one run; on a shared
 machine those move by ±15 % from one run to the next (the floor itself was 2.38,
@@ -12,7 +12,8 @@ this tree's interpreter and libraries; each tree's bytecode is compiled first
 (as in speed.py).  A SAMPLE written NAME@TOL runs at ``tolerance = TOL`` mm
 (speed.py's copy of the spec); ``--no-step`` runs every spec with ``[report] step_file = false`` (speed.py's
 copy).  CPU seconds are user + system of the run and every process it forked (the children's rusage), the
-figure issue 49 judges on a shared machine.  SAMPLE defaults to the default disc, disc-groove and
+figure issue 49 judges on a shared machine; ``--floor`` times the import floor (speed.py's) before each pair
+too and prints each tree's CPU over the floor's of its round, the median of the rounds.  SAMPLE defaults to the default disc, disc-groove and
 cylindrical-translating-small-tool.  No test asserts any of these figures.
 """
 
@@ -29,7 +30,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))
-from speed import fine_spec, no_step_spec  # noqa: E402  (a script beside this one)
+from speed import FLOOR, fine_spec, no_step_spec  # noqa: E402  (a script beside this one)
 SAMPLES = ("disc-translating-roller", "disc-groove", "cylindrical-translating-small-tool")
 
 
@@ -54,6 +55,7 @@ def main() -> int:
     ap.add_argument("samples", nargs="*", default=list(SAMPLES), help="sample names under samples/, NAME@TOL at tolerance TOL mm")
     ap.add_argument("--repeat", type=int, default=6, help="runs per tree and sample (default 6)")
     ap.add_argument("--no-step", action="store_true", help="run every spec with [report] step_file = false")
+    ap.add_argument("--floor", action="store_true", help="time the import floor before each pair; print CPU over it")
     args = ap.parse_intermixed_args()
     rev = subprocess.run(["git", "rev-parse", "--short", args.rev], capture_output=True, text=True, cwd=ROOT,
                          check=True).stdout.strip()
@@ -79,7 +81,14 @@ def main() -> int:
                     spec = no_step_spec(spec, Path(tmp))
                 walls: dict[Path, list[float]] = {old: [], ROOT: []}
                 cpus: dict[Path, list[float]] = {old: [], ROOT: []}
+                floors: list[float] = []
                 for _ in range(args.repeat):
+                    if args.floor:
+                        before = os.times()
+                        subprocess.run([sys.executable, "-c", FLOOR], capture_output=True, check=True)
+                        after = os.times()
+                        floors.append(after.children_user - before.children_user + after.children_system
+                                      - before.children_system)
                     for tree in (old, ROOT):
                         wall, cpu = _timed(tree, spec, Path(tmp) / "out")
                         walls[tree].append(wall)
@@ -90,6 +99,11 @@ def main() -> int:
                     fmt = lambda xs: " ".join(f"{x:.2f}" for x in sorted(xs))  # noqa: E731
                     cells.append(f"{fmt(times[old])} | {fmt(times[ROOT])} | {a:.2f} | {b:.2f} | {100 * (b / a - 1):+.0f} %")
                 print(f"| {name}{' (no STEP)' if args.no_step else ''} | {' | '.join(cells)} |", flush=True)
+                if floors:
+                    ratio = {t: statistics.median(c / f for c, f in zip(cpus[t], floors)) for t in (old, ROOT)}
+                    print(f"\nimport floor {statistics.median(floors):.2f} CPU s (median of {len(floors)}); CPU over "
+                          f"the floor of its round, median: {rev} {ratio[old]:.2f} x, now {ratio[ROOT]:.2f} x\n",
+                          flush=True)
         finally:
             subprocess.run(["git", "worktree", "remove", "--force", str(old)], capture_output=True, cwd=ROOT)
     return 0
