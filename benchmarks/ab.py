@@ -30,23 +30,14 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "benchmarks"))
-from speed import FLOOR, fine_spec, no_step_spec  # noqa: E402  (a script beside this one)
+from speed import FLOOR, fine_spec, no_step_spec, timed  # noqa: E402  (a script beside this one)
 SAMPLES = ("disc-translating-roller", "disc-groove", "cylindrical-translating-small-tool")
 
 
 def _timed(tree: Path, spec: Path, out: Path) -> tuple[float, float]:
     """Wall and CPU seconds of one `camcam run` with ``tree``'s camcam (run from that folder: it comes first on
-    sys.path); CPU is user + system of the run and all its children."""
-    before = os.times()
-    t0 = time.perf_counter()
-    r = subprocess.run([sys.executable, "-m", "camcam", "run", str(spec), "-o", str(out), "--force"],
-                       capture_output=True, text=True, cwd=tree)
-    wall = time.perf_counter() - t0
-    after = os.times()
-    cpu = (after.children_user - before.children_user) + (after.children_system - before.children_system)
-    if r.returncode not in (0, 3):
-        raise SystemExit(f"{tree}: camcam run {spec.name} failed ({r.returncode}): {r.stderr.strip()[-300:]}")
-    return wall, cpu
+    sys.path); CPU is user + system of the run and all its children (speed.py's :func:`timed`)."""
+    return timed([sys.executable, "-m", "camcam", "run", str(spec), "-o", str(out), "--force"], dict(os.environ), tree)
 
 
 def main() -> int:
@@ -84,11 +75,7 @@ def main() -> int:
                 floors: list[float] = []
                 for _ in range(args.repeat):
                     if args.floor:
-                        before = os.times()
-                        subprocess.run([sys.executable, "-c", FLOOR], capture_output=True, check=True)
-                        after = os.times()
-                        floors.append(after.children_user - before.children_user + after.children_system
-                                      - before.children_system)
+                        floors.append(timed([sys.executable, "-c", FLOOR], dict(os.environ))[1])
                     for tree in (old, ROOT):
                         wall, cpu = _timed(tree, spec, Path(tmp) / "out")
                         walls[tree].append(wall)

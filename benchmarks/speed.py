@@ -67,11 +67,11 @@ RUN_LIMITS = {"disc": 1.7, "cylindrical": 2.5}
 FINE_TOLERANCE_MM = 0.001
 
 
-def timed(argv: list[str], env: dict) -> tuple[float, float]:
-    """(wall s, CPU s) of one whole process; raises if it fails."""
+def timed(argv: list[str], env: dict, cwd: Path = ROOT) -> tuple[float, float]:
+    """(wall s, CPU s) of one whole process run in ``cwd``; raises if it fails."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    r = subprocess.run(argv, capture_output=True, text=True, env=env, cwd=ROOT)
+    r = subprocess.run(argv, capture_output=True, text=True, env=env, cwd=cwd)
     wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     if r.returncode not in (0, 3):  # 3: written but out of tolerance (the run still did all its work)

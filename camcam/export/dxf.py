@@ -97,22 +97,26 @@ class HermiteSpline:
         t = self.nodes
         return np.concatenate([np.full(4, t[0]), np.repeat(t[1:-1], 2), np.full(4, t[-1])])
 
-    @property
-    def control_points(self) -> np.ndarray:
+    def inner_points(self) -> np.ndarray:
+        """Each interval's inner Bézier points P + h/3·P′ at its start and P − h/3·P′ at its end, (m, 2, 2)."""
         P, D = self.points_at_nodes, self.tangents
         h = np.diff(self.nodes)[:, None]
-        inner = np.stack([P[:-1] + h / 3 * D[:-1], P[1:] - h / 3 * D[1:]], 1).reshape(-1, 2)
-        return np.concatenate([P[:1], inner, P[-1:]])
+        return np.stack([P[:-1] + h / 3 * D[:-1], P[1:] - h / 3 * D[1:]], 1)
+
+    @property
+    def control_points(self) -> np.ndarray:
+        P = self.points_at_nodes
+        return np.concatenate([P[:1], self.inner_points().reshape(-1, 2), P[-1:]])
 
     def points(self, t) -> np.ndarray:
         """The spline at the parameters ``t`` (k,) within the nodes, (k, 2): each interval's Bézier form."""
         t = np.asarray(t, float)
         nodes = self.nodes
         i = np.clip(np.searchsorted(nodes, t, side="right") - 1, 0, len(nodes) - 2)
-        h = (nodes[i + 1] - nodes[i])[:, None]
-        u = (t - nodes[i])[:, None] / h
+        u = (t - nodes[i])[:, None] / (nodes[i + 1] - nodes[i])[:, None]
         P0, P3 = self.points_at_nodes[i], self.points_at_nodes[i + 1]
-        P1, P2 = P0 + h / 3 * self.tangents[i], P3 - h / 3 * self.tangents[i + 1]
+        inner = self.inner_points()
+        P1, P2 = inner[i, 0], inner[i, 1]
         v = 1.0 - u
         return v ** 3 * P0 + 3 * u * v * v * P1 + 3 * u * u * v * P2 + u ** 3 * P3
 
