@@ -72,14 +72,17 @@ def split_arc(arc: Arc, parts: int) -> tuple[Arc, ...]:
 def parts_within(arc: Arc, quantizer: Quantizer, max_sweep_deg: float) -> tuple[Arc, ...]:
     """``arc`` itself if it prints within ``max_sweep_deg``, else the fewest equal parts that each do.
 
-    The count starts from the exact sweep over the limit and grows until every
+    The count starts one below the exact sweep over the limit and grows until every
     printed part is within it (one more part is enough but for arcs of a few
-    grid steps' radius, where rounding turns angles by whole degrees).
+    grid steps' radius, where rounding turns angles by whole degrees).  It starts
+    one below because rounding may also turn the other way: a 271° arc of radius
+    0.25 mm on a 0.01 mm grid prints within 90° in three parts of 90.33° (found by
+    hypothesis, ``tests/toolpath/test_arcsweep.py``).
     """
     limit = math.radians(max_sweep_deg)
     if printed_sweep_rad(arc, quantizer) <= limit:
         return (arc,)
-    parts = max(2, math.ceil(arc.sweep / limit))
+    parts = max(2, math.ceil(arc.sweep / limit) - 1)
     while True:
         split = split_arc(arc, parts)
         if all(printed_sweep_rad(p, quantizer) <= limit for p in split):

@@ -35,6 +35,9 @@ def _arc(cx, cy, r, a0_deg, sweep_deg, ccw):
 # found by hypothesis (2026-12-07): a 1° arc of radius 0.25 mm on a 0.01 mm grid prints its two ends 0.01 mm apart at
 # the same angle about the printed centre, which no split can mend; such a chord is no arc block (skipped below)
 @example(cx=0.625, cy=0.0, r=0.25, a0=0.0, sweep=1.0, ccw=False, decimals=2, fmt="ij_incremental", limit=90.0)
+# found by hypothesis (2026-12-07, the suite beside two busy loops): 271° of radius 0.25 mm on a 0.01 mm grid prints
+# within 90° in three parts of 90.33°, where the count began at four (the exact sweep over the limit)
+@example(cx=0.0, cy=0.0, r=0.25, a0=0.0, sweep=271.0, ccw=False, decimals=2, fmt="ij_incremental", limit=90.0)
 def test_every_part_prints_within_the_limit_and_lies_on_the_arc(cx, cy, r, a0, sweep, ccw, decimals, fmt, limit):
     """Whatever the arc, radius and grid: each part's printed sweep is within the limit (judged by the same function
     the post's writer checks with), the parts join end to end from the arc's start to its end, and every joint is
