@@ -127,24 +127,34 @@ class DiscCam(CamBasics):
     def _normal_jets(self, theta, K, piece=None):
         """Cam-frame unit normal away from the material, order K."""
         if self.is_roller:
-            x, y = self._pitch_jets(theta, K + 1, piece)
-            tx, ty = x.derivative(), y.derivative()
-            v = hypot(tx, ty)
-            return (-ty) * self.sigma / v, tx * self.sigma / v
+            return self._roller_normal(*self._pitch_jets(theta, K + 1, piece))
         e = self.element(theta, K, piece)
         return self._to_cam(theta, e.nx, e.ny)
 
+    def _roller_normal(self, x: Jet, y: Jet) -> tuple[Jet, Jet]:
+        """The unit normal (order K − 1) of the pitch curve given as jets of order K."""
+        tx, ty = x.derivative(), y.derivative()
+        v = hypot(tx, ty)
+        return (-ty) * self.sigma / v, tx * self.sigma / v
+
     def _offset_jets(self, theta, K, piece=None, *, distance):
+        # The curve and its normal from one evaluation of the follower: every row of a jet is independent of
+        # the order it is carried to, so the pitch curve of order K + 1 cut to K is the pitch curve of order K
+        # (bit for bit), and the flat face's point and normal come from the same element.
         if self.is_roller:
-            x, y = self._pitch_jets(theta, K, piece)
             d = distance - self.roller_radius
+            if d == 0.0:
+                return self._pitch_jets(theta, K, piece)
+            x, y = self._pitch_jets(theta, K + 1, piece)
+            nx, ny = self._roller_normal(x, y)
+            x, y = x.truncate(K), y.truncate(K)
         else:
             e = self.element(theta, K, piece)
             x, y = self._to_cam(theta, e.x, e.y)
             d = distance
-        if d == 0.0:
-            return x, y
-        nx, ny = self._normal_jets(theta, K, piece)
+            if d == 0.0:
+                return x, y
+            nx, ny = self._to_cam(theta, e.nx, e.ny)
         return x + nx * d, y + ny * d
 
     @property

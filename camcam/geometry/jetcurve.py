@@ -49,7 +49,7 @@ class LiftJet:
         else:
             seg = self.program.segments[piece]
             T = (np.degrees(theta) - seg.start_deg) / (seg.end_deg - seg.start_deg)
-            rows = [seg.derivative(T, k) + (seg.base if k == 0 else 0.0) for k in range(K + 1)]
+            rows = seg.lifts(T, range(K + 1))
         rows[0] = rows[0] - self.shift
         return Jet(np.array(rows) * self.scale)
 

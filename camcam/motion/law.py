@@ -104,6 +104,10 @@ class MotionLaw(ABC):
         it judges its joins itself.
         """
 
+    def evaluate_orders(self, T, orders) -> list[np.ndarray]:
+        """:meth:`evaluate` of each of ``orders`` at T, the same values (a law may share work between them)."""
+        return [self.evaluate(T, k) for k in orders]
+
     def svaj(self, T) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """S, V, A, J at T."""
         return tuple(self.evaluate(T, k) for k in range(4))  # type: ignore[return-value]
@@ -190,18 +194,30 @@ class PiecewiseLaw(MotionLaw):
     def evaluate(self, T, order: int = 0) -> np.ndarray:
         if not 0 <= order <= 4:
             raise ValueError(f"order must be 0..4, got {order!r}")
+        return self.evaluate_orders(T, (order,))[0]
+
+    def evaluate_orders(self, T, orders) -> list[np.ndarray]:
+        """:meth:`evaluate` of each of ``orders`` at T: the pieces located, and the sinusoid's sine and
+        cosine taken, once for all of them (the same values, bit for bit, as one order at a time)."""
+        if not all(0 <= k <= 4 for k in orders):
+            raise ValueError(f"order must be 0..4, got {tuple(orders)!r}")
         T = check_T(T)
         idx = self._index(T)
         u = T - np.asarray(self.breaks)[idx]
-        coef, a, b, w = self._tables[order]
-        c = coef[idx]  # all pieces at once: a table with hundreds of pieces costs one gather
-        out = c[..., -1]
-        for j in range(coef.shape[1] - 2, -1, -1):
-            out = out * u + c[..., j]
-        if w.any():
-            wu = w[idx] * u
-            out = out + a[idx] * np.sin(wu) + b[idx] * np.cos(wu)
-        return out
+        outs, trig = [], None  # trig: (ω table, sin ωu, cos ωu) of the last order that had a sinusoid
+        for order in orders:
+            coef, a, b, w = self._tables[order]
+            c = coef[idx]  # all pieces at once: a table with hundreds of pieces costs one gather
+            out = c[..., -1]
+            for j in range(coef.shape[1] - 2, -1, -1):
+                out = out * u + c[..., j]
+            if w.any():
+                if trig is None or not np.array_equal(trig[0], w):
+                    wu = w[idx] * u
+                    trig = (w, np.sin(wu), np.cos(wu))
+                out = out + a[idx] * trig[1] + b[idx] * trig[2]
+            outs.append(out)
+        return outs
 
     def one_sided(self, order: int, rest_ends: bool) -> tuple[np.ndarray, np.ndarray]:
         """Values of derivative ``order`` just left and just right of every break.

@@ -53,6 +53,12 @@ class Segment:
         """d^order s / dθ^order at T, per radian of cam angle."""
         return self.scale * self.law.evaluate(T, order) / self.span_rad**order
 
+    def lifts(self, T, orders) -> list[np.ndarray]:
+        """s (with ``base``) and its derivatives of each of ``orders`` at T: :meth:`derivative`, the law
+        evaluated once for all orders."""
+        rows = self.law.evaluate_orders(T, orders)
+        return [self.scale * r / self.span_rad**k + (self.base if k == 0 else 0.0) for r, k in zip(rows, orders)]
+
     @property
     def end_lift(self) -> float:
         return self.base + self.scale * float(self.law.evaluate(1.0))
@@ -160,9 +166,8 @@ class MotionProgram:
         out = np.empty((len(orders), T.size))
         for i in np.unique(idx):
             m = idx == i
-            seg, Tm = self.segments[i], T[m]
-            for row, k in zip(out, orders):
-                row[m] = seg.derivative(Tm, k) + (seg.base if k == 0 else 0.0)
+            for row, values in zip(out, self.segments[i].lifts(T[m], orders)):
+                row[m] = values
         return out.reshape((len(orders),) + shape)
 
     def to_physical(self, value, order: int):

@@ -172,3 +172,23 @@ def test_property_offsets_are_exact(rb, rr, e, d, rot):
     Q, O = cam.profile.evaluate(t), cam.offset_profile(d).evaluate(t)
     assert np.abs(np.hypot(*(O - Q).T) - abs(d)).max() < 1e-9  # exact offset, rounding only
     assert np.all(np.einsum("ij,ij->i", O - Q, cam.normal(t)) * d >= -1e-12)  # positive d = outside
+
+
+@pytest.mark.parametrize("cam", cams(), ids=lambda c: f"{c.kind}-{c.rotation}")
+def test_offset_jets_from_one_evaluation_are_the_separate_ones(cam):
+    # The offset curve takes the point and the normal from one evaluation of the follower (the pitch curve
+    # carried one order further for a roller); every row of a jet is independent of its order, so the result
+    # is the point of order K plus d times the normal of order K evaluated apart, exactly
+    t = np.linspace(0.0, 2 * math.pi, 203)
+    for K in (0, 2, 3):
+        for d in (0.0, 3.0, -2.5):
+            if cam.is_roller:
+                x, y = cam._pitch_jets(t, K)
+                d_pitch = d - cam.roller_radius
+            else:
+                e = cam.element(t, K)
+                x, y = cam._to_cam(t, e.x, e.y)
+                d_pitch = d
+            nx, ny = cam._normal_jets(t, K)
+            ox, oy = cam.offset_profile(d).jets(t, K)
+            assert np.array_equal(ox.d, (x + nx * d_pitch).d) and np.array_equal(oy.d, (y + ny * d_pitch).d)
