@@ -108,6 +108,12 @@ class MotionLaw(ABC):
         """:meth:`evaluate` of each of ``orders`` at T, the same values (a law may share work between them)."""
         return [self.evaluate(T, k) for k in orders]
 
+    def as_piecewise(self) -> "PiecewiseLaw | None":
+        """The law as :class:`TrigPoly` pieces (itself or the pieces it evaluates with), or None when it is
+        made otherwise: a program of piecewise laws evaluates them from one table
+        (:mod:`camcam.motion.piece_table`)."""
+        return None
+
     def svaj(self, T) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """S, V, A, J at T."""
         return tuple(self.evaluate(T, k) for k in range(4))  # type: ignore[return-value]
@@ -186,6 +192,15 @@ class PiecewiseLaw(MotionLaw):
         derivs = tuple(derivs)
         object.__setattr__(self, "_derivs", derivs)
         object.__setattr__(self, "_tables", tuple(_coefficient_table(fs) for fs in derivs))
+
+    @property
+    def tables(self) -> tuple:
+        """Per derivative order 0…4 the pieces' padded polynomial coefficients (pieces, degree + 1) and
+        sinusoid a, b, ω (pieces,): what :meth:`evaluate` computes with."""
+        return self._tables
+
+    def as_piecewise(self) -> "PiecewiseLaw":
+        return self
 
     def _index(self, T: np.ndarray) -> np.ndarray:
         idx = np.searchsorted(self.breaks, T, side="right") - 1

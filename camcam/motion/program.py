@@ -20,6 +20,7 @@ import numpy as np
 
 from camcam.errors import MotionError
 from camcam.motion.law import JUMP_ATOL, MotionLaw
+from camcam.motion.piece_table import PieceTable
 
 __all__ = ["Segment", "Join", "ProgramExtreme", "MotionProgram", "PHYSICAL_UNITS"]
 
@@ -119,6 +120,7 @@ class MotionProgram:
     unit: str = "mm"
     _starts: np.ndarray = field(init=False, repr=False, compare=False)
     _ends: np.ndarray = field(init=False, repr=False, compare=False)
+    _table: PieceTable | None = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if self.unit not in PHYSICAL_UNITS:
@@ -133,6 +135,7 @@ class MotionProgram:
                 raise MotionError(f"segment at {seg.start_deg:g}° does not start where the previous ends ({prev.end_deg:g}°)")
         object.__setattr__(self, "_starts", np.array([s.start_deg for s in self.segments]))
         object.__setattr__(self, "_ends", np.array([s.end_deg for s in self.segments]))
+        object.__setattr__(self, "_table", PieceTable.of(self.segments))
 
     # -- evaluation ---------------------------------------------------------
     @property
@@ -142,7 +145,9 @@ class MotionProgram:
 
     def locate(self, theta_rad) -> tuple[np.ndarray, np.ndarray]:
         """(segment index, T) for cam angles in radians (any real value, taken mod 2π)."""
-        deg = np.mod(np.degrees(np.asarray(theta_rad, dtype=float)), 360.0)
+        deg = np.degrees(np.asarray(theta_rad, dtype=float))
+        if not (deg.size and 0.0 <= deg.min() and deg.max() < 360.0):  # np.mod leaves such angles as they are
+            deg = np.mod(deg, 360.0)
         idx = np.clip(np.searchsorted(self._starts, deg, side="right") - 1, 0, len(self.segments) - 1)
         start = self._starts[idx]
         end = self._ends[idx]
@@ -163,6 +168,8 @@ class MotionProgram:
         idx, T = self.locate(np.asarray(theta_rad, dtype=float))
         shape = np.shape(T)
         idx, T = np.ravel(idx), np.ravel(T)
+        if self._table is not None and not np.isnan(T).any():  # NaN: the laws' own check names it
+            return self._table.lifts(idx, T, orders).reshape((len(orders),) + shape)
         out = np.empty((len(orders), T.size))
         for i in np.unique(idx):
             m = idx == i

@@ -99,6 +99,9 @@ class BSplineLaw(MotionLaw):
     def evaluate_orders(self, T, orders) -> list[np.ndarray]:
         return self._law.evaluate_orders(T, orders)
 
+    def as_piecewise(self) -> PiecewiseLaw:
+        return self._law
+
     def extreme(self, order: int, rest_ends: bool | None = None) -> tuple[Extreme, Extreme]:
         return self._law.extreme(order, self.rest_to_rest if rest_ends is None else rest_ends)
 
