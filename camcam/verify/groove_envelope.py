@@ -137,14 +137,40 @@ def envelope(motion: Motion, samples: np.ndarray, poses: tuple, rho, gamma: np.n
 #: (angle, sample) window tests of a scattered envelope made at once: its tables stay about 8 MB each.
 _SCATTERED_TESTS = 1_000_000
 
+#: Margin (rad) of the scattered envelope's prefilter on the windows' centres: far above the rounding of a
+#: centre and a half-width (1e-15 rad), far below any window.
+_CENTRE_SLACK_RAD = 1e-9
+
+
+def _candidates(centre: np.ndarray, half: float, g: np.ndarray):
+    """(angle, sample) pairs, by angle and then sample, whose sample's window centre lies within ``half`` (+ a
+    slack) of the angle, on the circle: every pair whose angle lies in the sample's window, and others.
+
+    ``centre`` (n,) are the samples' window centres in [0, 2π), ``g`` (m,) the angles in [0, 2π)."""
+    order = np.argsort(centre, kind="stable")
+    cs = centre[order]
+    n = len(cs)
+    ext = np.concatenate([cs - 2 * math.pi, cs, cs + 2 * math.pi])  # a range about an angle never wraps twice
+    lo = np.searchsorted(ext, g - half - _CENTRE_SLACK_RAD, side="left")
+    hi = np.searchsorted(ext, g + half + _CENTRE_SLACK_RAD, side="right")
+    count = hi - lo
+    ii = np.repeat(np.arange(len(g)), count)
+    js = order[np.mod(np.repeat(lo - np.cumsum(count) + count, count) + np.arange(int(count.sum())), n)]
+    by = np.lexsort((js, ii))
+    return ii[by], js[by]
+
 
 def _scattered_best(poses, r, L, rho, gamma, best_v, best_j) -> None:
     """Each scattered angle's best sample on both sides, into ``best_v`` and ``best_j`` (2, k): of the samples
     that may reach r = ρ and whose β window holds γ + a (:func:`_windows`), the one with the largest extent
     (the first of equals, as ``np.argmax``), where it is finite.  ``rho`` is one radius or one per angle.
 
-    Every (angle, sample) pair of a block of angles is one array: the same section of each pair, element
-    by element, as one :func:`section_interval` per angle and radius, in a few calls instead of a loop.
+    The pairs are found in two steps: those whose sample's window centre is near the angle (a sorted
+    search, :func:`_candidates`: a window is at most as wide as its arcsines, 2·asin(r/ρ) for a pose on the
+    axis' plane), then of them those whose window holds the angle, by the same arithmetic as a test of
+    every pair; the pairs, their order and so the figures are those of every pair tested (each angle's in a
+    run, by sample).  Every pair of a group of angles is one array: the same section of each pair, element
+    by element, as one :func:`section_interval` per angle and radius.
     """
     X, Y, Z, a, B = poses
     sin_b, cos_b = np.sin(B), np.cos(B)  # each sample's, taken for every angle it reaches
@@ -152,29 +178,39 @@ def _scattered_best(poses, r, L, rho, gamma, best_v, best_j) -> None:
     radii, row = (np.asarray([rho], float), np.zeros(len(gamma), int)) if np.ndim(rho) == 0 else \
         np.unique(np.asarray(rho, float), return_inverse=True)
     reach, lo_s, hi_s = _windows(poses, r, radii)
-    step = max(1, _SCATTERED_TESTS // max(len(a), 1))
-    for i0 in range(0, len(gamma), step):
-        g, w = gamma[i0:i0 + step, None], row[i0:i0 + step]
-        d_lo = np.mod(g + a - lo_s[w] + math.pi, 2 * math.pi) - math.pi
-        d_hi = np.mod(hi_s[w] - g - a + math.pi, 2 * math.pi) - math.pi
-        # by angle, then sample: each angle's pairs in a run
-        ii, js = np.nonzero(reach[w] & (d_lo >= 0) & (d_hi >= 0))
-        if len(ii) == 0:
+    for w_row in range(len(radii)):
+        of_row = np.flatnonzero(row == w_row)
+        keep = np.flatnonzero(reach[w_row])
+        if len(of_row) == 0 or len(keep) == 0:
             continue
-        rr = rho if np.ndim(rho) == 0 else radii[w[ii]]
-        lo, hi = section_interval(X[js], Y[js], Z[js], a[js], None, r, L, rr, gamma[i0 + ii],
-                                  (sin_b[js], cos_b[js]))
-        starts = np.flatnonzero(np.r_[True, ii[1:] != ii[:-1]])
-        rows = i0 + ii[starts]
-        counts = np.diff(np.r_[starts, len(ii)])
-        for side, v in enumerate(wall_extents(lo, hi)):
-            top = np.maximum.reduceat(v, starts)
-            # the first pair of each run at its run's largest value (np.argmax's choice among equals)
-            at = np.where(v == np.repeat(top, counts), np.arange(len(v)), len(v))
-            first = np.minimum.reduceat(at, starts)
-            ok = np.isfinite(top)
-            best_v[side, rows[ok]] = top[ok]
-            best_j[side, rows[ok]] = js[first[ok]]
+        lo_k, hi_k = lo_s[w_row, keep], hi_s[w_row, keep]
+        centre = np.mod(0.5 * (lo_k + hi_k) - a[keep], 2 * math.pi)
+        half = float(0.5 * (hi_k - lo_k).max())
+        ci, cj = _candidates(centre, half, np.mod(gamma[of_row], 2 * math.pi))
+        step = max(1, _SCATTERED_TESTS // max(len(a), 1))
+        for s0 in range(0, len(of_row), step):  # blocks of angles as before: the tables stay small
+            m = (ci >= s0) & (ci < s0 + step)
+            ai, js = of_row[ci[m]], keep[cj[m]]
+            g = gamma[ai]
+            d_lo = np.mod(g + a[js] - lo_s[w_row, js] + math.pi, 2 * math.pi) - math.pi
+            d_hi = np.mod(hi_s[w_row, js] - g - a[js] + math.pi, 2 * math.pi) - math.pi
+            hold = (d_lo >= 0) & (d_hi >= 0)
+            ai, js = ai[hold], js[hold]
+            if len(ai) == 0:
+                continue
+            lo, hi = section_interval(X[js], Y[js], Z[js], a[js], None, r, L, rho if np.ndim(rho) == 0 else radii[w_row],
+                                      gamma[ai], (sin_b[js], cos_b[js]))
+            starts = np.flatnonzero(np.r_[True, ai[1:] != ai[:-1]])
+            rows = ai[starts]
+            counts = np.diff(np.r_[starts, len(ai)])
+            for side, v in enumerate(wall_extents(lo, hi)):
+                top = np.maximum.reduceat(v, starts)
+                # the first pair of each run at its run's largest value (np.argmax's choice among equals)
+                at = np.where(v == np.repeat(top, counts), np.arange(len(v)), len(v))
+                first = np.minimum.reduceat(at, starts)
+                ok = np.isfinite(top)
+                best_v[side, rows[ok]] = top[ok]
+                best_j[side, rows[ok]] = js[first[ok]]
 
 
 def _refine_motion(motion, samples, rho, gamma, best_v, best_j, iterations) -> tuple[Envelope, Envelope]:

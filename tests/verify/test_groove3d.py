@@ -359,3 +359,52 @@ def test_scattered_envelope_at_many_radii_is_each_alone_and_the_map(sample):
                 np.testing.assert_allclose(both[side].value[i], alone[side].value[0], rtol=0, atol=0)
                 # the map takes sin(γ + a) by the angle-addition formulas: a few ulps of 50 mm apart
                 np.testing.assert_allclose(both[side].value[i], mapped[side].value[at[i]], rtol=0, atol=1e-9)
+
+
+def _every_pair_best(poses, r, L, rho, gamma):
+    """The scattered envelope's best samples with every (angle, sample) pair tested (what it did before the
+    sorted prefilter on the windows' centres): (best_v, best_j), each (2, k)."""
+    from camcam.verify.groove_envelope import _windows
+    from camcam.verify.groove_motion import section_interval, wall_extents
+
+    X, Y, Z, a, B = poses
+    best_v, best_j = np.full((2, len(gamma)), -np.inf), np.full((2, len(gamma)), -1)
+    radii, row = np.unique(np.asarray(rho, float), return_inverse=True)
+    reach, lo_s, hi_s = _windows(poses, r, radii)
+    g, w = gamma[:, None], row
+    d_lo = np.mod(g + a - lo_s[w] + math.pi, 2 * math.pi) - math.pi
+    d_hi = np.mod(hi_s[w] - g - a + math.pi, 2 * math.pi) - math.pi
+    ii, js = np.nonzero(reach[w] & (d_lo >= 0) & (d_hi >= 0))
+    lo, hi = section_interval(X[js], Y[js], Z[js], a[js], B[js], r, L, radii[w[ii]], gamma[ii])
+    for side, v in enumerate(wall_extents(lo, hi)):
+        for i in np.unique(ii):
+            m = np.flatnonzero(ii == i)
+            k = m[int(np.argmax(v[m]))]
+            if np.isfinite(v[k]):
+                best_v[side, i], best_j[side, i] = v[k], js[k]
+    return best_v, best_j
+
+
+@pytest.mark.parametrize("sample", ["cylindrical-translating", "cylindrical-oscillating"])
+@pytest.mark.parametrize("seed", [1, 2])
+def test_scattered_prefilter_finds_what_every_pair_finds(sample, seed):
+    """The scattered envelope tests only the pairs whose window centre is near the angle: the best sample and
+    its extent at every angle are those of every pair tested, exactly (angles anywhere, radii from below
+    the groove bottom to over the outer radius, both motions)."""
+    from camcam.verify.groove_envelope import _scattered_best
+    from camcam.verify.groove_motion import ProgramMotion, RollerMotion
+
+    cam = cam_of(sample)
+    spec = load_spec(ROOT / "samples" / f"{sample}.toml")
+    program = poses_from_program((DATA / f"legacy-{sample}.ngc").read_text(), assume={"Y": 0.0})
+    tool = CylinderTool(spec.machining.tool_diameter_mm / 2, 40.0)
+    rng = np.random.default_rng(seed)
+    gamma = np.concatenate([rng.uniform(-2 * math.pi, 4 * math.pi, 60), [0.0, 2 * math.pi, -math.pi]])
+    rho = rng.choice(np.linspace(cam.bottom_radius - 2.0, cam.base_radius + 2.0, 7), len(gamma))
+    for motion in (RollerMotion(cam), ProgramMotion(program, tool)):
+        poses = motion.pose(motion.samples(0.1, cam.base_radius))
+        best_v, best_j = np.full((2, len(gamma)), -np.inf), np.full((2, len(gamma)), -1)
+        _scattered_best(poses, motion.r, motion.L, rho, gamma, best_v, best_j)
+        want_v, want_j = _every_pair_best(poses, motion.r, motion.L, rho, gamma)
+        assert np.array_equal(best_j, want_j) and np.array_equal(best_v, want_v)
+        assert (best_j >= 0).sum() > len(gamma)  # most angles reach a sample on both sides: not a vacuous check
