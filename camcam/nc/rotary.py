@@ -93,12 +93,10 @@ def plans_flank(cam, tool_radius_mm: float) -> bool:
 
     Examples
     --------
-    >>> from camcam.geometry.cylindrical import BarrelTranslatingRoller, CylindricalCam
-    >>> from camcam.motion.catalog import make_law
-    >>> from camcam.motion.program import MotionProgram, Segment
-    >>> law = make_law("cycloidal")
-    >>> prog = MotionProgram((Segment(law, 0, 180, 20.0), Segment(law, 180, 360, -20.0, base=20.0)), rpm=60)
-    >>> cam = CylindricalCam(BarrelTranslatingRoller(8.0), prog, 50.0, length=80.0, groove_depth=10.0)
+    >>> from camcam.flow import load_job_spec
+    >>> from camcam.geometry.build import build_cam
+    >>> spec = load_job_spec("samples/cylindrical-translating.toml")  # roller R8 mm
+    >>> cam = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit)).cam
     >>> plans_flank(cam, 8.0), plans_flank(cam, 6.0), plans_flank(cam, 9.0)
     (False, True, False)
     """
