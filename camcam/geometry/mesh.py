@@ -229,18 +229,22 @@ DOWEL_POINTS = 72
 def _faces_with_holes(b: _Builder, outer: np.ndarray, holes: list[np.ndarray], like: np.ndarray) -> None:
     """Top and bottom faces of a prism whose rings ``outer`` and ``holes`` (index arrays of b's vertices, a pair
     per ring: bottom, top) have their walls already: each face's triangles wound as ``like`` (a top-face triangle
-    of the band convention) and the bottom's the other way."""
+    of the band convention) and the bottom's the other way.
+
+    Both faces are the same polygon in XY: it is triangulated once (its top's rings), each triangle's corners
+    found by their position in the rings, and those positions taken at each level."""
     import shapely
     from shapely.geometry import Polygon
 
     verts = np.concatenate(b.vertices)
+    top = [outer[1]] + [h[1] for h in holes]
+    rings = [verts[ids][:, :2] for ids in top]
+    position = {tuple(p): k for k, p in enumerate(np.concatenate(rings))}  # a point twice: its last position
+    poly = Polygon(rings[0], rings[1:])
+    corners = np.array([[position[c] for c in g.exterior.coords[:3]]
+                        for g in shapely.constrained_delaunay_triangles(poly).geoms])
     for level, sign in ((1, 1.0), (0, -1.0)):
-        rings = [verts[outer[level]]] + [verts[h[level]] for h in holes]
-        index = {tuple(p[:2]): int(i) for ring, ids in zip(rings, [outer[level]] + [h[level] for h in holes])
-                 for p, i in zip(ring, ids)}
-        poly = Polygon(rings[0][:, :2], [r[:, :2] for r in rings[1:]])
-        tris = np.array([[index[tuple(c)] for c in g.exterior.coords[:3]]
-                         for g in shapely.constrained_delaunay_triangles(poly).geoms])
+        tris = np.concatenate([outer[level]] + [h[level] for h in holes])[corners]
         p = verts[tris][:, :, :2]
         u, v = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
         area = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
