@@ -48,7 +48,7 @@ class _Order:
     trig: np.ndarray
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class PieceTable:
     """Every piece of a program's laws in one table (see the module notes).
 
@@ -90,8 +90,9 @@ class PieceTable:
             trig = np.concatenate([np.full(len(t[3]), bool(t[3].any())) for t in tables])
             orders.append(_Order(coef, a, b, w, trig))
         span_pow = np.array([[s.span_rad**k for k in range(len(orders))] for s in segments])
-        return PieceTable(inner, first, start, tuple(orders), np.array([s.scale for s in segments], dtype=float),
-                          np.array([s.base for s in segments], dtype=float), span_pow)
+        return PieceTable(inner=inner, first=first, start=start, orders=tuple(orders),
+                          scale=np.array([s.scale for s in segments], dtype=float),
+                          base=np.array([s.base for s in segments], dtype=float), span_pow=span_pow)
 
     def lifts(self, idx: np.ndarray, T: np.ndarray, orders) -> np.ndarray:
         """Segment ``idx``'s lift of each of ``orders`` at its T (1-D arrays, T in [0, 1]): (len(orders), n)."""
