@@ -25,6 +25,7 @@ Examples
 
 from __future__ import annotations
 
+import importlib
 import os
 from dataclasses import dataclass
 from contextlib import contextmanager
@@ -35,8 +36,8 @@ from typing import Iterator, Mapping
 from camcam.export.jsontext import to_json
 from camcam.verdict import Verdict
 
-__all__ = ["Job", "run_job", "start_plot_workers", "load_job_spec", "DEFAULT_SPEC", "nc_step", "model", "drawing",
-           "drawing_and_check", "nc_figures", "job_verdict", "design_and_drawing_checks", "plot_server"]
+__all__ = ["Job", "run_job", "start_plot_workers", "load_job_spec", "load_child_modules", "DEFAULT_SPEC", "nc_step",
+           "model", "drawing", "drawing_and_check", "nc_figures", "job_verdict", "design_and_drawing_checks", "plot_server"]
 
 #: The bundled job `camcam run` runs without a spec.
 DEFAULT_SPEC = "default.toml"
@@ -284,8 +285,6 @@ def plot_server():
     """The child process that draws a run's plots (:class:`camcam.workers.Server`), started at once, and the
     gate it waits at before its first plot (:class:`camcam.workers.Gate`, opened by :func:`job`): it
     imports matplotlib (about a second) while the run itself reads the spec and designs the cam."""
-    import importlib
-
     from camcam.workers import Gate, Server
 
     for name in PLOT_INHERITS:
@@ -316,6 +315,30 @@ PLOT_INHERITS = ("camcam.motion.program", "camcam.geometry.build", "camcam.geome
 #: k-d tree is scipy's loaded alone (camcam.verify.kdtree); the STL is numpy's (no trimesh) and the DXF's
 #: splines too (camcam.export.dxf.HermiteSpline): the child imports no more of scipy.
 DRAWING_MODULES = ("camcam.export.nc", "camcam.verify.removal", "camcam.verify.job_checks", "camcam.verify.kdtree")
+#: The plot modules of the report's plots after the NC step (camcam.report.job_page) and of the dynamics section.
+REPORT_PLOT_MODULES = ("camcam.plots.report_plots", "camcam.plots.groove_map", "camcam.plots.dynamics_plot")
+
+
+def load_child_modules(spec) -> None:
+    """Import in this process what the children of ``spec``'s job would import: matplotlib with the plot
+    modules, ezdxf and the k-d tree with the drawing's (a job with machining), OpenCascade and the solids'
+    builders when it writes a STEP (:func:`camcam.export.step.load_cad`; nothing where OCP is not installed).
+
+    `camcam batch` in one process calls it before each job: every job's children, forked from this process,
+    inherit them instead of importing them again, job after job (`camcam run` forks its children before
+    their imports instead, so that they import beside the NC step).
+    """
+    for name in PLOT_MODULES + REPORT_PLOT_MODULES:
+        importlib.import_module(name)
+    if spec.machining is not None:
+        for name in DRAWING_MODULES:
+            importlib.import_module(name)
+    if spec.report.step_file and spec.cam is not None:
+        from camcam.export.step import load_cad
+
+        load_cad(spec.cam.kind)
+
+
 #: The drawing's and material check's function (run in its child, on the pickled cam and program).
 DRAWING = "camcam.flow:drawing_and_check"
 

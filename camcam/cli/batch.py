@@ -64,14 +64,17 @@ def batch_task(item: tuple[str, str], forks: bool = True) -> tuple[dict, dict[st
     from contextlib import nullcontext
 
     from camcam.errors import CamcamError
-    from camcam.flow import run_job
+    from camcam.flow import load_child_modules, load_job_spec, run_job
     from camcam.workers import single_process
 
     spec_arg, folder = item
     job, error = None, ""
     try:
+        spec = load_job_spec(spec_arg)
+        if forks:  # the job's children inherit the libraries this process loaded for the jobs before it
+            load_child_modules(spec)
         with nullcontext() if forks else single_process():
-            job = run_job(spec_arg)
+            job = run_job(spec)
     except CamcamError as e:
         error = " ".join(str(e).splitlines())
     except Exception as e:  # noqa: BLE001 - one spec's fault must not stop the batch; the row names it

@@ -19,7 +19,7 @@ import re
 import tempfile
 from pathlib import Path
 
-__all__ = ["step_bytes", "step_files", "cam_step", "read_step", "cad_available", "CAD_HINT", "TIME_STAMP", "STEP_SCHEMA"]
+__all__ = ["step_bytes", "step_files", "cam_step", "read_step", "cad_available", "load_cad", "CAD_HINT", "TIME_STAMP", "STEP_SCHEMA"]
 
 #: The one line `camcam run` prints when it cannot write the STEP.
 CAD_HINT = "STEP not written: pip install 'camcam[cad]' (OpenCascade) to get the cam as an exact solid"
@@ -45,7 +45,7 @@ def cad_available() -> bool:
 _CAD_MODULES, _BARREL_MODULES = ("camcam.export.step_solids",), ("camcam.export.barrel_solid", "scipy.interpolate")
 
 
-def _load_cad(kind: str) -> bool:
+def load_cad(kind: str) -> bool:
     """:func:`cad_available`, and the modules a ``kind`` cam's solid needs loaded, with the cyclic collector
     paused: the imports make many objects and no garbage (a barrel's STEP child spent 0.16 CPU s collecting
     during them, cylindrical-translating; 0.05 s after).  It runs again afterwards if it ran before."""
@@ -116,7 +116,7 @@ def step_files(built, name: str) -> tuple[dict[str, bytes], str | None]:
     """``({"<name>.step": bytes}, None)`` of the cam's exact solid, or ``({}, why)``: one line saying why not
     (:data:`CAD_HINT` where OCP is not installed; OpenCascade's failure on this cam otherwise, which leaves
     the rest of the run as it is)."""
-    if not _load_cad(built.spec.kind):
+    if not load_cad(built.spec.kind):
         return {}, CAD_HINT
     from OCP.Standard import Standard_Failure
 

@@ -36,7 +36,7 @@ def test_an_internal_fault_is_a_row_not_the_end(tmp_path, monkeypatch):
     real = flow.run_job
 
     def job(spec, **kw):
-        if str(spec).endswith("disc-translating-flat.toml"):
+        if str(getattr(spec, "source", spec)).endswith("disc-translating-flat.toml"):  # the batch passes it loaded
             raise ZeroDivisionError("simulated fault")
         return real(spec, **kw)
 
@@ -106,3 +106,25 @@ def test_jobs_fork_in_process_and_run_alone_on_a_cluster(tmp_path, monkeypatch):
         monkeypatch.setattr(batch, "executor_from_args", lambda args, e=executor: contextlib.nullcontext(e))
         assert cli("batch", demo, "-o", str(tmp_path / type(executor).__name__))[0] == 0
     assert asked == [True, False]
+
+
+def test_an_in_process_batch_loads_its_jobs_child_libraries_once(tmp_path):
+    """Issue 49: in one process, each job's children (plot server, drawing's child) would import matplotlib and
+    ezdxf again, job after job; the batch loads them before each job (camcam.flow.load_child_modules), so every
+    fork of the batch finds them loaded and the children inherit them.  In a fresh interpreter, two jobs."""
+    import subprocess
+    import sys
+
+    specs = [str(ROOT / "samples" / f"{n}.toml") for n in ("disc-translating-roller", "disc-groove")]
+    code = (
+        "import json, os, sys\n"
+        "at_fork = []\n"
+        "os.register_at_fork(before=lambda: at_fork.append(all(m in sys.modules for m in ('matplotlib', 'ezdxf'))))\n"
+        "from camcam.cli.batch import batch_task\n"
+        f"rows = [batch_task((s, f'f{{i}}'), forks=True)[0]['verdict'] for i, s in enumerate({specs!r})]\n"
+        "print(json.dumps({'rows': rows, 'at_fork': at_fork}))\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
+    result = json.loads(r.stdout.strip().splitlines()[-1])
+    assert result["rows"] == ["PASS", "PASS"]
+    assert len(result["at_fork"]) >= 4 and all(result["at_fork"])  # a plot server and a drawing child a job, at least
