@@ -189,8 +189,8 @@ def _scattered_best(poses, r, L, rho, gamma, best_v, best_j) -> None:
         ci, cj = _candidates(centre, half, np.mod(gamma[of_row], 2 * math.pi))
         step = max(1, _SCATTERED_TESTS // max(len(a), 1))
         for s0 in range(0, len(of_row), step):  # blocks of angles as before: the tables stay small
-            m = (ci >= s0) & (ci < s0 + step)
-            ai, js = of_row[ci[m]], keep[cj[m]]
+            p0, p1 = np.searchsorted(ci, (s0, s0 + step))  # the candidates come by angle
+            ai, js = of_row[ci[p0:p1]], keep[cj[p0:p1]]
             g = gamma[ai]
             d_lo = np.mod(g + a[js] - lo_s[w_row, js] + math.pi, 2 * math.pi) - math.pi
             d_hi = np.mod(hi_s[w_row, js] - g - a[js] + math.pi, 2 * math.pi) - math.pi
@@ -198,8 +198,8 @@ def _scattered_best(poses, r, L, rho, gamma, best_v, best_j) -> None:
             ai, js = ai[hold], js[hold]
             if len(ai) == 0:
                 continue
-            lo, hi = section_interval(X[js], Y[js], Z[js], a[js], None, r, L, rho if np.ndim(rho) == 0 else radii[w_row],
-                                      gamma[ai], (sin_b[js], cos_b[js]))
+            lo, hi = section_interval(X[js], Y[js], Z[js], a[js], None, r, L, radii[w_row], gamma[ai],
+                                      (sin_b[js], cos_b[js]))
             starts = np.flatnonzero(np.r_[True, ai[1:] != ai[:-1]])
             rows = ai[starts]
             counts = np.diff(np.r_[starts, len(ai)])
