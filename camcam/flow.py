@@ -287,7 +287,7 @@ def plot_server():
     imports matplotlib (about a second) while the run itself reads the spec and designs the cam."""
     from camcam.workers import Gate, Server
 
-    for name in PLOT_INHERITS:
+    for name in PLOT_INHERITS + CHILDREN_SHARE:
         importlib.import_module(name)
     gate = Gate()
     # on three cores or more the three processes each have one: nothing waits
@@ -311,6 +311,12 @@ PLOT_MODULES = ("camcam.plots.svaj", "camcam.plots.profile")
 #: server is forked, it inherits them instead of importing them again (0.02-0.03 CPU s of its preload,
 #: medians of 5 alternated runs; a motion-only run pays them here instead of in the server).
 PLOT_INHERITS = ("camcam.motion.program", "camcam.geometry.build", "camcam.geometry.analysis")
+#: What matplotlib (the plot server's) and ezdxf (the drawing's child's) both import: numpy's masked arrays and
+#: typing, pyparsing (and the unittest it brings), fontTools' helpers, uuid and socket, the expat XML parser, subprocess.
+#: Imported before the plot server is forked, every child inherits them instead of each importing them
+#: again: about 0.08 CPU s once instead of twice (benchmarks/ab.py figures in docs/benchmarks.md).
+CHILDREN_SHARE = ("numpy.ma", "numpy.typing", "pyparsing", "fontTools.misc.loggingTools", "fontTools.misc.textTools",
+                  "uuid", "socket", "pyexpat", "subprocess", "sysconfig", "calendar")
 #: What the drawing's child imports while the NC step runs: ezdxf comes with them, and the material check's
 #: k-d tree is scipy's loaded alone (camcam.verify.kdtree); the STL is numpy's (no trimesh) and the DXF's
 #: splines too (camcam.export.dxf.HermiteSpline): the child imports no more of scipy.

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pytest
 
+from camcam import flow
 from camcam.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -93,6 +94,40 @@ def test_a_flank_planning_barrel_job_imports_scipy_interpolate_once(tmp_path):
     result = json.loads(r.stdout.strip().splitlines()[-1])
     assert result["rc"] == 0 and len(result["at_fork"]) >= 3  # the plot server, the drawing's child, workers
     assert result["at_fork"][0] is False and all(result["at_fork"][1:])
+
+
+@pytest.mark.parametrize("modules", [flow.PLOT_MODULES, flow.DRAWING_MODULES], ids=["plot server", "drawing"])
+def test_what_the_run_imports_for_its_children_both_of_them_import(modules):
+    # flow.CHILDREN_SHARE is imported once, before the plot server and the drawing's child are forked, because
+    # each would import every one of them (matplotlib's and ezdxf's common dependencies): one that neither
+    # needs any more would only cost the run
+    code = (
+        "import importlib, json, sys\n"
+        "from camcam import flow\n"
+        f"for name in {list(modules)!r}: importlib.import_module(name)\n"
+        "print(json.dumps([m for m in flow.CHILDREN_SHARE if m not in sys.modules]))\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
+    assert json.loads(r.stdout.strip().splitlines()[-1]) == []
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork: every run is in process already")
+def test_every_child_of_a_run_inherits_what_its_children_share(tmp_path):
+    code = (
+        "import json, os, sys\n"
+        "from camcam import flow\n"
+        "at_fork = []\n"
+        "os.register_at_fork(before=lambda: at_fork.append([m for m in flow.CHILDREN_SHARE if m not in sys.modules]))\n"
+        "from camcam.cli import main\n"
+        f"rc = main(['run', {str(SAMPLE)!r}, '-o', {str(tmp_path / 'out')!r}])\n"
+        "sys.stdout.flush()\n"
+        "print(json.dumps({'rc': rc, 'at_fork': at_fork}))\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
+    result = json.loads(r.stdout.strip().splitlines()[-1])
+    # the plot server, the drawing's child, the STEP's and the roughing's: none imports them again
+    assert result["rc"] == 0 and len(result["at_fork"]) >= 2
+    assert all(missing == [] for missing in result["at_fork"])
 
 
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork: every run is in process already")
