@@ -211,6 +211,8 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
             # the drawing's child starts now, imports ezdxf and scipy's k-d tree (about a third of a second) and makes the
             # mesh's STL beside the NC step; the program goes to it pickled once it is printed, and it writes the
             # drawing and runs the material check (drawing_and_check)
+            for name in NC_MODULES:  # the NC step's, which the child's program unpickles to: inherited, not imported again
+                importlib.import_module(name)
             drawings = Prepared(DRAWING_MODULES, first=[(model, (built, spec.name), {})], opens=gate)
             model_files = drawings.first[0]
         else:
@@ -321,6 +323,9 @@ CHILDREN_SHARE = ("numpy.ma", "numpy.typing", "pyparsing", "fontTools.misc.loggi
 #: k-d tree is scipy's loaded alone (camcam.verify.kdtree); the STL is numpy's (no trimesh) and the DXF's
 #: splines too (camcam.export.dxf.HermiteSpline): the child imports no more of scipy.
 DRAWING_MODULES = ("camcam.export.nc", "camcam.verify.removal", "camcam.verify.job_checks", "camcam.verify.kdtree")
+#: What the NC step (:func:`nc_step`) and its material check's result (``with_checks``) import: the run imports them
+#: before it forks the drawing's child, which needs them too (its machining result unpickles to them).
+NC_MODULES = ("camcam.nc.job", "camcam.verify.job_checks", "camcam.verify.removal")
 #: The plot modules of the report's plots after the NC step (camcam.report.job_page) and of the dynamics section.
 REPORT_PLOT_MODULES = ("camcam.plots.report_plots", "camcam.plots.groove_map", "camcam.plots.dynamics_plot")
 
