@@ -211,9 +211,11 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
             # the drawing's child starts now, imports ezdxf and scipy's k-d tree (about a third of a second) and makes the
             # mesh's STL beside the NC step; the program goes to it pickled once it is printed, and it writes the
             # drawing and runs the material check (drawing_and_check)
-            for name in NC_MODULES:  # the NC step's, which the child's program unpickles to: inherited, not imported again
+            # the NC step's modules (and the material check's removal, which the run imports with its result):
+            # the child unpickles the program to them, and inherits them instead of importing them again
+            for name in NC_MODULES + (("camcam.verify.removal",) if has_material_check(built.spec.kind) else ()):
                 importlib.import_module(name)
-            drawings = Prepared(DRAWING_MODULES, first=[(model, (built, spec.name), {})], opens=gate)
+            drawings = Prepared(drawing_modules(built.spec.kind), first=[(model, (built, spec.name), {})], opens=gate)
             model_files = drawings.first[0]
         else:
             model_files = children.later(model, built, spec.name)  # the mesh and STL need no NC: made beside it
@@ -319,13 +321,34 @@ PLOT_INHERITS = ("camcam.motion.program", "camcam.geometry.build", "camcam.geome
 #: again: about 0.08 CPU s once instead of twice (benchmarks/ab.py figures in docs/benchmarks.md).
 CHILDREN_SHARE = ("numpy.ma", "numpy.typing", "pyparsing", "fontTools.misc.loggingTools", "fontTools.misc.textTools",
                   "uuid", "socket", "pyexpat", "subprocess", "sysconfig", "calendar")
-#: What the drawing's child imports while the NC step runs: ezdxf comes with them, and the material check's
-#: k-d tree is scipy's loaded alone (camcam.verify.kdtree); the STL is numpy's (no trimesh) and the DXF's
-#: splines too (camcam.export.dxf.HermiteSpline): the child imports no more of scipy.
-DRAWING_MODULES = ("camcam.export.nc", "camcam.verify.removal", "camcam.verify.job_checks", "camcam.verify.kdtree")
+#: What the drawing's child imports while the NC step runs: ezdxf comes with them; the STL is numpy's (no trimesh)
+#: and the DXF's splines too (camcam.export.dxf.HermiteSpline).
+DRAWING_MODULES = ("camcam.export.nc",)
+#: What the material check adds, for a job that has one (a disc or face-groove job, which starts from a blank; a
+#: barrel's groove is checked in 3-D by the NC step): its k-d tree is scipy's loaded alone (camcam.verify.kdtree),
+#: the child's only scipy (0.1 CPU s with scipy.sparse, which a barrel's drawing no longer imports).
+CHECK_MODULES = ("camcam.verify.removal", "camcam.verify.job_checks", "camcam.verify.kdtree")
+
+
+def drawing_modules(cam_kind: str) -> tuple[str, ...]:
+    """What the drawing's child of a ``cam_kind`` job imports: :data:`DRAWING_MODULES`, and :data:`CHECK_MODULES`
+    where the job has a material check (every kind but ``"cylindrical"``, whose job has no blank).
+
+    >>> drawing_modules("cylindrical")
+    ('camcam.export.nc',)
+    >>> drawing_modules("disc")[-1]
+    'camcam.verify.kdtree'
+    """
+    return DRAWING_MODULES + (CHECK_MODULES if has_material_check(cam_kind) else ())
+
+
+def has_material_check(cam_kind: str) -> bool:
+    """Whether a ``cam_kind`` job's program gets the material check (:func:`camcam.verify.check_job`): a disc's
+    or face groove's, which starts from a blank; a barrel's groove is measured in 3-D by its NC step instead."""
+    return cam_kind != "cylindrical"
 #: What the NC step (:func:`nc_step`) and its material check's result (``with_checks``) import: the run imports them
 #: before it forks the drawing's child, which needs them too (its machining result unpickles to them).
-NC_MODULES = ("camcam.nc.job", "camcam.verify.job_checks", "camcam.verify.removal")
+NC_MODULES = ("camcam.nc.job", "camcam.verify.job_checks")
 #: The plot modules of the report's plots after the NC step (camcam.report.job_page) and of the dynamics section.
 REPORT_PLOT_MODULES = ("camcam.plots.report_plots", "camcam.plots.groove_map", "camcam.plots.dynamics_plot")
 
@@ -341,8 +364,8 @@ def load_child_modules(spec) -> None:
     """
     for name in PLOT_MODULES + REPORT_PLOT_MODULES:
         importlib.import_module(name)
-    if spec.machining is not None:
-        for name in DRAWING_MODULES:
+    if spec.machining is not None and spec.cam is not None:
+        for name in drawing_modules(spec.cam.kind):
             importlib.import_module(name)
     if spec.report.step_file and spec.cam is not None:
         from camcam.export.step import load_cad

@@ -6,7 +6,7 @@ scipy.sparse's linear algebra besides the tree: 0.35–0.53 CPU s in the drawing
 shapely are loaded (issue 49; best and worst of 3 on the 2-core machine).  The tree is one extension module,
 ``scipy/spatial/_ckdtree``, which needs only numpy, ``scipy._lib`` and scipy.sparse's containers: loaded on
 its own from its file it costs 0.10–0.14 CPU s.  Importing this module loads it (the drawing's child does,
-beside the NC step: :data:`camcam.flow.DRAWING_MODULES`).
+beside the NC step: :data:`camcam.flow.CHECK_MODULES`).
 
 It is loaded under its own name, ``scipy.spatial._ckdtree``, so the class is the very one scipy.spatial
 exports: a later ``import scipy.spatial`` in the same process finds the module loaded and re-exports it (the

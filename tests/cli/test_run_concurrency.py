@@ -68,6 +68,27 @@ def test_the_drawing_model_and_material_check_import_no_trimesh():
     assert json.loads(r.stdout.strip().splitlines()[-1]) == {"stl": 1, "dxf": 1, "checked": True, "loaded": []}
 
 
+def test_a_barrel_jobs_drawing_imports_no_scipy():
+    # a barrel job has no blank and no material check (its groove is measured in 3-D by the NC step): its drawing's
+    # child loads ezdxf only, not the check's k-d tree with scipy.sparse (0.1 CPU s, issue 49)
+    code = (
+        "import importlib, json, sys\n"
+        "from camcam.spec import load_spec\n"
+        "from camcam.geometry.build import build_cam\n"
+        "from camcam import flow\n"
+        f"spec = load_spec({str(ROOT / 'samples' / 'cylindrical-translating.toml')!r})\n"
+        "built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))\n"
+        "machining = flow.nc_step(spec, built)\n"
+        "for name in flow.drawing_modules(built.spec.kind): importlib.import_module(name)\n"
+        "files, figures = flow.model(built, spec.name)\n"
+        "drawn, deviation, checks = flow.drawing_and_check(built, machining, spec.machining)\n"
+        "print(json.dumps({'dxf': sum(n.endswith('.dxf') for n in drawn), 'checked': checks is not None,\n"
+        "                  'loaded': [m for m in ('scipy', 'trimesh') if m in sys.modules]}))\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
+    assert json.loads(r.stdout.strip().splitlines()[-1]) == {"dxf": 1, "checked": False, "loaded": []}
+
+
 def test_a_barrel_job_with_the_rollers_tool_imports_no_scipy(tmp_path):
     # the flank plan (a thinner tool's quintic q(θ), scipy.interpolate) is the only scipy of the 4-axis job:
     # with a tool of the roller's size there is none, and its import (0.5 CPU s) stays out of this process
@@ -96,11 +117,11 @@ def test_a_flank_planning_barrel_job_imports_scipy_interpolate_once(tmp_path):
     assert result["at_fork"][0] is False and all(result["at_fork"][1:])
 
 
-@pytest.mark.parametrize("modules", [flow.PLOT_MODULES, flow.DRAWING_MODULES], ids=["plot server", "drawing"])
+@pytest.mark.parametrize("modules", [flow.PLOT_MODULES, flow.drawing_modules("disc")], ids=["plot server", "drawing"])
 def test_what_the_run_imports_for_its_children_both_of_them_import(modules):
     # flow.CHILDREN_SHARE is imported once, before the plot server and the drawing's child are forked, because
-    # each would import every one of them (matplotlib's and ezdxf's common dependencies): one that neither
-    # needs any more would only cost the run
+    # each would import every one of them (matplotlib's, and ezdxf's with the material check's scipy): one that
+    # neither needs any more would only cost the run
     code = (
         "import importlib, json, sys\n"
         "from camcam import flow\n"
