@@ -23,9 +23,10 @@ largest at the outer radius, so a fit held there holds at every depth.
   that is exact at the development radius).
 
 The final depth pass runs below the groove bottom by what the tool's flat end
-needs to reach the wall corner there: the wall contact is r_t·sin α off the
-tool's axis plane (α the pressure angle at the bottom), where the end face
-sits at √(Z² + (r_t sin α)²) from the cam axis.
+needs to reach the wall corner there: the wall contact is y off the tool's
+axis plane (r_t·sin α on a flat bottom, α the pressure angle at the bottom;
+farther out on the curved one, :func:`corner_offset_mm`), where the end face
+sits at √(Z² + y²) from the cam axis.
 
 The printed program is measured, from its own axis words, by
 :func:`camcam.verify.job_checks.check_job` (:mod:`camcam.verify.groove3d`):
@@ -160,12 +161,37 @@ def _check_fit_floor(cam, m: MachiningSpec, quantizer: Quantizer, least_mm: floa
                                            f"or a post with more decimals")
 
 
+def corner_offset_mm(bottom_radius_mm: float, tool_radius_mm: float, pressure_angle_rad: float) -> float:
+    """How far from the tool's axis plane a radial tool touches a wall of pressure angle α on the cylinder of the
+    groove bottom: y = ρ sin β of the contact, mm.
+
+    The tool's section on r = ρ is |x − X| ≤ √(r² − ρ² sin² β) at β off its axis plane, and it moves along the
+    wall at dX/dθ = ρ tan α: the envelope touches where the two slopes meet, ρ² tan²α (r² − y²) = y² (ρ² − y²),
+    whose smaller root is taken.  Flat (ρ → ∞) it is r sin α; on the curved bottom it is farther out: campaign
+    case 43:54 (ρ 20.6, r 8 mm, α 48.06°) touches at 6.07 mm, not 5.95, and a tip placed for 5.95 left
+    0.00035 mm more material along the wall corner than anywhere else on the wall (3-D check, 0.006 mm
+    tolerance), with every tolerance the advice named.
+
+    Examples
+    --------
+    >>> round(corner_offset_mm(20.6, 8.0, math.radians(48.06)), 2)
+    6.07
+    >>> round(corner_offset_mm(1e6, 8.0, math.radians(30.0)), 6)  # a flat bottom: r sin α
+    4.0
+    """
+    rho, r, t2 = bottom_radius_mm, tool_radius_mm, math.tan(pressure_angle_rad) ** 2
+    a, c = rho * rho * (1.0 + t2), rho * rho * t2 * r * r  # y⁴ − a y² + c = 0
+    y2 = 2.0 * c / (a + math.sqrt(max(a * a - 4.0 * c, 0.0)))  # the smaller root, without cancellation
+    return math.sqrt(min(y2, rho * rho))
+
+
 def _corner_dip_mm(cam, r_t: float) -> float:
-    """How far below the groove bottom the tip must go for the flat end to reach the wall corner (mm, exact)."""
+    """How far below the groove bottom the tip must go for the flat end to reach the wall corner (mm, exact:
+    :func:`corner_offset_mm` at the largest pressure angle, which is at the groove bottom)."""
     th = np.linspace(0.0, 2 * math.pi, 2881)
     alpha = np.abs(cam.pressure_angle(th).value).max()  # at the groove bottom, where it is largest
-    y = r_t * math.sin(alpha)
     rb = cam.bottom_radius
+    y = corner_offset_mm(rb, r_t, float(alpha))
     return rb - math.sqrt(rb * rb - y * y)
 
 

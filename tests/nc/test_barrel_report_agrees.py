@@ -124,7 +124,7 @@ def test_cut_depth_and_flute_length_are_the_programs(sample):
     deepest, reach = _brute_reach(_poses(result.program.text), m.tool_diameter_mm / 2, cam.base_radius)
     check = {c.name: c for c in result.checks}["cut depth"]
     # the check's figure is how deep the printed tool goes (it said the stated depth: 10 of 10 mm where the
-    # 4-axis tip runs 0.296 mm deeper, and the 5-axis flat end 8.91 mm below the groove floor)
+    # 4-axis tip runs 0.2988 mm deeper, and the 5-axis flat end 8.91 mm below the groove floor)
     assert check.value == pytest.approx(cam.base_radius - deepest, abs=1e-4)  # 0.1° sampling of a Ø30 end: 6e-6 mm
     assert check.ok  # as deep as the walls need, no deeper
     assert result.reach.below_floor_mm == pytest.approx(cam.bottom_radius - deepest, abs=1e-4)  # the same sampling
@@ -140,8 +140,10 @@ def test_a_deeper_stated_depth_warns_with_the_programs_depth():
     result = checked(built, m, "deeper")
     check = {c.name: c for c in result.checks}["cut depth"]
     assert not check.ok and check.severity == "warn"
-    assert check.value == pytest.approx(11.296, abs=1e-9)  # 11 mm + the 0.296 mm corner dip, as printed
-    assert check.limit == pytest.approx(10.29592, abs=1e-5)  # the groove depth + the exact dip, 0.295920 mm
+    assert check.value == pytest.approx(11.2988, abs=1e-9)  # 11 mm + the 0.2988 mm corner dip, as printed
+    # the groove depth + the exact dip, 0.298737 mm (nc.rotary.corner_offset_mm: 4.88 mm off the axis plane on the
+    # R40 bottom, where r_t sin α = 4.86 mm gave 0.295920)
+    assert check.limit == pytest.approx(10.298737, abs=1e-5)
 
 
 def _tip_path(p0, p1, chords=2000):
