@@ -399,7 +399,7 @@ def machine_five_axis(built: BuiltCam, m: MachiningSpec, name: str) -> Machining
              f"{len(nodes) - 1} blocks per pass",
              f"5-axis: the cut reaches {path.cut_length_mm:.2f} mm up the tool from its tip; the flat end dips to "
              f"radius {path.floor_radius_mm:.2f} mm in the groove floor")
-    if m.flute_length_mm < path.cut_length_mm:
+    if m.flute_stated and m.flute_length_mm < path.cut_length_mm:  # unstated, the flute is what the cut needs
         notes += (f"flute_length {m.flute_length_mm:g} mm is shorter than the {path.cut_length_mm:.2f} mm the walls need",)
     plan = GroovePlan(axes=5, reach_radius_mm=path.floor_radius_mm,
                       reach_why="the tilted flat end, so that both walls reach the bottom; no roller touches the floor",

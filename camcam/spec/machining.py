@@ -13,7 +13,7 @@ stepdown = 4.0             # mm
 work_offset = "G54"        # G54 … G59, printed in the post's words
 coolant = "flood"          # "flood", "mist" or "off"
 program_number = 1234      # only for posts that print one (Fanuc, Haas)
-flute_length = 32.0        # mm, the tool's cutting length (default: twice its diameter)
+flute_length = 32.0        # mm, the tool's cutting length (default: twice its diameter, longer if the cut needs it)
 holder_diameter = 40.0     # mm, the tool holder (with stick_out: every move is checked to keep it off the blank)
 stick_out = 45.0           # mm, the tool tip to the holder's face
 a_axis = "right-hand"      # barrel cams: a positive A turns the part by the right-hand rule about +X
@@ -260,7 +260,9 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
     spring = t.boolean("spring_pass", False)
     tool_number = t.integer("tool_number", 1, minimum=1, maximum=999)
     accept = t.boolean("accept_out_of_tolerance", False)
-    flute = t.number("flute_length", 2.0 * tool, minimum=0.0, inclusive=False, unit="mm")
+    flute = t.number("flute_length", None, minimum=0.0, inclusive=False, unit="mm")
+    # unstated: twice the tool's diameter, longer where the cut needs it (MachiningSpec.flute_for)
+    flute_stated, flute = flute is not None, flute if flute is not None else 2.0 * tool
     a_axis = t.string("a_axis", "right-hand", choices=("right-hand", "left-hand"))
     holder = t.number("holder_diameter", None, minimum=0.0, inclusive=False, unit="mm")
     stick_out = t.number("stick_out", None, minimum=0.0, inclusive=False, unit="mm")
@@ -299,6 +301,7 @@ def read_machining(t: Table, base: Path, cam_kind: str | None = None, follower_k
                          spindle_rpm=spindle, depth_mm=depth, stepdown_mm=stepdown, plunge_feed_mm_min=plunge,
                          safe_z_mm=safe, clearance_z_mm=clearance, lead_radius_mm=lead,
                          finish_allowance_mm=allowance, spring_pass=spring, tool_number=tool_number,
-                         accept_out_of_tolerance=accept, setup=setup, flute_length_mm=flute, a_axis=a_axis,
+                         accept_out_of_tolerance=accept, setup=setup, flute_length_mm=flute, flute_stated=flute_stated,
+                         a_axis=a_axis,
                          stepover=stepover, ramp_angle_deg=ramp, bore=bore, dowel=dowel, axes=axes,
                          direction=direction, holder_diameter_mm=holder, stick_out_mm=stick_out, cutting=cutting)

@@ -107,10 +107,13 @@ def _barrel_checks(result: MachiningResult, built: BuiltCam, m: MachiningSpec, w
     cam, plan, post = built.cam, result.groove_plan, result.post
     r_t = m.tool_diameter_mm / 2
     poses = read_poses(result.program.text, post, m.a_axis)
-    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers,
-                           pose_step_mm=pose_step_for(m.tolerance_mm, r_t))
     reach = tool_reach(poses, r_t, cam.base_radius, cam.bottom_radius, plan.reach_radius_mm, m.flute_length_mm,
                        post.quantizer.decimals, plan.reach_why)
+    # the tool modelled: the spec's flute, or where it states none one as long as the printed cut needs
+    m = replace(m, flute_length_mm=m.flute_for(max(reach.flute_needed_mm, plan.cut_length_mm or 0.0)))
+    reach = replace(reach, flute_length_mm=m.flute_length_mm)
+    groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers,
+                           pose_step_mm=pose_step_for(m.tolerance_mm, r_t))
     if plan.axes == 5:
         check = five_axis_check(m, groove, plan.cut_length_mm, reach.flute_needed_mm)
     else:

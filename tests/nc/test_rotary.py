@@ -14,6 +14,7 @@ from scipy.optimize import minimize_scalar
 
 from camcam.geometry.build import build_cam
 from camcam.nc.rotary import corner_offset_mm
+from camcam.verify.reach import flute_text
 from camcam.post.readback import poses_from_program
 from camcam.toolpath.poses import CylinderTool
 from camcam.verify.rs274 import poses_from_canon
@@ -23,6 +24,7 @@ from camcam.spec import load_spec
 from camcam.verify.rs274 import rs274_available, run_rs274
 
 ROOT = Path(__file__).resolve().parents[2]
+DATA = ROOT / "tests" / "nc" / "data"
 needs_rs274 = pytest.mark.skipif(not rs274_available(), reason="rs274 (Debian linuxcnc-uspace) is not installed")
 
 
@@ -212,6 +214,43 @@ def test_the_flat_end_reaches_the_curved_wall_corner():
     assert left[:, 0].max() <= left[:, 1:].max() + 2e-5
 
 
+def test_an_unstated_flute_is_as_long_as_the_cut_needs():
+    # a spec without flute_length: the 3-D check models a tool as long as the printed cut needs where twice its
+    # diameter is shorter, and the setup sheet asks for it; the figure is then the thin tool's flank error
+    spec = load_spec(DATA / "barrel-deep-thin-tool.toml")
+    built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
+    assert not spec.machining.flute_stated and spec.machining.flute_length_mm == 16.0
+    r = checked(built, spec.machining, spec.name)
+    assert r.groove.uncut_points == 0  # 1417 map points were uncut at R80.4 with the 16 mm flute
+    assert r.reach.flute_needed_mm > 16.0  # the groove depth and the corner dip: 16.303 mm
+    # the modelled flute is the one the setup sheet asks for, rounded up to 0.01 mm
+    assert r.reach.flute_length_mm == pytest.approx(math.ceil(r.reach.flute_needed_mm * 100 - 1e-9) / 100, abs=1e-12)
+    assert f"flute length ≥ {r.reach.flute_length_mm:g} mm" in flute_text(r.reach)
+    check = {c.name: c for c in r.checks}["3-D groove deviation"]
+    # what is left is the 8 mm tool's flank error in a 23.2 mm groove (first order 0.0133 mm): a thicker tool or
+    # a wider tolerance is the way out, and the advice says so; 0.05 mm: far below the groove width it measured
+    assert not check.ok and check.value < 0.05
+    assert "use a tool from D" in check.advice
+
+
+def test_a_stated_flute_too_short_is_named_before_the_tool(tmp_path):
+    text = (DATA / "barrel-deep-thin-tool.toml").read_text().replace("[machining]", "[machining]\nflute_length = 16")
+    (tmp_path / "short.toml").write_text(text)
+    spec = load_spec(tmp_path / "short.toml")
+    built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
+    r = checked(built, spec.machining, spec.name)
+    check = {c.name: c for c in r.checks}["3-D groove deviation"]
+    assert r.groove.uncut_points > 0 and not check.ok
+    # no tool diameter or tolerance cuts what the flute does not reach: the flute comes first, as a spec value
+    assert check.advice.startswith("the flute is shorter than the cut: [machining] flute_length = ")
+    value = float(check.advice.rsplit("= ", 1)[1])
+    assert r.reach.flute_needed_mm <= value < r.reach.flute_needed_mm + 0.01  # rounded up to 0.01 mm
+    (tmp_path / "long.toml").write_text(text.replace("flute_length = 16", f"flute_length = {value:g}"))
+    spec2 = load_spec(tmp_path / "long.toml")
+    r2 = checked(built, spec2.machining, spec2.name)
+    assert r2.groove.uncut_points == 0
+
+
 def _with(path: Path, tmp_path: Path, settings: list) -> Path:
     """The spec at ``path`` with ``(section, key, value)`` settings put in, written into ``tmp_path``."""
     import tomllib
@@ -252,8 +291,6 @@ def test_tilted_roller_advice_names_keys_and_following_it_holds(tmp_path):
 def test_tilted_roller_advice_on_a_post_without_five_axes(tmp_path):
     # campaign case 43:426 (grbl): "axes = 5" there ends in a refusal (grbl has no 5-axis mode); the way out on
     # this machine comes first, and the 5-axis one names the post it needs
-    from tests.nc.test_fiveaxis import spec_job
-
     # this machine's way out, a tolerance, holds when accepted: it named the measured figure, and the plan fitted
     # to that wider tolerance measured more again (0.0623 -> 0.1103 -> 0.1559 mm); now the fit takes a fixed share
     # of the tolerance and the figure allows for it
