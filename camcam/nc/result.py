@@ -58,13 +58,15 @@ class GroovePlan:
     ``axes`` is 4 (a radial tool, :mod:`camcam.nc.rotary`) or 5 (the tool on the roller's axis,
     :mod:`camcam.nc.fiveaxis`); ``reach_radius_mm`` the deepest radius the plan takes the tool to (the groove
     floor less the dip it plans below it), ``reach_why`` why it dips; ``cut_length_mm`` (5 axes) how far up
-    the tool from its tip the plan's cut reaches.
+    the tool from its tip the plan's cut reaches; ``flank_error_mm`` (4 axes, a tool thinner than the roller)
+    the flank passes' first-order error e the plan balanced (:mod:`camcam.nc.flank`), 0 without flank passes.
     """
 
     axes: int
     reach_radius_mm: float
     reach_why: str = ""
     cut_length_mm: float | None = None
+    flank_error_mm: float = 0.0
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -293,7 +293,8 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     full = m.depth_mm >= cam.groove_depth - 1e-9
     needed = cam.bottom_radius - _corner_dip_mm(cam, r_t) if full else cam.base_radius - m.depth_mm
     plan = GroovePlan(axes=4, reach_radius_mm=needed,
-                      reach_why="so that the flat end reaches the wall corner" if full else "")
+                      reach_why="so that the flat end reaches the wall corner" if full else "",
+                      flank_error_mm=float(flank_err))
     notes = (f"4-axis: X along the cam axis, A = {'+' if turn > 0 else '-'}cam angle (deg), developed at R{rho_d:g} mm",)
     if m.mode == "arcs":
         notes += ("mode arcs: a 4-axis G1 X A program has lines only",)

@@ -288,6 +288,29 @@ class GrooveBudget:
         """The flank passes' fit band: max(T − e, ``flank_fit_share``·T)."""
         return max(tolerance_mm - flank_error_mm, self.flank_fit_share * tolerance_mm)
 
+    def flank_tolerance_mm(self, measured_mm: float, tolerance_mm: float, flank_error_mm: float) -> float | None:
+        """The least tolerance a thinner tool's 4-axis plan provably holds, from the figure D measured at T with
+        first-order flank error e; None where no tolerance is certain to.
+
+        The walls' error beyond the fit is at most D + b(T), b = :meth:`flank_fit_mm` (the fit may have offset
+        that much of it).  At a tolerance T′ ≤ 2e the flank fit band is ``flank_fit_share``·T′, so a plan at T′
+        measures at most D + b(T) + (``flank_fit_share`` + ``sampling_share``)·T′: T′ = (D + b(T)) / (1 −
+        ``flank_fit_share`` − ``sampling_share``) holds when it is at most 2e.  Above 2e the band is T′ − e and
+        grows with T′ as fast as T′ does: no tolerance there is certain to hold (campaign case 43:48: "accept a
+        tolerance of at least 0.2506 mm" measured 0.2812 mm at 0.2506), and the advice names the tool alone.
+
+        Examples
+        --------
+        >>> b = GrooveBudget()
+        >>> round(b.flank_tolerance_mm(0.2506, 0.0031, 0.30), 4)  # e = 0.30: T′ = 0.25215 / 0.48 ≤ 0.6
+        0.5253
+        >>> b.flank_tolerance_mm(0.2506, 0.0031, 0.25) is None  # 0.5253 > 2 × 0.25
+        True
+        """
+        held = (measured_mm + self.flank_fit_mm(tolerance_mm, flank_error_mm)) / (
+            1.0 - self.flank_fit_share - self.sampling_share)
+        return held if self.flank_fit_mm(held, flank_error_mm) <= self.flank_fit_share * held else None
+
     def fit_factor(self, tilts: bool) -> float:
         """The factor on a pass's fit band: ``tilt_fit_share`` where the roller's axis tilts, else 1."""
         return self.tilt_fit_share if tilts else 1.0

@@ -20,10 +20,12 @@ __all__ = ["groove_check", "five_axis_check"]
 
 
 def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool_mm: float | None,
-                 flute_needed_mm: float | None = None, budget: GrooveBudget = DEFAULT_GROOVE_BUDGET) -> Check:
+                 flute_needed_mm: float | None = None, budget: GrooveBudget = DEFAULT_GROOVE_BUDGET,
+                 flank_error_mm: float = 0.0) -> Check:
     """The 3-D groove deviation held to the tolerance, with the way out of a miss (``flute_needed_mm``: the
     flute the printed poses need, :func:`camcam.verify.reach.tool_reach`; ``budget``: the shares the plan was
-    fitted with, whence the tolerance a tilting roller's plan holds, :meth:`GrooveBudget.tilt_tolerance_mm`)."""
+    fitted with, whence the tolerance a tilting roller's plan holds, :meth:`GrooveBudget.tilt_tolerance_mm`, and
+    a thinner tool's with flank error ``flank_error_mm``, :meth:`GrooveBudget.flank_tolerance_mm`)."""
     value, tol = groove.max_deviation_mm, m.tolerance_mm
     holds = math.ceil(value * 1e4) / 1e4
     r_r = cam.roller_radius
@@ -55,7 +57,10 @@ def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool
                     f"diameter, D{2 * r_r:g} mm")
         else:
             tool = f"use a tool of the roller's diameter, D{2 * r_r:g} mm (no thinner tool holds half of {tol:g} mm)"
-        advice = f"{tool}, or accept a tolerance of at least {holds:g} mm"
+        # a tolerance only where a plan at it is certain to hold it: the flank fit widens with the tolerance
+        held = budget.flank_tolerance_mm(value, tol, flank_error_mm)
+        advice = tool + (f", or accept a tolerance of at least {math.ceil(held * 1e4) / 1e4:g} mm"
+                         if held is not None else "")
     elif m.depth_mm < cam.groove_depth - 1e-9:
         advice = (f"the cut stops above the groove bottom: [machining] depth = {cam.groove_depth:g} (the groove "
                   f"depth), or accept a tolerance of at least {holds:g} mm")

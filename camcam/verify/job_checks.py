@@ -117,7 +117,8 @@ def _barrel_checks(result: MachiningResult, built: BuiltCam, m: MachiningSpec, w
     if plan.axes == 5:
         check = five_axis_check(m, groove, plan.cut_length_mm, reach.flute_needed_mm)
     else:
-        check = groove_check(cam, m, groove, result.smallest_tool_mm, reach.flute_needed_mm)
+        check = groove_check(cam, m, groove, result.smallest_tool_mm, reach.flute_needed_mm,
+                             flank_error_mm=plan.flank_error_mm)
     verdict = "within" if check.ok else "OUT OF TOLERANCE"
     header = (f"3-D groove check of this program: {groove.max_deviation_mm:.4f} mm, {verdict} {m.tolerance_mm:g} mm",)
     return JobChecks(checks=(check, reach.check()), groove=groove, reach=reach, poses=poses, header=header)
