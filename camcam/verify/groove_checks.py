@@ -52,11 +52,13 @@ def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool
         # one diameter, one meaning: the smallest tool is the one whose balanced flank error holds half the
         # tolerance (the fit has the other half); where only the roller's own diameter does, it is named once
         least = math.ceil(smallest_tool_mm * 100.0 - 1e-9) / 100.0 if smallest_tool_mm is not None else None
+        # as a spec writes it (campaign case 43:48: "use a tool from D30.69 mm" named no setting to follow)
         if least is not None and least < 2 * r_r - 0.01:
-            tool = (f"use a tool from D{least:g} mm (its flank error holds half of {tol:g} mm) up to the roller's "
-                    f"diameter, D{2 * r_r:g} mm")
+            tool = (f"[machining] tool_diameter = {least:g} (the thinnest tool whose flank error holds half of "
+                    f"{tol:g} mm; any up to the roller's diameter, {2 * r_r:g} mm)")
         else:
-            tool = f"use a tool of the roller's diameter, D{2 * r_r:g} mm (no thinner tool holds half of {tol:g} mm)"
+            tool = (f"[machining] tool_diameter = {2 * r_r:g} (the roller's diameter: no thinner tool holds half of "
+                    f"{tol:g} mm)")
         # a tolerance only where a plan at it is certain to hold it: the flank fit widens with the tolerance
         held = budget.flank_tolerance_mm(value, tol, flank_error_mm)
         advice = tool + (f", or accept a tolerance of at least {math.ceil(held * 1e4) / 1e4:g} mm"

@@ -24,7 +24,7 @@ def test_small_tool_fails_with_advice_and_exit_3(tmp_path):
     lines = stderr.strip().splitlines()
     fail = [line for line in lines if line.startswith("camcam: FAIL: ")]
     assert len(fail) == 1 and len(lines) == 1, stderr  # one line: the cause and the way out (notes are on stdout)
-    assert "3-D groove deviation" in fail[0] and "roller's diameter, D16 mm" in fail[0]
+    assert "3-D groove deviation" in fail[0] and "[machining] tool_diameter = 15.46" in fail[0]
     # the tool is the way out: a tolerance it named (0.0817 mm) measured 0.1102 mm when accepted
     assert "accept a tolerance" not in fail[0]
     name = "cylindrical-translating-small-tool"

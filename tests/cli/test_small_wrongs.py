@@ -74,13 +74,15 @@ def _groove(smallest_tool_mm):
 
 def test_small_tool_advice_names_each_diameter_once():
     advice = _groove(15.4512)
-    assert advice.startswith("use a tool from D15.46 mm (its flank error holds half of 0.02 mm) up to the roller's "
-                             "diameter, D16 mm")
+    # a spec's key and value first (what a user or a script applies), then what it means
+    assert advice.startswith("[machining] tool_diameter = 15.46 (the thinnest tool whose flank error holds half of "
+                             "0.02 mm; any up to the roller's diameter, 16 mm)")
     # where only the roller's own diameter holds it (the search ends at the roller), it is named once
     for smallest in (16.0, 15.999, None):
         advice = _groove(smallest)
-        assert advice.startswith("use a tool of the roller's diameter, D16 mm (no thinner tool holds half of 0.02 mm)")
-        assert len(re.findall(r"D1[56]", advice)) == 1, advice
+        assert advice.startswith("[machining] tool_diameter = 16 (the roller's diameter: no thinner tool holds half "
+                                 "of 0.02 mm)")
+        assert advice.count("16") == 1 and "15." not in advice, advice
 
 
 def test_the_bore_advice_followed_takes_the_bore(tmp_path):
