@@ -107,8 +107,12 @@ def polygon_distance(poly, xy: np.ndarray) -> np.ndarray:
 
     GEOS measures a point against every edge of a polygon; an offset blank has
     10 000 edges, so 10 000 points took 2.3 s.  The nearest edge from the tree
-    gives the same distance (GEOS's point-to-segment distance either way); a
-    point inside the polygon is at 0.  ``poly`` is a Polygon or a
+    gives the same distance (GEOS's point-to-segment distance either way) to
+    within an ulp: edges that meet at the nearest vertex each give its distance
+    to within one, and the tree may return one above GEOS's least (two circles
+    1e-15 mm apart, merged: 37.4234375 against 37.42343749999999; measuring
+    every edge near the nearest one to settle that took 0.27 → 0.44 s for
+    10 000 points); a point inside the polygon is at 0.  ``poly`` is a Polygon or a
     MultiPolygon (the edges of all its parts; inside any part is 0).
 
     Examples
