@@ -21,6 +21,26 @@ ROOT = Path(__file__).resolve().parents[2]
 SAMPLE = ROOT / "samples" / "disc-translating-roller.toml"
 
 
+def _json_of(code: str):
+    """What the Python ``code``, run in a fresh interpreter from the project's root, prints last, as JSON."""
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
+    return json.loads(r.stdout.strip().splitlines()[-1])
+
+
+def _at_forks_of_run(spec: Path, out: Path, probe: str) -> dict:
+    """``camcam run spec`` in a fresh interpreter: its exit status and the value of the Python expression ``probe``
+    in it before each fork, {"rc": …, "at_fork": […]}."""
+    return _json_of(
+        "import json, os, sys\n"
+        "from camcam import flow\n"
+        "at_fork = []\n"
+        f"os.register_at_fork(before=lambda: at_fork.append({probe}))\n"
+        "from camcam.cli import main\n"
+        f"rc = main(['run', {str(spec)!r}, '-o', {str(out)!r}])\n"
+        "sys.stdout.flush()\n"
+        "print(json.dumps({'rc': rc, 'at_fork': at_fork}))\n")
+
+
 def _loaded_after_run(spec: Path, out: Path) -> dict:
     code = (
         "import json, sys\n"
@@ -30,8 +50,7 @@ def _loaded_after_run(spec: Path, out: Path) -> dict:
         "print(json.dumps({'rc': rc, 'loaded': [m for m in ('matplotlib', 'ezdxf', 'trimesh', 'scipy', 'OCP') "
         "if m in sys.modules]}))\n"
     )
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
-    return json.loads(r.stdout.strip().splitlines()[-1])
+    return _json_of(code)
 
 
 def test_the_fitting_process_imports_no_plot_or_export_library(tmp_path):
@@ -64,8 +83,7 @@ def test_the_drawing_model_and_material_check_import_no_trimesh():
         "print(json.dumps({'stl': len(files), 'dxf': sum(n.endswith('.dxf') for n in drawn), 'checked': checks is not None,\n"
         "                  'loaded': [m for m in ('trimesh', 'scipy.interpolate', 'scipy.spatial') if m in sys.modules]}))\n"
     )
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
-    assert json.loads(r.stdout.strip().splitlines()[-1]) == {"stl": 1, "dxf": 1, "checked": True, "loaded": []}
+    assert _json_of(code) == {"stl": 1, "dxf": 1, "checked": True, "loaded": []}
 
 
 def test_a_barrel_jobs_drawing_imports_no_scipy():
@@ -85,8 +103,7 @@ def test_a_barrel_jobs_drawing_imports_no_scipy():
         "print(json.dumps({'dxf': sum(n.endswith('.dxf') for n in drawn), 'checked': checks is not None,\n"
         "                  'loaded': [m for m in ('scipy', 'trimesh') if m in sys.modules]}))\n"
     )
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
-    assert json.loads(r.stdout.strip().splitlines()[-1]) == {"dxf": 1, "checked": False, "loaded": []}
+    assert _json_of(code) == {"dxf": 1, "checked": False, "loaded": []}
 
 
 def test_a_barrel_job_with_the_rollers_tool_imports_no_scipy(tmp_path):
@@ -101,18 +118,8 @@ def test_a_flank_planning_barrel_job_imports_scipy_interpolate_once(tmp_path):
     # a thinner tool's flank plan is scipy's quintic splines, which the drawing's (and the STEP's) child unpickles
     # with the program: the run imports scipy.interpolate before it forks them, so that they inherit it instead
     # of importing it again (0.17-0.28 CPU s each, issue 49).  Only the plot server, forked first, goes without.
-    code = (
-        "import json, os, sys\n"
-        "at_fork = []\n"
-        "os.register_at_fork(before=lambda: at_fork.append('scipy.interpolate' in sys.modules))\n"
-        "from camcam.cli import main\n"
-        f"rc = main(['run', {str(ROOT / 'samples' / 'cylindrical-translating-small-tool.toml')!r}, "
-        f"'-o', {str(tmp_path / 'out')!r}])\n"
-        "sys.stdout.flush()\n"
-        "print(json.dumps({'rc': rc, 'at_fork': at_fork}))\n"
-    )
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
-    result = json.loads(r.stdout.strip().splitlines()[-1])
+    result = _at_forks_of_run(ROOT / "samples" / "cylindrical-translating-small-tool.toml", tmp_path / "out",
+                              "'scipy.interpolate' in sys.modules")
     assert result["rc"] == 0 and len(result["at_fork"]) >= 3  # the plot server, the drawing's child, workers
     assert result["at_fork"][0] is False and all(result["at_fork"][1:])
 
@@ -128,24 +135,12 @@ def test_what_the_run_imports_for_its_children_both_of_them_import(modules):
         f"for name in {list(modules)!r}: importlib.import_module(name)\n"
         "print(json.dumps([m for m in flow.CHILDREN_SHARE if m not in sys.modules]))\n"
     )
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
-    assert json.loads(r.stdout.strip().splitlines()[-1]) == []
+    assert _json_of(code) == []
 
 
 @pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork: every run is in process already")
 def test_every_child_of_a_run_inherits_what_its_children_share(tmp_path):
-    code = (
-        "import json, os, sys\n"
-        "from camcam import flow\n"
-        "at_fork = []\n"
-        "os.register_at_fork(before=lambda: at_fork.append([m for m in flow.CHILDREN_SHARE if m not in sys.modules]))\n"
-        "from camcam.cli import main\n"
-        f"rc = main(['run', {str(SAMPLE)!r}, '-o', {str(tmp_path / 'out')!r}])\n"
-        "sys.stdout.flush()\n"
-        "print(json.dumps({'rc': rc, 'at_fork': at_fork}))\n"
-    )
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
-    result = json.loads(r.stdout.strip().splitlines()[-1])
+    result = _at_forks_of_run(SAMPLE, tmp_path / "out", "[m for m in flow.CHILDREN_SHARE if m not in sys.modules]")
     # the plot server, the drawing's child, the STEP's and the roughing's: none imports them again
     assert result["rc"] == 0 and len(result["at_fork"]) >= 2
     assert all(missing == [] for missing in result["at_fork"])
@@ -175,8 +170,7 @@ def test_single_process_forks_nothing_and_gives_the_same_bytes(tmp_path):
         "sys.stdout.flush()\n"
         "print(json.dumps({'rc': rc, 'forks': len(forks)}))\n"
     )
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
-    assert json.loads(r.stdout.strip().splitlines()[-1]) == {"rc": 0, "forks": 0}
+    assert _json_of(code) == {"rc": 0, "forks": 0}
     assert main(["run", str(SAMPLE), "-o", str(tmp_path / "default")]) == 0
     single = {p.name: p.read_bytes() for p in (tmp_path / "single").iterdir()}
     default = {p.name: p.read_bytes() for p in (tmp_path / "default").iterdir()}
