@@ -318,7 +318,7 @@ PLOT_INHERITS = ("camcam.motion.program", "camcam.geometry.build", "camcam.geome
 #: What matplotlib (the plot server's) and ezdxf (the drawing's child's) both import: numpy's masked arrays and
 #: typing, pyparsing (and the unittest it brings), fontTools' helpers, uuid and socket, the expat XML parser, subprocess.
 #: Imported before the plot server is forked, every child inherits them instead of each importing them
-#: again: about 0.08 CPU s once instead of twice (benchmarks/ab.py figures in docs/benchmarks.md).
+#: again: about 0.1 CPU s once instead of twice (benchmarks/ab.py figures in docs/benchmarks.md).
 CHILDREN_SHARE = ("numpy.ma", "numpy.typing", "pyparsing", "fontTools.misc.loggingTools", "fontTools.misc.textTools",
                   "uuid", "socket", "pyexpat", "subprocess", "sysconfig", "calendar")
 #: What the drawing's child imports while the NC step runs: ezdxf comes with them; the STL is numpy's (no trimesh)
@@ -346,6 +346,8 @@ def has_material_check(cam_kind: str) -> bool:
     """Whether a ``cam_kind`` job's program gets the material check (:func:`camcam.verify.check_job`): a disc's
     or face groove's, which starts from a blank; a barrel's groove is measured in 3-D by its NC step instead."""
     return cam_kind != "cylindrical"
+
+
 #: What the NC step (:func:`nc_step`) and its material check's result (``with_checks``) import: the run imports them
 #: before it forks the drawing's child, which needs them too (its machining result unpickles to them).
 NC_MODULES = ("camcam.nc.job", "camcam.verify.job_checks")
