@@ -8,7 +8,6 @@ so the NC stage does not depend on the post package that prints its result.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Protocol
 
@@ -161,13 +160,12 @@ class MachiningSpec:
         """The largest radial engagement of a roughing pass (mm): ``stepover`` × the tool diameter."""
         return self.stepover * self.tool_diameter_mm
 
-    def flute_for(self, needed_mm: float) -> float:
-        """The tool's cutting length (mm) a barrel program's checks model, where the printed cut reaches
-        ``needed_mm`` up the tool: the spec's ``flute_length``; where the spec gives none, twice the tool's
-        diameter or, where the cut needs more, what it needs rounded up to 0.01 mm (the tool the setup sheet asks
-        for, :func:`camcam.verify.reach.flute_text`).  Campaign case 43:34 of the translating barrels (an 8 mm
-        tool, a groove 16.3 mm deep) left the top 0.3 mm of its groove uncut with a 16 mm flute nobody asked for,
-        and measured 23.2 mm of material left.
+    def flute_for(self, wanted_mm: float) -> float:
+        """The tool's cutting length (mm) a barrel program's checks model, where the printed cut asks for a flute of
+        ``wanted_mm`` (:func:`camcam.verify.reach.flute_to_buy_mm`, the setup sheet's): the spec's ``flute_length``;
+        where the spec gives none, twice the tool's diameter or, where the cut wants more, that.  Campaign case
+        43:34 of the translating barrels (an 8 mm tool, a groove 16.3 mm deep) left the top 0.3 mm of its groove
+        uncut with a 16 mm flute nobody asked for, and measured 23.2 mm of material left.
 
         >>> from camcam.post.post import load_post
         >>> m = MachiningSpec(post=load_post("linuxcnc"), tool_diameter_mm=8.0, tolerance_mm=0.01, mode="lines",
@@ -175,15 +173,15 @@ class MachiningSpec:
         ...                   plunge_feed_mm_min=100.0, safe_z_mm=25.0, clearance_z_mm=2.0, lead_radius_mm=4.0,
         ...                   finish_allowance_mm=0.0, spring_pass=False, tool_number=1, flute_length_mm=16.0,
         ...                   flute_stated=False)
-        >>> m.flute_for(10.3), m.flute_for(16.303)
+        >>> m.flute_for(10.3), m.flute_for(16.31)
         (16.0, 16.31)
         >>> from dataclasses import replace
-        >>> replace(m, flute_stated=True).flute_for(16.303)  # a flute the spec states is the tool's
+        >>> replace(m, flute_stated=True).flute_for(16.31)  # a flute the spec states is the tool's
         16.0
         """
         if self.flute_stated:
             return self.flute_length_mm
-        return max(self.flute_length_mm, math.ceil(needed_mm * 100.0 - 1e-9) / 100.0)
+        return max(self.flute_length_mm, wanted_mm)
 
     def cut_settings(self, stock_side: str = "right") -> CutSettings:
         """Settings for :func:`camcam.toolpath.path.contour_toolpath`."""

@@ -15,6 +15,7 @@ from camcam.nc.tools import SAME_TOOL_MM
 from camcam.toolpath.budget import DEFAULT_GROOVE_BUDGET, GrooveBudget
 from camcam.verdict import Check
 from camcam.verify.groove3d import GrooveMeasurement
+from camcam.verify.reach import flute_to_buy_mm
 
 __all__ = ["groove_check", "five_axis_check"]
 
@@ -32,8 +33,7 @@ def groove_check(cam, m: MachiningSpec, groove: GrooveMeasurement, smallest_tool
     if flute_needed_mm is not None and m.flute_length_mm < flute_needed_mm:
         # first: no tool diameter or tolerance cuts the top of the walls a short flute leaves (campaign case 43:34
         # of the translating barrels: "use a tool from D15.78 mm ..., or accept a tolerance of at least 23.203 mm")
-        flute = math.ceil(flute_needed_mm * 100 - 1e-9) / 100
-        advice = f"the flute is shorter than the cut: [machining] flute_length = {flute:g}"
+        advice = f"the flute is shorter than the cut: [machining] flute_length = {flute_to_buy_mm(flute_needed_mm):g}"
     elif cam.follower.roller_axis_tilts:
         holds = math.ceil(budget.tilt_tolerance_mm(value, tol) * 1e4) / 1e4
         # keys and values as a spec writes them, each with its section, so that the advice applies as it reads
@@ -82,7 +82,7 @@ def five_axis_check(m: MachiningSpec, groove: GrooveMeasurement, cut_length_mm: 
     # the flute the cut needs, as a value a spec takes (issue 43: "check flute_length (the cut needs 10.04 mm from
     # the tip) and depth" named no setting; a short flute leaves the top of the walls uncut, 10.48 mm on 43:404
     # with flute_length = 6, where no tolerance is the way out)
-    flute = math.ceil(max(cut_length_mm, flute_needed_mm) * 100 - 1e-9) / 100
+    flute = flute_to_buy_mm(max(cut_length_mm, flute_needed_mm))
     if m.flute_length_mm < flute:
         advice = (f"the flute is shorter than the cut: [machining] flute_length = {flute:g} (the cut reaches "
                   f"{cut_length_mm:.2f} mm up the tool from its tip)")

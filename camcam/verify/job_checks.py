@@ -52,7 +52,7 @@ from camcam.verify.cycle_time import cycle_time
 from camcam.verify.motion_time import motion_time
 from camcam.verify.groove_checks import five_axis_check, groove_check
 from camcam.verify.holder import check_holder
-from camcam.verify.reach import ToolReach, tool_reach
+from camcam.verify.reach import ToolReach, flute_to_buy_mm, tool_reach
 
 if TYPE_CHECKING:
     from camcam.geometry.build import BuiltCam
@@ -110,7 +110,7 @@ def _barrel_checks(result: MachiningResult, built: BuiltCam, m: MachiningSpec, w
     reach = tool_reach(poses, r_t, cam.base_radius, cam.bottom_radius, plan.reach_radius_mm, m.flute_length_mm,
                        post.quantizer.decimals, plan.reach_why)
     # the tool modelled: the spec's flute, or where it states none one as long as the printed cut needs
-    m = replace(m, flute_length_mm=m.flute_for(max(reach.flute_needed_mm, plan.cut_length_mm or 0.0)))
+    m = replace(m, flute_length_mm=m.flute_for(flute_to_buy_mm(max(reach.flute_needed_mm, plan.cut_length_mm or 0.0))))
     reach = replace(reach, flute_length_mm=m.flute_length_mm)
     groove = measure_groove(cam, CylinderTool(r_t, m.flute_length_mm), poses, workers=workers,
                            pose_step_mm=pose_step_for(m.tolerance_mm, r_t))

@@ -25,7 +25,7 @@ import numpy as np
 from camcam.toolpath.poses import ToolPoses
 from camcam.verdict import Check
 
-__all__ = ["ToolReach", "tool_reach", "flute_text"]
+__all__ = ["ToolReach", "tool_reach", "flute_text", "flute_to_buy_mm"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -90,8 +90,18 @@ def tool_reach(poses: ToolPoses, tool_radius_mm: float, top_radius_mm: float, bo
                      print_step_mm=10.0 ** -decimals, why=why)
 
 
+def flute_to_buy_mm(needed_mm: float) -> float:
+    """The flute a cut reaching ``needed_mm`` up the tool asks for: rounded up to 0.01 mm, a length one can buy
+    and hold to (the setup sheet, the advice and the tool an unstated flute is modelled as name this one).
+
+    >>> flute_to_buy_mm(16.303), flute_to_buy_mm(10.3)
+    (16.31, 10.3)
+    """
+    return math.ceil(needed_mm * 100 - 1e-9) / 100
+
+
 def flute_text(reach: ToolReach) -> str:
     """The setup sheet's flute line for a barrel program."""
-    return (f"flute length ≥ {math.ceil(reach.flute_needed_mm * 100 - 1e-9) / 100:g} mm (the cut reaches "
+    return (f"flute length ≥ {flute_to_buy_mm(reach.flute_needed_mm):g} mm (the cut reaches "
             f"{reach.flute_needed_mm:.2f} mm up the tool from its tip; deepest point {reach.depth_mm:.2f} mm "
             f"below the top, R{reach.deepest_radius_mm:.2f})")
