@@ -21,9 +21,9 @@ Every figure is the median of ``--repeat`` whole processes (a fresh interpreter 
 imports included), and the repeats are interleaved (commands, samples, then again) so
 that a change in the machine's load hits them all alike.  Each command is timed right
 after a floor of its own, and its "× floor" figures are the medians of its rounds'
-ratios to that floor: on the shared machine the floor's CPU seconds read 1.17 to 1.8
-within one day, and a floor timed a minute earlier moved a ratio by as much as the
-changes measured (``benchmarks/ab.py --floor`` pairs the same way).  Besides wall
+ratios to that floor: on the shared machine the floor's CPU seconds read 1.17 to 2.19
+within one run (2026-12-07), and a floor timed a minute earlier moved a ratio by as much
+as the changes measured (``benchmarks/ab.py --floor`` pairs the same way).  Besides wall
 seconds it prints CPU seconds (user + system of the process and its children): on a
 shared, loaded machine the wall figures move with the load, the CPU figures much less;
 a run that renders its plots concurrently uses more CPU than wall on an idle machine.
