@@ -261,9 +261,14 @@ class GrooveBudget:
         :attr:`FitBudget.sampling_share`): :meth:`pose_step_mm`, used by
         :func:`camcam.verify.groove3d.pose_step_for` for 4- and 5-axis programs.
     pose_step_mm : float
-        The largest step of a tool section between motion samples (mm, 0.1), a
-        resolution cap rather than a share: at the samples' tolerances the
-        sampling bound is far below ``sampling_share``·T there.
+        The largest step of a tool section between motion samples (mm, 0.5), a
+        resolution cap rather than a share: below it the step is the one whose
+        bound takes ``sampling_share``·T, the share the plans leave the
+        measurement (issue 49: the cap was 0.1 mm, where the bound took 0.4 to
+        0.8 % of T at the barrel samples' tolerances and the measurement sampled
+        1.4 to 2.2 times as many poses as its share needs, for figures that moved
+        by less than 1e-8 mm; the cap binds from T = 0.5²/(0.16 r), 0.2 mm for
+        r = 8 mm).
 
     Examples
     --------
@@ -278,7 +283,7 @@ class GrooveBudget:
     flank_fit_share: float = 0.5
     tilt_fit_share: float = 0.25
     sampling_share: float = 0.02
-    pose_step_mm: float = 0.1
+    pose_step_mm: float = 0.5
 
     def flank_tool_mm(self, tolerance_mm: float) -> float:
         """The flank error the smallest tool must hold: ``flank_share``·T."""

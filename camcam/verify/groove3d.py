@@ -73,6 +73,10 @@ __all__ = ["WallExtreme", "WallDeviation", "GrooveMeasurement", "measure_groove"
 
 WALL_LABELS = ("flank 0 (-X wall)", "flank 1 (+X wall)")
 
+#: The pose step (mm) of a measurement made with no tolerance to size it by (:func:`measure_groove`'s default): its
+#: sampling bound is 1.6e-4 mm for r = 8 mm.  A job's check takes :func:`pose_step_for` its tolerance.
+POSE_STEP_MM = 0.1
+
 
 @dataclass(frozen=True)
 class WallExtreme:
@@ -294,8 +298,10 @@ def pose_step_for(tolerance_mm: float, tool_radius_mm: float,
 
     Examples
     --------
-    >>> pose_step_for(0.02, 8.0)  # the samples' tolerances keep the 0.1 mm step (bound 1.6e-4 mm)
-    0.1
+    >>> round(pose_step_for(0.02, 8.0), 6)  # cylindrical-translating's 0.02 mm: bound 4e-4 mm, 2 % of it
+    0.16
+    >>> pose_step_for(0.5, 8.0)  # a coarse tolerance: the resolution cap, bound 3.9e-3 mm
+    0.5
     >>> round(pose_step_for(0.001, 8.0), 6)  # 0.001 mm: bound 2e-5 mm
     0.035777
     """
@@ -303,7 +309,7 @@ def pose_step_for(tolerance_mm: float, tool_radius_mm: float,
 
 
 def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *, radii: int | np.ndarray = 11,
-                   angle_step_deg: float = 0.25, pose_step_mm: float = DEFAULT_GROOVE_BUDGET.pose_step_mm,
+                   angle_step_deg: float = 0.25, pose_step_mm: float = POSE_STEP_MM,
                    workers: int = 1) -> GrooveMeasurement:
     """Measure the groove the poses cut against the designed groove: both walls, all radii, all angles.
 
@@ -388,7 +394,8 @@ def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *,
                              sampling_bound_mm=float(bound), pose_step_mm=float(pose_step_mm), uncut_points=uncut)
 
 
-def design_walls(cam: CylindricalCam, radius_mm: float, cam_angle_deg, pose_step_mm: float = 0.1) -> np.ndarray:
+def design_walls(cam: CylindricalCam, radius_mm: float, cam_angle_deg,
+                 pose_step_mm: float = POSE_STEP_MM) -> np.ndarray:
     """The designed walls' x (−X wall, +X wall) at radius ρ and program cam angles θc: (n, 2), mm."""
     motion = RollerMotion(cam)
     s = motion.samples(pose_step_mm, cam.base_radius)
@@ -398,7 +405,7 @@ def design_walls(cam: CylindricalCam, radius_mm: float, cam_angle_deg, pose_step
 
 
 def cut_walls(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, radius_mm: float, cam_angle_deg,
-              pose_step_mm: float = 0.1) -> np.ndarray:
+              pose_step_mm: float = POSE_STEP_MM) -> np.ndarray:
     """The cut walls' x (−X wall, +X wall) at radius ρ and program cam angles θc: (n, 2), mm; NaN where uncut."""
     motion = ProgramMotion(poses, tool)
     s = motion.samples(pose_step_mm, cam.base_radius)

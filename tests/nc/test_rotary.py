@@ -95,7 +95,8 @@ def test_rs274_reading_gives_the_same_3d_figure(tmp_path):
     f.write_text(r.program.text)
     canon = [mv for mv in run_rs274(f)]
     poses = poses_from_canon(canon, m.a_axis)
-    g = measure_groove(built.cam, CylinderTool(m.tool_diameter_mm / 2, m.flute_length_mm), poses)
+    g = measure_groove(built.cam, CylinderTool(m.tool_diameter_mm / 2, m.flute_length_mm), poses,
+                       pose_step_mm=r.groove.pose_step_mm)  # the job's step: the same sampling bound
     # linuxcnc prints 4 decimals and rs274 reproduces them exactly; its only extra move is the
     # start at the origin before the first positioning (above the cam, it cuts nothing)
     assert abs(g.max_deviation_mm - r.groove.max_deviation_mm) <= 1e-9
@@ -165,7 +166,7 @@ def test_a_barrel_at_r1000_is_cut_and_measured_to_its_groove_bottom():
     (y = r_t·sin 1.77° = 0.25 mm off the axis plane); the last pass was printed at Z990, the bottom itself,
     where the tool's section on r = 990 is one line, so the groove counted as uncut there (its width, 16 mm).
     The last pass now goes to the first grid value below the corner depth (Z989.9999): cut to the bottom,
-    measured 0.0193 mm, as the R 50 sample."""
+    measured 0.0195 mm, as the R 50 sample."""
     spec = load_spec(ROOT / "samples" / "cylindrical-translating.toml")
     cam_spec = replace(spec.cam, base_radius=1000.0)
     built = build_cam(cam_spec, spec.follower, spec.motion.program(spec.unit))
