@@ -234,19 +234,38 @@ class CylindricalCam(CamBasics):
     def flank_on_surface(self, theta, index: int, radius_mm: float | None = None, iterations: int = 60) -> np.ndarray:
         """Cam-frame points (n, 3) of flank ``index`` lying exactly on the cylinder r = ρ (default the surface).
 
-        Solved per point by bisection over the roller cross-section (to ~1e-15 of r_r).
+        Solved per point for the roller cross-section ρ′ whose contact point lies at r = ρ: secant steps kept
+        inside a bracket [ρ − 2 r_r, ρ + 2 r_r] that holds the root (a step leaving it bisects instead), until
+        the point is within 4 ulp of ρ or the bracket is that narrow; at most ``iterations`` steps.  The
+        contact's radius grows with ρ′ about as fast as ρ′ does (√(ρ′² + (r_r sin α)²)), so 5 to 7 steps
+        do what 60 of bisection did, to the same ~1e-14 mm (issue 49: the mesh's 14 rings took 0.15 s).
         """
         rho = self.base_radius if radius_mm is None else float(radius_mm)
         theta = np.atleast_1d(np.asarray(theta, float))
-        lo = np.full(theta.shape, rho - 2 * self.roller_radius)
-        hi = np.full(theta.shape, rho + 2 * self.roller_radius)
-        lift = self.lift(theta, 1, None)  # the same at every step: only the radius is bisected
+        lift = self.lift(theta, 1, None)  # the same at every step: only the cross-section's radius is solved for
+
+        def excess(m):
+            p = self._contact(theta, 0, None, m, index, lift)
+            return np.hypot(p[1].value, p[2].value) - rho
+
+        a = np.full(theta.shape, rho - 2 * self.roller_radius)
+        b = np.full(theta.shape, rho + 2 * self.roller_radius)
+        fa, fb = excess(a), excess(b)  # fa < 0 < fb
+        x0, f0, x1, f1 = a, fa, b, fb
+        close = 4 * np.spacing(rho)
+        done = np.zeros(theta.shape, bool)
         for _ in range(iterations):
-            mid = 0.5 * (lo + hi)
-            p = self._contact(theta, 0, None, mid, index, lift)
-            r = np.hypot(p[1].value, p[2].value)
-            outside = r > rho
-            hi = np.where(outside, mid, hi)
-            lo = np.where(outside, lo, mid)
-        p = self._to_cam(theta, self._contact(theta, 0, None, 0.5 * (lo + hi), index, lift))
+            with np.errstate(divide="ignore", invalid="ignore"):
+                x = x1 - f1 * (x1 - x0) / (f1 - f0)
+            x = np.where((x > a) & (x < b), x, 0.5 * (a + b))  # NaN (f1 = f0) or outside: bisect
+            x = np.where(done, x1, x)
+            fx = excess(x)
+            over = fx > 0
+            a, fa = np.where(over, a, x), np.where(over, fa, fx)
+            b, fb = np.where(over, x, b), np.where(over, fx, fb)
+            x0, f0, x1, f1 = x1, f1, x, fx
+            done |= (np.abs(fx) <= close) | (b - a <= close)
+            if done.all():
+                break
+        p = self._to_cam(theta, self._contact(theta, 0, None, x1, index, lift))
         return np.stack([j.value for j in p], axis=-1)
