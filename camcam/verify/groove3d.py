@@ -237,25 +237,38 @@ class _Setup:
             out.append(gap * cos_psi * f3)
         return out, uncut
 
-    def deviation(self, rho, cam_angle_rad, side):
-        return self.deviations(rho, cam_angle_rad)[0][side]
+    def side_deviations(self, rho, cam_angle_rad, side):
+        """:meth:`deviations` of wall ``side[i]`` at each (ρ[i], θc[i]), all in one envelope: (k,); ``rho`` and
+        ``side`` are arrays like the angles (a scattered envelope gives each angle the figure it has alone)."""
+        d0, d1 = self.deviations(rho, cam_angle_rad)[0]
+        return np.where(np.asarray(side) == 0, d0, d1)
 
-    def exact_deviation(self, rho, cam_angle_rad, side):
-        """Signed 3-D deviation at one (ρ, θc): the nearest point on the designed wall curve at ρ."""
-        g = float(self.gamma(cam_angle_rad))
-        cut = self.cut_walls(rho, np.array([g]))[side]
-        if not np.isfinite(cut.value[0]):
-            return float(self.deviation(rho, np.array([cam_angle_rad]), side)[0])
-        des = self.design_walls(rho, np.array([g]))[side]
-        xc = cut.value[0]
-        cos_psi, f3 = self.slope_and_normal(rho, np.array([g]), des.p, side)
-        span = 3.0 * abs(xc - des.value[0]) / rho + 1e-9
-        gg = g + np.linspace(-span, span, 41)
-        dd = self.design_walls(rho, gg)[side].value
-        d2 = (rho * (gg - g)) ** 2 + (dd - xc) ** 2
-        _, best = _parabola_min(gg, d2)
-        sign = 1.0 if xc >= des.value[0] else -1.0
-        return sign * math.sqrt(max(best, 0.0)) * float(f3[0])
+    def exact_deviations(self, rho, cam_angle_rad, side):
+        """Signed 3-D deviations at (ρ[i], θc[i]) on wall ``side[i]``: the nearest point on the designed wall curve
+        at ρ[i], each from 41 angles about its own (all in one envelope); arrays (k,)."""
+        rho, side = np.asarray(rho, float), np.asarray(side)
+        g = self.gamma(cam_angle_rad)
+        cut = self.cut_walls(rho, g)
+        des = self.design_walls(rho, g)
+        pick = side == 0
+        xc = np.where(pick, cut[0].value, cut[1].value)
+        xd = np.where(pick, des[0].value, des[1].value)
+        f3 = np.where(pick, self.slope_and_normal(rho, g, des[0].p, 0)[1],
+                      self.slope_and_normal(rho, g, des[1].p, 1)[1])
+        out = np.empty(len(g))
+        cut_at = np.isfinite(xc)
+        if not cut_at.all():  # nothing cut there: the first-order figure (the groove's width)
+            out[~cut_at] = self.side_deviations(rho[~cut_at], cam_angle_rad[~cut_at], side[~cut_at])
+        k = np.flatnonzero(cut_at)
+        if len(k):
+            span = 3.0 * np.abs(xc[k] - xd[k]) / rho[k] + 1e-9
+            gg = g[k, None] + np.linspace(-span, span, 41, axis=1)
+            near = self.design_walls(np.repeat(rho[k], 41), gg.ravel())
+            dd = np.where(pick[k, None], near[0].value.reshape(gg.shape), near[1].value.reshape(gg.shape))
+            d2 = (rho[k, None] * (gg - g[k, None])) ** 2 + (dd - xc[k, None]) ** 2
+            best = np.array([_parabola_min(a, b)[1] for a, b in zip(gg, d2)])
+            out[k] = np.where(xc[k] >= xd[k], 1.0, -1.0) * np.sqrt(np.maximum(best, 0.0)) * f3[k]
+        return out
 
 
 def _parabola_min(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
@@ -270,24 +283,39 @@ def _parabola_min(x: np.ndarray, y: np.ndarray) -> tuple[float, float]:
     return float(x[j]), float(y[j])
 
 
-def _refine(setup: _Setup, side: int, rho0: float, th0: float, sign: float, rho_lo: float, rho_hi: float,
-            d_rho: float, d_th: float) -> tuple[float, float, float]:
-    """Refine the grid extreme of sign·deviation at (ρ0, θc0): local grids in θc, then ρ, then θc again.
+def _refine(setup: _Setup, found: list, rho_lo: float, rho_hi: float, d_rho: float,
+            d_th: float) -> list[tuple[float, float, float]]:
+    """Refine each grid extreme of sign·deviation at (ρ0, θc0): local grids in θc, then ρ, then θc again.
 
-    Returns (ρ, θc, exact signed deviation there).
+    ``found`` holds (side, sign, ρ0, θc0); all of them are refined together, each step one envelope of every
+    extreme's angles (a scattered envelope's figure at an angle is the one it has alone: the same figures as
+    one by one, a quarter of the envelopes).  Returns (ρ, θc, exact signed deviation there) for each.
     """
-    def best_th(rho, th, half, n):
-        tt = th + np.linspace(-half, half, n)
-        v = sign * setup.deviation(rho, tt, side)
-        return _parabola_min(tt, -v)[0]
+    n = len(found)
+    if n == 0:
+        return []
+    side = np.array([f[0] for f in found])
+    sign, rho0, th0 = (np.array([f[i] for f in found], float) for i in (1, 2, 3))
+
+    def values(rho, th):
+        """sign·deviation of each extreme's wall at (ρ, θc) (n, m) arrays: (n, m)."""
+        m = th.shape[1]
+        v = setup.side_deviations(rho.ravel(), th.ravel(), np.repeat(side, m)).reshape(n, m)
+        return sign[:, None] * v
+
+    def best_th(rho, th, half, m):
+        tt = th[:, None] + np.linspace(-half, half, m)
+        v = values(np.repeat(rho[:, None], m, axis=1), tt)
+        return np.array([_parabola_min(t, -x)[0] for t, x in zip(tt, v)])
 
     th = best_th(rho0, th0, d_th, 33)
-    lo, hi = max(rho_lo, rho0 - d_rho), min(rho_hi, rho0 + d_rho)
-    rr = np.linspace(lo, hi, 9)
-    vals = sign * setup.deviation(rr, np.full(len(rr), th), side)  # each radius at θc: one scattered envelope
-    rho = float(rr[int(np.argmax(vals))])
+    lo, hi = np.maximum(rho_lo, rho0 - d_rho), np.minimum(rho_hi, rho0 + d_rho)
+    rr = np.linspace(lo, hi, 9, axis=1)
+    vals = values(rr, np.repeat(th[:, None], 9, axis=1))  # each radius at θc: one scattered envelope
+    rho = rr[np.arange(n), np.argmax(vals, axis=1)]
     th = best_th(rho, th, d_th / 8, 17)
-    return rho, th, setup.exact_deviation(rho, th, side)
+    exact = setup.exact_deviations(rho, th, side)
+    return [(float(a), float(b), float(c)) for a, b, c in zip(rho, th, exact)]
 
 
 def pose_step_for(tolerance_mm: float, tool_radius_mm: float,
@@ -327,8 +355,9 @@ def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *,
     pose_step_mm : float
         Largest step of a tool section between motion samples before refinement.
     workers : int
-        Processes that share the map's radii and the four refinements
-        (:func:`camcam.workers.parallel_map`; the same figures for any count).
+        Processes that share the map's radii (:func:`camcam.workers.parallel_map`; the same figures for any
+        count).  The four extremes are refined together in this process: a few envelopes of 4 × 33 angles, too
+        little work to fork for.
 
     Returns
     -------
@@ -377,9 +406,9 @@ def measure_groove(cam: CylindricalCam, tool: CylinderTool, poses: ToolPoses, *,
             # nothing cut there (the figure is the groove width): no refinement
             found.append((side, sign, float(rad[i]), float(th[j]), grid_v,
                           bool(np.isfinite(grid_v) and abs(grid_v) < 0.5 * cam.roller_radius)))
-    refined = parallel_map(
-        lambda f: _refine(setup, f[0], f[2], f[3], f[1], float(rad[0]), float(rad[-1]), d_rho, d_th) if f[5] else None,
-        found, workers)
+    todo = [f for f in found if f[5]]
+    done = iter(_refine(setup, [f[:4] for f in todo], float(rad[0]), float(rad[-1]), d_rho, d_th))
+    refined = [next(done) if f[5] else None for f in found]
     ext = []
     for (side, sign, rho_g, t_g, grid_v, _), r in zip(found, refined):
         if r is None or sign * grid_v > sign * r[2]:  # the refined figure never reports less than the grid found

@@ -408,3 +408,22 @@ def test_scattered_prefilter_finds_what_every_pair_finds(sample, seed):
         want_v, want_j = _every_pair_best(poses, motion.r, motion.L, rho, gamma)
         assert np.array_equal(best_j, want_j) and np.array_equal(best_v, want_v)
         assert (best_j >= 0).sum() > len(gamma)  # most angles reach a sample on both sides: not a vacuous check
+
+
+@pytest.mark.parametrize("sample", ["cylindrical-translating", "cylindrical-oscillating"])
+def test_extremes_refined_together_are_each_refined_alone(sample):
+    """measure_groove refines its four extremes in one envelope a step (issue 49); each extreme's radius, angle
+    and exact figure are those it has refined alone, to the bit (a scattered envelope's figure at an angle does
+    not depend on the other angles of the call), on both walls and both signs."""
+    from camcam.verify.groove3d import _refine, _Setup
+
+    cam = cam_of(sample)
+    spec = load_spec(ROOT / "samples" / f"{sample}.toml")
+    program = poses_from_program((DATA / f"legacy-{sample}.ngc").read_text(), assume={"Y": 0.0})
+    setup = _Setup(cam, CylinderTool(spec.machining.tool_diameter_mm / 2, 40.0), program, 0.1)
+    rb, R = cam.bottom_radius, cam.base_radius
+    found = [(0, 1.0, R, 0.4), (0, -1.0, rb, 2.0), (1, 1.0, 0.5 * (rb + R), 3.5), (1, -1.0, R, 5.0)]
+    together = _refine(setup, found, rb, R, 0.25 * (R - rb), math.radians(1.0))
+    alone = [_refine(setup, [f], rb, R, 0.25 * (R - rb), math.radians(1.0))[0] for f in found]
+    assert together == alone
+    assert len({t[2] for t in together}) == 4  # four different figures: not one extreme four times
