@@ -198,14 +198,6 @@ def _flow(spec, out, progress, plots, said: list) -> tuple[dict, Verdict, tuple]
         # until the report (camcam.export.step.step_files: nothing where OCP is not installed)
         from camcam.export.step import step_files
 
-        if spec.machining is not None and built.spec.kind == "cylindrical" and spec.machining.axes == 4:
-            from camcam.nc.rotary import plans_flank
-
-            if plans_flank(built.cam, spec.machining.tool_diameter_mm / 2):
-                # the NC step's flank plan is scipy's splines, and the drawing's (and the STEP's) child unpickles
-                # them: imported once, here, before they are forked, instead of in each (0.17–0.28 CPU s a process)
-                import scipy.interpolate  # noqa: F401
-
         step_file = children.later(step_files, built, spec.name) if spec.report.step_file else None
         if spec.machining is not None:
             # the drawing's child starts now, imports ezdxf and scipy's k-d tree (about a third of a second) and makes the

@@ -58,7 +58,7 @@ from camcam.toolpath.path import join_toolpaths, rotary_toolpath, shortest_rotat
 from camcam.toolpath.poses import A_AXIS_SENSE
 from camcam.toolpath.quantizer import Quantizer
 
-__all__ = ["machine_cylindrical", "developed_printed", "printed_axes", "machine_frame_lines", "plans_flank"]
+__all__ = ["machine_cylindrical", "developed_printed", "printed_axes", "machine_frame_lines"]
 
 
 def printed_axes(elements, quantizer: Quantizer, radius_mm: float, turn: int = 1) -> np.ndarray:
@@ -84,30 +84,6 @@ def machine_frame_lines(a_axis: str, rho_d: float) -> tuple[str, ...]:
             "tool axis +Z [B = 0]; X Y Z = tool tip, centre of the flat end")
 
 
-def plans_flank(cam, tool_radius_mm: float) -> bool:
-    """Whether a 4-axis program of the barrel cam ``cam`` cut with a tool of ``tool_radius_mm`` has flank passes
-    of a :func:`~camcam.nc.flank.plan_flank` plan: a tool narrower than the roller on a follower whose roller
-    axis does not tilt (as :func:`_plan` decides; False for a tool the NC step will refuse, which says why).
-
-    The plan is scipy's quintic splines: `camcam run` imports scipy.interpolate before it forks the drawing's
-    child when this holds, so that the child, which unpickles the plan with the program, inherits it.
-
-    Examples
-    --------
-    >>> from camcam.flow import load_job_spec
-    >>> from camcam.geometry.build import build_cam
-    >>> spec = load_job_spec("samples/cylindrical-translating.toml")  # roller R8 mm
-    >>> cam = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit)).cam
-    >>> plans_flank(cam, 8.0), plans_flank(cam, 6.0), plans_flank(cam, 9.0)
-    (False, True, False)
-    """
-    try:
-        centre = groove_passes(tool_radius_mm, cam.roller_radius) == "centre"
-    except GeometryError:
-        return False
-    return not centre and not cam.follower.roller_axis_tilts
-
-
 def _plan(cam, r_t: float, rho_d: float):
     """[(label, developed curve at ρ_d, offset from the wall)] and the flank plan's first-order error."""
     r_r = cam.roller_radius
@@ -115,7 +91,7 @@ def _plan(cam, r_t: float, rho_d: float):
     if groove_passes(r_t, r_r) == "centre":
         return [("groove centre", centre, r_r, "slot")], 0.0
     rough = ("groove centre (rough)", centre, r_r, "slot")
-    if plans_flank(cam, r_t):
+    if not cam.follower.roller_axis_tilts:  # a radial tool can follow a radial roller axis: balanced flanks
         plan = plan_flank(cam, r_t, rho_d)
         # flank 0 is the −X wall: to the right of the centre line in (u, x) (u grows with the cam angle)
         return [rough, ("flank 0 (-X wall)", DisplacedCurve(centre, -1.0, plan), r_t, "finish"),

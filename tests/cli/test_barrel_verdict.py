@@ -33,11 +33,12 @@ def test_small_tool_fails_with_advice_and_exit_3(tmp_path):
     walls = report["machining"]["flank_deviation"]
     assert [w["wall"] for w in walls] == [0, 1]
     g = report["machining"]["groove_3d"]
-    # the figure held to the tolerance is the walls' largest plus the motion-sampling bound (0.1² / (8 · 6) mm),
-    # exactly as summed in float
+    # the figure held to the tolerance is the walls' largest plus the motion-sampling bound h² / (8 · 6) mm, h the
+    # step whose bound is the 2 % the plans leave the measurement (0.1386 mm at 0.02 mm), exactly as summed in float
     assert g["measured_mm"] == max(max(w["overcut_mm"], w["material_left_mm"]) for w in walls)
     assert report["max_deviation_mm"] == g["measured_mm"] + g["sampling_bound_mm"]
-    assert g["sampling_bound_mm"] == pytest.approx(0.1**2 / (8 * 6.0), rel=1e-12)  # float rounding only
+    assert g["sampling_bound_mm"] == pytest.approx(g["pose_step_mm"] ** 2 / (8 * 6.0), rel=1e-12)  # float rounding
+    assert g["sampling_bound_mm"] == pytest.approx(0.02 * 0.02, rel=1e-12)  # only
     assert report["max_deviation_mm"] > report["tolerance_mm"]
     for w in walls:
         assert 40.0 <= w["overcut_radius_mm"] <= 50.0 and 0.0 <= w["overcut_cam_angle_deg"] < 360.0

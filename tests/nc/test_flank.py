@@ -67,3 +67,41 @@ def test_circle_and_axis_normals():
     assert float(support(3.0, np.array(10.0), np.array(0.0), np.array(1.0))) == 3.0
     # along u only: ρ·asin(r/ρ), the half width of the section on the developed cylinder
     assert abs(float(support(3.0, np.array(10.0), np.array(1.0), np.array(0.0))) - 10.0 * math.asin(0.3)) < 1e-12
+
+
+def _small_tool_cam():
+    from pathlib import Path
+
+    from camcam.geometry.build import build_cam
+    from camcam.spec import load_spec
+
+    spec = load_spec(Path(__file__).resolve().parents[2] / "samples" / "cylindrical-translating-small-tool.toml")
+    return build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit)).cam
+
+
+def test_flank_plan_is_the_balanced_displacement_between_its_stations():
+    """q(θ) of a flank plan (numpy's Chebyshev series through the 49 stations of each motion segment, issue 49)
+    against q balanced afresh at 600 angles a segment, and its slope against a 5-point difference of that.
+
+    cylindrical-translating-small-tool, tool R6 in the R8 roller's groove: the cycloidal rise and the dwells are
+    analytic (measured 1e-14 mm, 1e-11 mm/rad); the modified-sine return's jerk jumps inside its segment, where
+    interpolation through 49 stations is what it is (measured 8.8e-7 mm and 4.7e-5 mm/rad; scipy's quintic
+    splines through the same stations, which the series replaced, 6.8e-7 mm and 3.9e-5 mm/rad).  The bounds
+    are 5x those: far below the 0.02 mm the flank passes are fitted to, and a plan that interpolated badly
+    (a lower degree, the wrong scaling of a derivative) is far over them."""
+    from camcam.nc.flank import _balance, _radii, _station_terms, plan_flank
+
+    cam = _small_tool_cam()
+    rho_d, r_t = cam.base_radius, 6.0
+    plan = plan_flank(cam, r_t, rho_d)
+
+    def balanced(theta):
+        return _balance(*_station_terms(cam, theta, r_t, rho_d, _radii(cam)))[0]
+
+    h = 2e-4  # rad: the 5-point difference's truncation (h⁴ q⁽⁵⁾) and rounding (1e-15 / h) both far below 1e-6
+    for i, (lo, hi) in enumerate(zip(plan.breaks[:-1], plan.breaks[1:])):
+        th = np.linspace(lo, hi, 600)[3:-3]
+        q = plan.q(th, 1, i)
+        slope = (balanced(th - 2 * h) - 8 * balanced(th - h) + 8 * balanced(th + h) - balanced(th + 2 * h)) / (12 * h)
+        assert np.abs(q.d[0] - balanced(th)).max() < 5e-6
+        assert np.abs(q.d[1] - slope).max() < 2.5e-4
