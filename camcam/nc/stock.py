@@ -242,9 +242,12 @@ def blank_for(built: BuiltCam, stock: StockSpec, tool_diameter_mm: float, bore: 
     if stock.kind == "round":
         diameter = stock.diameter_mm if stock.diameter_mm is not None else 2 * (radius + DEFAULT_OVERSIZE_MM)
         if diameter / 2 < radius:
+            # the 0.001 mm value at or above the cam's diameter, so that a stock of the size named holds it (campaign
+            # case 45:2 was told "expected at least 337.880 mm" for a radius of 168.94002 mm, and refused 337.88)
+            least = math.ceil(2 * radius * 1000.0) / 1000.0
             raise SpecError("stock.diameter", f"{diameter:g} mm is smaller than the cam: its largest radius is "
                                               f"{radius:.3f} mm (at cam angle {at:.2f}°); expected at least "
-                                              f"{2 * radius:.3f} mm")
+                                              f"{least:.3f} mm")
         region = _circle(diameter / 2 / math.cos(math.pi / CIRCLE_SEGMENTS))  # circumscribed: never smaller
         allowance = None
     else:

@@ -178,3 +178,25 @@ def test_polygon_distance_is_shapelys(centres, radius, hole, multi, probes):
     # rtol 2.3e-16 (one ulp, 2^-52): edges meeting at the nearest vertex each give its distance to within one, and
     # the tree may return one above GEOS's least (the example above); anything else is the same number
     np.testing.assert_allclose(polygon_distance(poly, xy), want, rtol=2.3e-16, atol=0.0)
+
+
+def test_the_stock_size_advised_is_taken():
+    """Campaign case 45:2 (tests/nc/data/stock-advice-45-2.toml): a round stock smaller than the cam is refused
+    with the smallest diameter that holds it, rounded up to the 0.001 mm it prints, so that a stock of exactly
+    that size is taken.  It read "expected at least 337.880 mm" for a radius of 168.94002 mm, and 337.88 was
+    refused in turn."""
+    import re
+    from pathlib import Path
+
+    from camcam.flow import load_job_spec
+    from camcam.geometry.build import build_cam
+    from camcam.nc.stock import blank_for
+
+    spec = load_job_spec(Path(__file__).resolve().parent / "data" / "stock-advice-45-2.toml")
+    built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
+    with pytest.raises(SpecError) as info:
+        blank_for(built, spec.stock, spec.machining.tool_diameter_mm)
+    least = float(re.search(r"expected at least ([0-9.]+) mm$", str(info.value)).group(1))
+    assert least == 337.881
+    blank = blank_for(built, replace(spec.stock, diameter_mm=least), spec.machining.tool_diameter_mm)
+    assert blank.diameter_mm / 2 >= blank.cam_radius_mm
