@@ -125,7 +125,7 @@ def flat_radius(cam, t, piece: int | None = None):
 def flat_summary(cam) -> CurvatureSummary:
     br = cam.breaks
     f = lambda t, i: flat_radius(cam, t, i)  # noqa: E731
-    low = extreme(f, br, "min")
+    low = extreme(f, br, "min", cam.inner_breaks)
     concave = negative_ranges(lambda t, i: f(t, i)[0], br)
     spans = tuple((_deg(a) if a >= 0 else math.degrees(a), math.degrees(b)) for a, b in concave)
     worst = AngleValue(abs(low.value), _deg(low.t)) if concave else None
@@ -136,13 +136,13 @@ def _deg(t: float) -> float:
     return math.degrees(t) % 360.0
 
 
-def curvature_summary(curve, sigma: int, breaks) -> CurvatureSummary:
+def curvature_summary(curve, sigma: int, breaks, inner=None) -> CurvatureSummary:
     f = lambda t, i: convex_curvature(curve, sigma, t, i)  # noqa: E731
-    top = extreme(f, breaks, "max")
+    top = extreme(f, breaks, "max", inner)
     concave = negative_ranges(lambda t, i: f(t, i)[0], breaks)
     low = None
     if concave:
-        c = extreme(f, breaks, "min")
+        c = extreme(f, breaks, "min", inner)
         low = AngleValue(1.0 / abs(c.value), _deg(c.t))
     rad = 1.0 / top.value if top.value > 0 else math.inf
     spans = tuple((_deg(a) if a >= 0 else math.degrees(a), math.degrees(b)) for a, b in concave)
@@ -156,7 +156,7 @@ def max_pressure_angle(cam) -> AngleValue:
         j = cam.pressure_angle(t, 1, i)
         return j.d[0], j.d[1]
 
-    p = extreme(pa, cam.breaks, "absmax")
+    p = extreme(pa, cam.breaks, "absmax", cam.inner_breaks)
     return AngleValue(abs(math.degrees(p.value)), _deg(p.t))
 
 
@@ -164,8 +164,9 @@ def analyse(cam) -> DiscAnalysis:
     """All analyses of a :class:`DiscCam` or :class:`GrooveCam`."""
     br = cam.breaks
     pressure = max_pressure_angle(cam)
-    pitch = curvature_summary(cam.pitch, cam.sigma, br) if cam.pitch is not None else None
-    profile = curvature_summary(cam.profile, cam.sigma, br) if cam.pitch is not None else flat_summary(cam)
+    inner = cam.inner_breaks
+    pitch = curvature_summary(cam.pitch, cam.sigma, br, inner) if cam.pitch is not None else None
+    profile = curvature_summary(cam.profile, cam.sigma, br, inner) if cam.pitch is not None else flat_summary(cam)
     face = None
     if getattr(cam, "is_roller", True) is False:
 
@@ -173,7 +174,7 @@ def analyse(cam) -> DiscAnalysis:
             j = cam.face_position(t, 1, i)
             return j.d[0], j.d[1]
 
-        lo, hi = extreme(fp, br, "min"), extreme(fp, br, "max")
+        lo, hi = extreme(fp, br, "min", inner), extreme(fp, br, "max", inner)
         face = FaceWidth(AngleValue(lo.value, _deg(lo.t)), AngleValue(hi.value, _deg(hi.t)))
     return DiscAnalysis(pressure, pitch, profile, face)
 
@@ -187,9 +188,9 @@ def undercut_margin(cam) -> tuple[float, float]:
         curve = cam.pitch
         f = lambda t, i: convex_curvature(curve, sg, t, i)  # noqa: E731
         grooved = hasattr(cam, "flanks")
-        c = extreme(f, br, "absmax" if grooved else "max")
+        c = extreme(f, br, "absmax" if grooved else "max", cam.inner_breaks)
         return 1.0 - cam.roller_radius * abs(c.value) if grooved else 1.0 - cam.roller_radius * c.value, c.t
-    c = extreme(lambda t, i: flat_radius(cam, t, i), br, "min")
+    c = extreme(lambda t, i: flat_radius(cam, t, i), br, "min", cam.inner_breaks)
     return c.value, c.t
 
 
@@ -244,7 +245,7 @@ def _groove_bend(cam) -> tuple[float, float]:
     """(radius, program angle rad) of the sharpest bend of the developed groove centre line at the groove
     bottom (infinite for a straight one)."""
     centre = cam.developed_centre(cam.bottom_radius)
-    c = extreme(lambda t, i: convex_curvature(centre, 1, t, i), cam.breaks, "absmax")
+    c = extreme(lambda t, i: convex_curvature(centre, 1, t, i), cam.breaks, "absmax", cam.inner_breaks)
     return (1.0 / abs(c.value) if c.value else math.inf), c.t
 
 

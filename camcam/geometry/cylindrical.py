@@ -59,7 +59,7 @@ from camcam.errors import GeometryError
 from camcam.geometry.disc import SIGMA, CamBasics
 from camcam.geometry.followers import BarrelOscillatingRoller, BarrelTranslatingRoller
 from camcam.geometry.jet import Jet
-from camcam.geometry.jetcurve import JetCurve, LiftJet, SpaceCurve, program_breaks
+from camcam.geometry.jetcurve import JetCurve, LiftJet, SpaceCurve, program_breaks, program_inner_breaks
 from camcam.motion.program import MotionProgram
 
 __all__ = ["BarrelTranslatingRoller", "BarrelOscillatingRoller", "CylindricalCam"]
@@ -104,6 +104,11 @@ class CylindricalCam(CamBasics):
     @property
     def breaks(self) -> np.ndarray:
         return program_breaks(self.program)
+
+    @property
+    def inner_breaks(self) -> tuple[np.ndarray, ...]:
+        """Per piece (segment), the angles inside it where its law changes piece (:func:`program_inner_breaks`)."""
+        return program_inner_breaks(self.program)
 
     @property
     def bottom_radius(self) -> float:

@@ -31,7 +31,7 @@ import numpy as np
 from camcam.errors import GeometryError
 from camcam.geometry.followers import Element, FollowerKind, TranslatingRoller
 from camcam.geometry.jet import Jet, hypot
-from camcam.geometry.jetcurve import JetCurve, LiftJet, program_breaks
+from camcam.geometry.jetcurve import JetCurve, LiftJet, program_breaks, program_inner_breaks
 from camcam.motion.program import MotionProgram
 
 __all__ = ["DiscCam", "CamBasics", "Follower", "SIGMA"]
@@ -110,6 +110,11 @@ class DiscCam(CamBasics):
     @property
     def breaks(self) -> np.ndarray:
         return program_breaks(self.program)
+
+    @property
+    def inner_breaks(self) -> tuple[np.ndarray, ...]:
+        """Per piece (segment), the angles inside it where its law changes piece (:func:`program_inner_breaks`)."""
+        return program_inner_breaks(self.program)
 
     def element(self, theta, K: int, piece: int | None = None) -> Element:
         """Fixed-frame jets (order K) of the follower element at program angles θ."""

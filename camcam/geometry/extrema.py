@@ -1,9 +1,14 @@
 """Extremes and sign ranges of functions of the cam angle, per analytic piece.
 
 Within a piece (between two motion-segment boundaries) every cam quantity is
-analytic.  Its stationary points are the roots of its exact derivative: a
+analytic, but where the segment's law changes piece (``inner`` breaks: the
+parabolic law's acceleration jumps at mid-rise) a quantity built on a jumping
+derivative jumps too.  Its stationary points are the roots of its exact derivative: a
 sample of the derivative only *brackets* them, and a 16-section search of all
-brackets at once (vectorised over the brackets) finds them to 1e-13 rad.  Piece ends are candidates too, evaluated one-sided.
+brackets at once (vectorised over the brackets) finds them to 1e-13 rad.  Piece ends are candidates too,
+evaluated one-sided, and so are both sides of every inner break (:data:`INNER_SIDE_RAD` off it): campaign
+case 45:59's flat-faced profile has radius of curvature +354 mm before the parabolic law's mid-rise and
+−1.07 mm after it, a cusp that no root of its derivative shows.
 """
 
 from __future__ import annotations
@@ -28,6 +33,11 @@ ROOT_XTOL = 1e-13
 #: Parts each bracket is cut into per round of the root search (4 bits a round instead of bisection's 1,
 #: for about the same cost: a round is one call of the function on small arrays).
 SECTIONS = 16
+
+#: Offset (rad) either side of a law's inner break at which it is evaluated: the one-sided values to
+#: |f′|·1e-10 (1e-6 mm for a radius of curvature changing by 1e4 mm/rad), far above the angle's rounding
+#: (1e-15 rad) so that each side takes its own piece of the law.
+INNER_SIDE_RAD = 1e-10
 
 PieceFunc = Callable[[np.ndarray, int], tuple[np.ndarray, np.ndarray]]
 
@@ -83,19 +93,33 @@ def roots_in(g: Callable[[np.ndarray], np.ndarray], intervals, xtol: float = ROO
     return [sorted(f) for f in found]
 
 
-def stationary_candidates(f: PieceFunc, breaks: np.ndarray) -> list[Candidate]:
-    """Piece ends and roots of f′ in every piece; ``f(t, piece)`` → (value, derivative)."""
+def stationary_candidates(f: PieceFunc, breaks: np.ndarray, inner=None) -> list[Candidate]:
+    """Piece ends, roots of f′ and both sides of the inner breaks (``inner[i]``: the angles inside piece i where
+    f may jump) in every piece; ``f(t, piece)`` → (value, derivative)."""
     out = []
     for i, (a, b) in enumerate(zip(breaks, breaks[1:])):
         ts = [a, b, *roots(lambda t: f(t, i)[1], a, b)]
+        if inner is not None:
+            ts += [float(x) + side * INNER_SIDE_RAD for x in inner[i] for side in (-1.0, 1.0)]
         vals = f(np.array(ts), i)[0]
         out += [Candidate(float(t), float(v), i) for t, v in zip(ts, vals)]
     return out
 
 
-def extreme(f: PieceFunc, breaks: np.ndarray, kind: str) -> Candidate:
-    """The ``"max"``, ``"min"`` or ``"absmax"`` of f over the revolution (first angle on ties)."""
-    cands = stationary_candidates(f, breaks)
+def extreme(f: PieceFunc, breaks: np.ndarray, kind: str, inner=None) -> Candidate:
+    """The ``"max"``, ``"min"`` or ``"absmax"`` of f over the revolution (first angle on ties); ``inner``: per
+    piece the angles where f may jump (a cam's ``inner_breaks``).
+
+    Examples
+    --------
+    f = t on [0, 1), t − 2 on [1, 2]: its least value −1 is just after the jump at 1, where f′ has no root.
+
+    >>> f = lambda t, i: (np.where(t < 1.0, t, t - 2.0), np.ones_like(t))
+    >>> round(extreme(f, np.array([0.0, 2.0]), "min").value, 6), round(extreme(f, np.array([0.0, 2.0]), "min",
+    ...     inner=[[1.0]]).value, 6)
+    (0.0, -1.0)
+    """
+    cands = stationary_candidates(f, breaks, inner)
     key = {"max": lambda c: c.value, "min": lambda c: -c.value, "absmax": lambda c: abs(c.value)}[kind]
     best = max(key(c) for c in cands)
     return min((c for c in cands if key(c) >= best - 1e-12 * max(1.0, abs(best))), key=lambda c: c.t)

@@ -73,6 +73,10 @@ class GrooveCam:
         return self.cam.breaks
 
     @property
+    def inner_breaks(self) -> tuple[np.ndarray, ...]:
+        return self.cam.inner_breaks
+
+    @property
     def pitch(self) -> JetCurve:
         return self.cam.pitch
 

@@ -18,13 +18,34 @@ import numpy as np
 from camcam.geometry.jet import MAX_ORDER, Jet
 from camcam.motion.program import MotionProgram
 
-__all__ = ["LiftJet", "JetCurve", "SpaceCurve", "program_breaks"]
+__all__ = ["LiftJet", "JetCurve", "SpaceCurve", "program_breaks", "program_inner_breaks"]
 
 
 def program_breaks(program: MotionProgram) -> np.ndarray:
     """Segment boundaries in radians, 0 and 2π included."""
     edges = [0.0] + [math.radians(s.end_deg) for s in program.segments[:-1]] + [2 * math.pi]
     return np.array(edges)
+
+
+def program_inner_breaks(program: MotionProgram) -> tuple[np.ndarray, ...]:
+    """Per segment, the angles (rad) inside it where its law changes piece: a derivative of the lift may jump
+    there (the parabolic law's acceleration at mid-rise), so a quantity of the cam built on it may too.
+
+    Examples
+    --------
+    >>> from camcam.motion.catalog import make_law
+    >>> from camcam.motion.program import MotionProgram, Segment
+    >>> p = MotionProgram((Segment(make_law("parabolic"), 0, 90, 10.0), Segment(make_law("cycloidal"), 90, 360,
+    ...                    -10.0, base=10.0)), rpm=60)
+    >>> [np.degrees(a).round(9).tolist() for a in program_inner_breaks(p)]
+    [[45.0], []]
+    """
+    out = []
+    for s in program.segments:
+        law = s.law.as_piecewise()
+        inner = np.asarray(law.breaks[1:-1], float) if law is not None else np.empty(0)
+        out.append(np.radians(s.start_deg + inner * (s.end_deg - s.start_deg)))
+    return tuple(out)
 
 
 @dataclass(frozen=True)
