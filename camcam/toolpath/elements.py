@@ -28,7 +28,11 @@ class Line:
         return math.dist(self.start, self.end)
 
     def points(self, n: int) -> np.ndarray:
-        u = np.linspace(0.0, 1.0, n)[:, None]
+        return self.at(np.linspace(0.0, 1.0, n))
+
+    def at(self, u) -> np.ndarray:
+        """Points (k, 2) at fractions ``u`` (k,) of the way from start to end."""
+        u = np.asarray(u, float)[:, None]
         return (1 - u) * np.asarray(self.start) + u * np.asarray(self.end)
 
 
@@ -83,7 +87,11 @@ class Arc:
         return (1.0 if self.ccw else -1.0) / self.radius
 
     def points(self, n: int) -> np.ndarray:
-        u = np.linspace(0.0, 1.0, n)
+        return self.at(np.linspace(0.0, 1.0, n))
+
+    def at(self, u) -> np.ndarray:
+        """Points (k, 2) at fractions ``u`` (k,) of the sweep from start to end (and of the radius's change)."""
+        u = np.asarray(u, float)
         ang = self.start_angle + (1.0 if self.ccw else -1.0) * self.sweep * u
         r = self.radius + (self.end_radius - self.radius) * u
         return np.asarray(self.centre) + r[:, None] * np.stack([np.cos(ang), np.sin(ang)], axis=-1)
