@@ -223,15 +223,22 @@ def _k_path_near(eidx: np.ndarray, k_el: np.ndarray, reach: int) -> np.ndarray:
     return out
 
 
+def _parts(m: np.ndarray, margin_mm: float) -> np.ndarray:
+    """How many equal parts bring each interval's between-sample term ``m`` within ``margin_mm`` (the term falls
+    with the step's square), scaled down to :data:`MAX_REFINED` in all (the bound stays a bound, only looser)."""
+    parts = np.ceil(np.sqrt(m / margin_mm)).astype(int)
+    if parts.sum() > MAX_REFINED:
+        parts = np.maximum(1, (parts * (MAX_REFINED / parts.sum())).astype(int))
+    return parts
+
+
 def _refined_path(curve, elements, idx, same, m_pc, t_pc, k_el, k_curve_near, lo, hi, margin_mm):
     """The path-side intervals over ``margin_mm``, each cut into as many equal steps of its element as bring its
     term within the margin (the term falls with the step's square), measured and bounded anew: (those intervals,
     points, distances, bounds, terms), −inf across intervals.  Each part's closest curve point is sought from
     the intervals' feet's (a local minimum of the distance: never less than the closest, so the bound holds)."""
     over = np.flatnonzero(same & (m_pc > margin_mm))
-    parts = np.ceil(np.sqrt(m_pc[over] / margin_mm)).astype(int)
-    if parts.sum() > MAX_REFINED:  # the bound stays a bound, only looser
-        parts = np.maximum(1, (parts * (MAX_REFINED / parts.sum())).astype(int))
+    parts = _parts(m_pc[over], margin_mm)
     first = np.searchsorted(idx, idx[over])  # each interval's element's first sample
     count = np.bincount(idx, minlength=len(elements))[idx[over]]
     q, owner = [], []
@@ -257,9 +264,7 @@ def _refined_curve(curve, seeds, h, m_cp, k_curve_near, eidx, elements, k_el, re
     Each part's distance is to the nearest of the elements about its interval's feet's nearest (``eidx``,
     ``reach`` either side and one more): never less than the path's, so the bound holds."""
     over = np.flatnonzero(m_cp > margin_mm)
-    parts = np.ceil(np.sqrt(m_cp[over] / margin_mm)).astype(int)
-    if parts.sum() > MAX_REFINED:  # the bound stays a bound, only looser
-        parts = np.maximum(1, (parts * (MAX_REFINED / parts.sum())).astype(int))
+    parts = _parts(m_cp[over], margin_mm)
     if not len(over):
         return over, np.empty((0, 2)), np.empty(0), np.empty(0), np.empty(0)
     t = np.concatenate([np.linspace(seeds[i], seeds[i + 1], n + 1) for i, n in zip(over, parts)])
