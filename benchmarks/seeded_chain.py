@@ -34,7 +34,7 @@ from camcam.verify import checked
 from camcam.spec import load_spec
 from camcam.toolpath.arcchain import CurveTable
 from camcam.toolpath.arcclose import quiet_stretches
-from camcam.toolpath.arcpolish import PRINT_ALLOWANCE_STEPS
+from camcam.toolpath.budget import DEFAULT_BUDGET
 from camcam.toolpath.arcseed import seed_density, seeded_count
 from camcam.toolpath.arcspline import SplineBudget, fit_arc_spline
 
@@ -69,7 +69,7 @@ def main(samples) -> None:
                 ratio = integral / np.cbrt(192.0 * band) / kw["lower_bound"]
                 tab = CurveTable(curve, a, b, 16384)
                 q, max_sweep, sag = kw["quantizer"], kw["max_sweep"], kw["sag"]
-                density = seed_density(curve, a, b, band - PRINT_ALLOWANCE_STEPS * q.step_mm, max_sweep)
+                density = seed_density(curve, a, b, DEFAULT_BUDGET.chain_band_mm(band, q), max_sweep)
                 total = float(density[1][-1])
                 cells = []
                 for n in range(math.ceil(total) - 1, math.ceil(total) + 3):
