@@ -133,7 +133,11 @@ def test_the_chain_finds_the_count_the_starts_needed_twelve_marches_for():
     """Regression data (2026-12-06): disc-oscillating-roller at 0.001 mm.  Its first march has 36 arcs against
     the goal 35.92 (1.18·N_lb + 4 on the band's N_lb 27.05); the further starts gave 36 36 37 37 37 38 36 37 36
     36 and 35 at the twelfth.  The optimised chain had 35 arcs after one march; the chain seeded from the arc
-    density (camcam.toolpath.arcseed, no march) has 34.  Printed and measured on the exact tool-centre curve it
+    density (camcam.toolpath.arcseed, no march) has 34 on the machines this was recorded on (AVX-512); on a
+    2-core AMD EPYC with AVX2 only (2026-12-07) none of the seeded counts 33-35 fits (32 would) and the march's
+    optimised chain gives 35: the chain's LP steps differ there in the last bits (numpy's and OpenBLAS's loops
+    are chosen by the CPU; the sample's program differs the same way, tests/make_sample_checksums.py).  Either
+    is the count the twelfth march found, or fewer.  Printed and measured on the exact tool-centre curve it
     stays within the tolerance."""
     from pathlib import Path
 
@@ -146,7 +150,7 @@ def test_the_chain_finds_the_count_the_starts_needed_twelve_marches_for():
     built = build_cam(spec.cam, spec.follower, spec.motion.program(spec.unit))
     r = checked(built, replace(spec.machining, tolerance_mm=0.001, mode="arcs"), "osc")
     (c,) = r.contours
-    assert c.fit.arc_blocks + c.fit.line_blocks == 34, (c.fit.arc_blocks, c.fit.line_blocks)
+    assert c.fit.arc_blocks + c.fit.line_blocks <= 35, (c.fit.arc_blocks, c.fit.line_blocks)  # see above
     assert c.fit.arc_blocks + c.fit.line_blocks <= 1.2 * c.lower_bound + 4  # issue 13's bound on the exact N_lb
     assert c.deviation.max_deviation_mm <= 0.001  # measured on the printed program against the exact curve
 
