@@ -223,12 +223,14 @@ class CylindricalCam(CamBasics):
     def developed_centre(self, radius_mm: float) -> JetCurve:
         """The unrolled groove centre line at radius ρ: (u, x), u = ρθ."""
         rho = self._check_radius(radius_mm)
-        return JetCurve(functools.partial(self._developed_centre_jets, rho=rho), self.breaks, closed=False)
+        return JetCurve(functools.partial(self._developed_centre_jets, rho=rho), self.breaks, closed=False,
+                        inner=np.concatenate(self.inner_breaks))
 
     def developed_flank(self, index: int, radius_mm: float) -> JetCurve:
         """The unrolled flank ``index`` at radius ρ: (u, x)."""
         rho = self._check_radius(radius_mm)
-        return JetCurve(functools.partial(self._developed_flank_jets, rho=rho, index=index), self.breaks, closed=False)
+        return JetCurve(functools.partial(self._developed_flank_jets, rho=rho, index=index), self.breaks, closed=False,
+                        inner=np.concatenate(self.inner_breaks))
 
     def pressure_angle(self, theta, K: int = 0, piece: int | None = None, radius_mm: float | None = None) -> Jet:
         """Signed pressure angle (rad) at radius ρ (default: the groove bottom, where it is largest)."""

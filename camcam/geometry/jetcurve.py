@@ -82,7 +82,10 @@ JetFunc = Callable[[np.ndarray, int, "int | None"], tuple[Jet, ...]]
 class JetCurve:
     """A closed :class:`~camcam.geometry.curve.PlanarCurve` of the cam angle from a jet function.
 
-    ``func(theta, K, piece)`` returns the (x, y) jets of order ≥ K.
+    ``func(theta, K, piece)`` returns the (x, y) jets of order ≥ K.  ``inner`` (rad, ascending) are the angles
+    inside the pieces where a law changes piece (:func:`program_inner_breaks`): where a curve's direction is
+    built on the acceleration (a tilting roller's flank), it may turn by a corner there, and an offset of it
+    jump; :func:`camcam.toolpath.surrogate.chebyshev_curve` splits its copy at them.
     """
 
     func: JetFunc
@@ -91,6 +94,7 @@ class JetCurve:
     t_start: float = 0.0
     t_end: float = 2 * math.pi
     closed: bool = True
+    inner: tuple | np.ndarray = ()
 
     def jets(self, t, K: int, piece: int | None = None) -> tuple[Jet, ...]:
         return self.func(np.atleast_1d(np.asarray(t, dtype=float)), K, piece)

@@ -130,6 +130,12 @@ class OffsetCurve:
         return self.base.breaks
 
     @property
+    def inner(self) -> tuple | np.ndarray:
+        """The base's corners inside its pieces (:attr:`~camcam.geometry.jetcurve.JetCurve.inner`), where an
+        offset may jump."""
+        return getattr(self.base, "inner", ())
+
+    @property
     def t_start(self) -> float:
         return self.base.t_start
 
