@@ -84,11 +84,15 @@ def machine_frame_lines(a_axis: str, rho_d: float) -> tuple[str, ...]:
             "tool axis +Z [B = 0]; X Y Z = tool tip, centre of the flat end")
 
 
-def _plan(cam, r_t: float, rho_d: float):
-    """[(label, developed curve at ρ_d, offset from the wall)] and the flank plan's first-order error."""
+def _plan(cam, r_t: float, rho_d: float, tolerance_mm: float, groove: GrooveBudget):
+    """[(label, developed curve at ρ_d, offset from the wall)] and the flank plan's first-order error; a tool
+    below a third of the groove is refused naming the thinnest whose flank error holds ``groove``'s share of
+    ``tolerance_mm`` where that is more (a radial roller axis: the tool a tilting one needs is its own advice)."""
     r_r = cam.roller_radius
     centre = cam.developed_centre(rho_d)
-    if groove_passes(r_t, r_r) == "centre":
+    thinnest = None if cam.follower.roller_axis_tilts else (
+        lambda: 2 * smallest_tool_radius(cam, groove.flank_tool_mm(tolerance_mm), rho_d))
+    if groove_passes(r_t, r_r, thinnest) == "centre":
         return [("groove centre", centre, r_r, "slot")], 0.0
     rough = ("groove centre (rough)", centre, r_r, "slot")
     if not cam.follower.roller_axis_tilts:  # a radial tool can follow a radial roller axis: balanced flanks
@@ -206,7 +210,7 @@ def machine_cylindrical(built: BuiltCam, m: MachiningSpec, name: str, workers: i
     corner = _corner_depth_mm(cam, r_t, post.quantizer, m.depth_mm) if m.depth_mm >= cam.groove_depth - 1e-9 else 0.0
     scale = (m.depth_mm + corner) / m.depth_mm
     cs = dataclasses.replace(cs0, depth_mm=m.depth_mm + corner, stepdown_mm=m.stepdown_mm * scale)
-    plan, flank_err = _plan(cam, r_t, rho_d)
+    plan, flank_err = _plan(cam, r_t, rho_d, m.tolerance_mm, groove)
     fit_tol = groove.flank_fit_mm(m.tolerance_mm, flank_err)
     _check_fit_floor(cam, m, post.quantizer, fit_tol if len(plan) > 1 else m.tolerance_mm, flank_err, len(plan) > 1,
                      groove)

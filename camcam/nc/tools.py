@@ -32,8 +32,13 @@ def check_profile_tool(tool_radius_mm: float, min_concave) -> None:
                             f"expected a tool radius below it")
 
 
-def groove_passes(tool_radius_mm: float, roller_radius_mm: float) -> str:
+def groove_passes(tool_radius_mm: float, roller_radius_mm: float, thinnest_mm=None) -> str:
     """How a groove as wide as the roller is cut: ``"centre"`` or ``"centre+flanks"``.
+
+    ``thinnest_mm``, optional: a callable giving the thinnest tool diameter (mm) that a rule of the caller's own
+    holds (a barrel's flank error, :func:`camcam.nc.flank.smallest_tool_radius`), asked only to advise a tool
+    below a third of the width: the advice names the larger of the two, so that following it does not end at
+    the caller's rule (campaign case 47:1: "expected at least 8 mm", where the 3-D check then asked 15.58 mm).
 
     Raises
     ------
@@ -54,9 +59,14 @@ def groove_passes(tool_radius_mm: float, roller_radius_mm: float) -> str:
         return "centre"
     if 3 * r_t < r_r - 1e-9:  # 1e-9 mm: a third typed as advised (10.2 of 30.6 mm: 3 x 5.1 = 15.299999999999999)
         smallest = math.ceil(2 * r_r / 3 * 100 - 1e-9) / 100  # a third of the width, rounded up to 0.01 mm
+        why = ""
+        if thinnest_mm is not None:
+            held = math.ceil(thinnest_mm() * 100 - 1e-9) / 100  # as the 3-D check's note rounds it
+            if held > smallest:
+                smallest, why = held, "; a thinner tool's flank passes would miss half the tolerance"
         raise GeometryError(f"machining.tool_diameter: {2 * r_t:g} mm is below a third of the groove width "
                             f"{2 * r_r:g} mm: a centre pass and two flank passes would leave material between them; "
-                            f"expected at least {smallest:g} mm (up to the roller's {2 * r_r:g} mm)")
+                            f"expected at least {smallest:g} mm (up to the roller's {2 * r_r:g} mm){why}")
     return "centre+flanks"
 
 
