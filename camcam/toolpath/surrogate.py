@@ -8,6 +8,12 @@ degree 12 is tried, and an interval where it is not within ``accuracy_mm`` of
 the exact curve at points between the nodes is halved (measured, and the
 worst kept as ``error_mm``).  Only the fitting runs on it: the printed program is
 measured against the exact curve afterwards.
+
+A curve may turn by a corner inside a piece, where a law changes piece and the
+acceleration jumps (a tilting roller's flank; its tool path, offset from it, jumps
+there): such a curve names those angles (``inner``,
+:class:`~camcam.geometry.jetcurve.JetCurve`) and the copy is split at them too, each
+sub-interval measured on its own side of its ends (:data:`END_INSET`).
 """
 
 from __future__ import annotations
@@ -89,7 +95,8 @@ class ChebyshevCurve:
 
 DEGREE = 12
 
-#: How far inside a sub-interval its end checks are, as a share of its length (module notes of chebyshev_curve):
+#: How far inside a sub-interval its end checks are, as a share of its length (:func:`_piece`: each side of a break
+#: measured on its own):
 #: far above the spacing of doubles at a cam angle (4e-16 rad at 2π against 1e-12 × the length), far below
 #: anything the copy's error could see (a curve moving 100 mm/rad moves 1e-10 mm over 1e-12 rad).
 END_INSET = 1e-12
