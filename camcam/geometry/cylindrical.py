@@ -59,7 +59,7 @@ from camcam.errors import GeometryError
 from camcam.geometry.disc import SIGMA, CamBasics
 from camcam.geometry.followers import BarrelOscillatingRoller, BarrelTranslatingRoller
 from camcam.geometry.jet import Jet
-from camcam.geometry.jetcurve import JetCurve, LiftJet, SpaceCurve, program_breaks, program_inner_breaks
+from camcam.geometry.jetcurve import JetCurve, LiftJet, SpaceCurve
 from camcam.motion.program import MotionProgram
 
 __all__ = ["BarrelTranslatingRoller", "BarrelOscillatingRoller", "CylindricalCam"]
@@ -101,15 +101,6 @@ class CylindricalCam(CamBasics):
             )
 
     # -- basics (sigma, kind, roller_radius: CamBasics) ----------------------
-    @property
-    def breaks(self) -> np.ndarray:
-        return program_breaks(self.program)
-
-    @property
-    def inner_breaks(self) -> tuple[np.ndarray, ...]:
-        """Per piece (segment), the angles inside it where its law changes piece (:func:`program_inner_breaks`)."""
-        return program_inner_breaks(self.program)
-
     @property
     def bottom_radius(self) -> float:
         return self.base_radius - self.groove_depth

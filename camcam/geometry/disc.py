@@ -42,7 +42,18 @@ SIGMA = {"ccw": 1, "cw": -1}
 
 
 class CamBasics:
-    """What every cam says of its follower and rotation (needs ``follower`` and ``rotation``)."""
+    """What every cam says of its follower, rotation and program (needs ``follower``, ``rotation`` and
+    ``program``)."""
+
+    @property
+    def breaks(self) -> np.ndarray:
+        """The motion segments' boundaries (rad, 0 and 2π included): the cam's analytic pieces."""
+        return program_breaks(self.program)
+
+    @property
+    def inner_breaks(self) -> tuple[np.ndarray, ...]:
+        """Per piece (segment), the angles inside it where its law changes piece (:func:`program_inner_breaks`)."""
+        return program_inner_breaks(self.program)
 
     @property
     def sigma(self) -> int:
@@ -106,15 +117,6 @@ class DiscCam(CamBasics):
     @property
     def is_roller(self) -> bool:
         return self.follower.is_roller
-
-    @property
-    def breaks(self) -> np.ndarray:
-        return program_breaks(self.program)
-
-    @property
-    def inner_breaks(self) -> tuple[np.ndarray, ...]:
-        """Per piece (segment), the angles inside it where its law changes piece (:func:`program_inner_breaks`)."""
-        return program_inner_breaks(self.program)
 
     def element(self, theta, K: int, piece: int | None = None) -> Element:
         """Fixed-frame jets (order K) of the follower element at program angles θ."""
