@@ -14,7 +14,8 @@ may slot.
   engagement allowed, ramped down along the contour;
 * ``bore``: the helical bore (:mod:`camcam.nc.bore`), a slot too.
 
-Groove passes (slot, rough offsets, flanks) are ramped down along their contour.
+Groove passes (slot, rough offsets, flanks) are ramped down along their contour, each ramp ending at
+one of its joints (:func:`ramp_loop_passes`): every move is a whole fitted element.
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from camcam.nc.roughing import Spiral, cut_cyclic
+from camcam.nc.roughing import Spiral
 from camcam.toolpath.elements import Line
 from camcam.toolpath.path import (ArcMove, Comment, CutSettings, Feed, Pass, Rapid, contour_moves,
                                   lead_pass_moves)
@@ -69,34 +70,55 @@ def _ramp(elements, z0: float, z1: float, feed: float) -> list:
     return out
 
 
+def _whole_elements(elements, lengths, i: int, run: float) -> tuple[tuple, int]:
+    """Whole elements of a closed contour from index ``i`` on (cyclically, laps over if need be) until their
+    length reaches ``run``; and the index after the last one."""
+    out, acc, n = [], 0.0, len(elements)
+    while acc < run:
+        out.append(elements[i])
+        acc += lengths[i]
+        i = (i + 1) % n
+    return tuple(out), i
+
+
 def ramp_loop_passes(contour: int, kind: str, elements, levels, z_top: float, ramp_angle_deg: float,
                      cs: CutSettings, spring: bool) -> list[Pass]:
     """A closed contour cut down to each level: ramp along it (≤ ``ramp_angle_deg``), then one full lap.
 
     The ramp of the next level starts where the lap ended, so the tool winds
     down without leaving the groove; ``spring`` repeats the last lap.
+
+    A ramp ends at a joint of the contour, the first at or past the length its
+    drop needs at the ramp angle, so it may be a little shallower than the
+    angle.  Every move is then one of the fitted elements, each measured as
+    printed; a ramp cut inside an element would add a point no fit measured,
+    rounded to the post's grid (case 49:29 of ``benchmarks/anycam.py``: a dwell
+    arc's printed spiral cut at a point 0.0012 mm off it, the pieces 0.0047 mm
+    from the groove's centre at a tolerance of 0.0043 mm).
     """
     plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
-    total = float(sum(e.length for e in elements))
+    lengths = [e.length for e in elements]
+    if not sum(lengths) > 0:
+        raise ValueError(f"contour {contour}: a closed contour of length {sum(lengths):g} mm cannot be ramped along")
     slope = math.tan(math.radians(ramp_angle_deg))
     p0 = elements[0].start
     head = [Rapid(float(p0[0]), float(p0[1]), None), Rapid(None, None, cs.clearance_z_mm),
             Feed(None, None, z_top, plunge)]
-    passes, s, z_prev = [], 0.0, z_top
-    for i, z in enumerate(levels):
+    passes, i, z_prev = [], 0, z_top
+    for k, z in enumerate(levels):
         run = (z_prev - z) / slope * (1 + 1e-9)  # a hair longer: the printed slope stays under the limit
-        moves = list(head) if i == 0 else []
-        moves += _ramp(cut_cyclic(elements, s, s + run), z_prev, z, cs.feed_mm_min)
-        s = (s + run) % total
-        moves += contour_moves(cut_cyclic(elements, s, s + total), z, cs.feed_mm_min)
+        moves = list(head) if k == 0 else []
+        ramp, i = _whole_elements(elements, lengths, i, run)
+        moves += _ramp(ramp, z_prev, z, cs.feed_mm_min)
+        lap = tuple(elements[i:]) + tuple(elements[:i])
+        moves += contour_moves(lap, z, cs.feed_mm_min)
         passes.append(Pass(contour, kind, z, tuple(moves)))
         z_prev = z
     passes[-1] = Pass(contour, kind, levels[-1], passes[-1].moves + (Rapid(None, None, cs.clearance_z_mm),))
     if spring:
-        q = cut_cyclic(elements, s, s + total)
-        start = q[0].start
+        start = lap[0].start
         moves = [Rapid(float(start[0]), float(start[1]), None), Rapid(None, None, cs.clearance_z_mm),
-                 Feed(None, None, levels[-1], plunge)] + contour_moves(q, levels[-1], cs.feed_mm_min)
+                 Feed(None, None, levels[-1], plunge)] + contour_moves(lap, levels[-1], cs.feed_mm_min)
         moves.append(Rapid(None, None, cs.clearance_z_mm))
         passes.append(Pass(contour, "spring", levels[-1], tuple(moves)))
     return passes

@@ -37,7 +37,7 @@ from camcam.errors import GeometryError
 from camcam.geometry.curve import curvature
 from camcam.toolpath.elements import Arc, Line
 
-__all__ = ["Spiral", "disc_spiral", "polygon_distance", "polyline_elements", "polar_radii", "cut_cyclic", "ROUGH_FIT_MM",
+__all__ = ["Spiral", "disc_spiral", "polygon_distance", "polyline_elements", "polar_radii", "ROUGH_FIT_MM",
            "ROUGH_MARGIN_MM", "RING_STEP_FRACTION", "GrooveRings", "groove_rings", "band_width"]
 
 #: Fit tolerance of roughing paths (mm): they need not meet the finish tolerance, only stay off the part.
@@ -370,45 +370,4 @@ def polyline_elements(points: np.ndarray, tolerance_mm: float, max_sweep_deg: fl
                 best, good = e, mid
         out.append(best)
         i = good
-    return tuple(out)
-
-
-# -- ramps along a closed contour ---------------------------------------------------------------------------
-
-
-def _split(e, u: float):
-    """Element ``e`` cut at fraction ``u`` of its length: (first, second)."""
-    if isinstance(e, Line):
-        p = tuple(float(v) for v in np.add(e.start, np.multiply(u, np.subtract(e.end, e.start))))
-        return Line(e.start, p), Line(p, e.end)
-    a = e.start_angle + (1.0 if e.ccw else -1.0) * e.sweep * u
-    c = e.centre
-    p = (float(c[0] + e.radius * math.cos(a)), float(c[1] + e.radius * math.sin(a)))
-    return Arc(e.start, p, c, e.ccw), Arc(p, e.end, c, e.ccw)
-
-
-def cut_cyclic(elements, s_from: float, s_to: float) -> tuple:
-    """The piece of a closed contour between arc lengths ``s_from`` and ``s_to`` (may wrap, ``s_to`` > ``s_from``)."""
-    lengths = np.array([e.length for e in elements])
-    total = float(lengths.sum())
-    out, pos = [], 0.0
-    k = 0
-    run = max(s_to - s_from, 0.0)
-    s_from = s_from % total
-    s_to = s_from + run
-    # walk whole laps of the contour until s_to is reached
-    while pos < s_to - 1e-12:
-        e = elements[k % len(elements)]
-        L = lengths[k % len(elements)]
-        a, b = pos, pos + L
-        lo, hi = max(a, s_from), min(b, s_to)
-        if hi - lo > 1e-9:
-            piece = e
-            if hi < b - 1e-12:
-                piece = _split(piece, (hi - a) / L)[0]
-            if lo > a + 1e-12:
-                piece = _split(piece, (lo - a) / (hi - a) if hi < b - 1e-12 else (lo - a) / L)[1]
-            out.append(piece)
-        pos = b
-        k += 1
     return tuple(out)

@@ -1,7 +1,6 @@
 """Every disc sample, interpreted by rs274 and checked 2.5-D against its blank: from the stated stock to the
 design profile within tolerance, no plunge into material, no engagement over the stepover."""
 
-import math
 from dataclasses import replace
 
 import numpy as np
@@ -11,9 +10,9 @@ from hypothesis import strategies as st
 
 from camcam.errors import SpecError
 from camcam.verify import checked
-from camcam.nc.roughing import ROUGH_FIT_MM, cut_cyclic, polyline_elements
+from camcam.nc.roughing import ROUGH_FIT_MM, polyline_elements
 from camcam.spec.stock import StockSpec
-from camcam.toolpath.elements import Arc, element_distance
+from camcam.toolpath.elements import element_distance
 from camcam.verify.removal import check_moves, design_keep
 from camcam.verify.rs274 import print_margin_mm, rs274_available, run_rs274
 
@@ -119,17 +118,6 @@ def test_polyline_fit_stays_within_tolerance(radius, sweep, wobble, n):
     assert els[0].start == tuple(pts[0]) and els[-1].end == tuple(pts[-1])
     d = np.min([element_distance(e, pts) for e in els], axis=0)
     assert d.max() <= ROUGH_FIT_MM + 1e-9  # the fit's own bound (float rounding only)
-
-
-@settings(max_examples=25, deadline=None)
-@given(st.floats(0.0, 200.0), st.floats(0.1, 400.0))
-def test_cut_cyclic_length(s0, run):
-    """A piece of a closed contour is as long as asked, and starts where asked (circle of radius 10)."""
-    c = (Arc((10.0, 0.0), (-10.0, 0.0), (0.0, 0.0), True), Arc((-10.0, 0.0), (10.0, 0.0), (0.0, 0.0), True))
-    piece = cut_cyclic(c, s0, s0 + run)
-    assert sum(e.length for e in piece) == pytest.approx(run, rel=1e-9)
-    a = (s0 % (20 * math.pi)) / 10.0
-    assert piece[0].start == pytest.approx((10 * math.cos(a), 10 * math.sin(a)), abs=1e-9)
 
 
 def test_narrow_groove_tool_roughs_between_centre_and_flanks():
