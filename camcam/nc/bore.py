@@ -66,9 +66,9 @@ def bore_passes(contour: int, elements, blank: Blank, tool_radius_mm: float, z_c
     point.  ``ccw`` runs helix and circle counter-clockwise (climb with an M3 spindle: the material is
     outside, on the right of travel), else clockwise (conventional; :mod:`camcam.nc.direction`).
     """
-    return _helix_passes(contour, elements, (0.0, 0.0), bore_circle_radius(blank, tool_radius_mm), blank.top_z_mm,
-                         z_clear, min(z_depth, -thickness_mm), ramp_angle_deg=ramp_angle_deg,
-                         plunge_feed_mm_min=plunge_feed_mm_min, feed_mm_min=feed_mm_min, ccw=ccw)
+    return _helix_passes(contour, elements, (0.0, 0.0), blank.top_z_mm, z_clear, min(z_depth, -thickness_mm),
+                         ramp_angle_deg=ramp_angle_deg, plunge_feed_mm_min=plunge_feed_mm_min,
+                         feed_mm_min=feed_mm_min, ccw=ccw)
 
 
 def dowel_curve(blank: Blank, tool_radius_mm: float) -> JetCurve:
@@ -82,23 +82,31 @@ def dowel_passes(contour: int, elements, blank: Blank, tool_radius_mm: float, z_
     """The dowel hole through the cam (``[machining] dowel = true``): a ``bore`` pass about its centre, as
     :func:`bore_passes` (``ccw`` likewise), noted as the dowel hole."""
     d = blank.dowel
-    passes = _helix_passes(contour, elements, d.centre, d.diameter / 2 - tool_radius_mm, blank.top_z_mm, z_clear,
-                           min(z_depth, -thickness_mm), ramp_angle_deg=ramp_angle_deg,
-                           plunge_feed_mm_min=plunge_feed_mm_min, feed_mm_min=feed_mm_min, ccw=ccw)
+    passes = _helix_passes(contour, elements, d.centre, blank.top_z_mm, z_clear, min(z_depth, -thickness_mm),
+                           ramp_angle_deg=ramp_angle_deg, plunge_feed_mm_min=plunge_feed_mm_min,
+                           feed_mm_min=feed_mm_min, ccw=ccw)
     note = f"dowel hole Ø{d.diameter:g} mm at R{d.radius:g} mm, {d.angle_deg % 360:g}° from +X"
     return [replace(p, note=note) for p in passes]
 
 
-def _helix_passes(contour: int, elements, centre, rho: float, z_top: float, z_clear: float, z_end: float, *,
+def _helix_passes(contour: int, elements, centre, z_top: float, z_clear: float, z_end: float, *,
                   ramp_angle_deg: float, plunge_feed_mm_min: float, feed_mm_min: float,
                   ccw: bool) -> list[Pass]:
-    """A helix about ``centre`` on the tool-centre radius ``rho`` from ``z_top`` to ``z_end``, then the fitted
-    circle ``elements`` (counter-clockwise) there, and the retract; both run clockwise unless ``ccw``."""
+    """A helix about ``centre`` from ``z_top`` to ``z_end``, then the fitted circle ``elements``
+    (counter-clockwise) there, and the retract; both run clockwise unless ``ccw``.
+
+    The helix runs about ``centre`` on the circle through the fitted circle's first point (within the fit's
+    tolerance of the exact tool-centre circle)."""
     cx, cy = centre
+    start = tuple(map(float, elements[0].start))
+    # the helix turns on the circle through the fitted circle's first printed point, which lies up to the fit's
+    # deviation off the exact radius ρ: its quarter points on ρ itself made arcs whose ends are at two radii, and a post refuses
+    # more than its max_radius_error_mm (campaign case 50:51: a 2.4 mm bore circle at a tolerance of 0.047 mm
+    # began 0.0026 mm off ρ, "start/end radius differ by 0.002642 mm", an internal error on post haas)
+    rho = math.dist(start, centre)
     quarter = math.pi / 2 * rho
     per_quarter = quarter * math.tan(math.radians(ramp_angle_deg))
-    n = 4 * max(1, math.ceil((z_top - z_end) / per_quarter / 4 * (1 + 1e-9)))  # whole turns: ends at (ρ, 0)
-    start = tuple(map(float, elements[0].start))
+    n = 4 * max(1, math.ceil((z_top - z_end) / per_quarter / 4 * (1 + 1e-9)))  # whole turns: ends at the start
     phi0 = math.atan2(start[1] - cy, start[0] - cx)
     turn = math.pi / 2 if ccw else -math.pi / 2
     pts = [start] + [(cx + rho * math.cos(phi0 + k * turn), cy + rho * math.sin(phi0 + k * turn)) for k in (1, 2, 3)]
