@@ -20,7 +20,7 @@ import ezdxf
 import numpy as np
 from ezdxf import bbox, units
 
-from camcam.toolpath.elements import Arc, Line
+from camcam.toolpath.elements import Arc, Line, circular
 
 __all__ = ["Polyline", "Circle", "Text", "ExactCurve", "DxfDrawing", "contour_dxf", "HermiteSpline", "spline_of_curve", "LAYER_COLOURS"]
 
@@ -189,9 +189,11 @@ def _add_splines(msp, curve, layer, deviation_mm) -> tuple[float, int]:
 
 
 def _add_element(msp, e, layer) -> None:
+    """A LINE or an ARC; a printed spiral arc as the circular arc through its ends (:func:`circular`)."""
     if isinstance(e, Line):
         msp.add_line(e.start, e.end, dxfattribs={"layer": layer})
     else:
+        e = circular(e)
         a0, a1 = _deg(np.subtract(e.start, e.centre)), _deg(np.subtract(e.end, e.centre))
         if not e.ccw:
             a0, a1 = a1, a0

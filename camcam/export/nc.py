@@ -15,6 +15,7 @@ from camcam.nc.bore import bore_curve
 from camcam.nc.result import MachiningResult
 from camcam.toolpath.budget import DEFAULT_BUDGET, FitBudget
 from camcam.toolpath.deviation import measure_deviation
+from camcam.toolpath.elements import circular
 from camcam.toolpath.outline import part_outline
 
 __all__ = ["nc_files", "nc_dxf", "PartOutline", "part_of"]
@@ -25,7 +26,8 @@ class PartOutline:
     """The finished surfaces as the program cuts them: lines and arcs, and their deviation from the design.
 
     ``outlines`` are the fitted tool-centre paths of the finishing contours
-    offset by the tool radius to the material (:func:`~camcam.toolpath.outline.part_outline`);
+    offset by the tool radius to the material (:func:`~camcam.toolpath.outline.part_outline`), their
+    spiral arcs as the DXF draws them (:func:`~camcam.toolpath.elements.circular`);
     ``deviation_mm`` the largest two-sided deviation of one from its exact
     surface (the profile, or a groove's flank); ``None`` for a cylindrical cam,
     whose developed drawing has no planar offset.
@@ -93,7 +95,8 @@ def part_of(built: BuiltCam, r: MachiningResult, budget: FitBudget = DEFAULT_BUD
             d = _finished_side(c.curve, surface, r_t)
             if d is None:
                 continue
-            out = part_outline(c.fit.elements, d)
+            # measured as drawn: a spiral of the outline as the ARC through its ends the DXF holds
+            out = tuple(circular(e) for e in part_outline(c.fit.elements, d))
             outlines.append(out)
             worst = max(worst, measure_deviation(surface, out,
                                                  margin_mm=budget.margin_mm(r.tolerance_mm)).max_deviation_mm)

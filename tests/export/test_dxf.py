@@ -6,6 +6,7 @@ import pytest
 
 from camcam.export.dxf import Circle, Polyline, Text, contour_dxf
 from camcam.toolpath.arcfit import fit_contour
+from camcam.toolpath.elements import circular
 from tests.nc_curves import ellipse
 
 
@@ -27,13 +28,14 @@ def test_dxf_reads_back_and_audits_clean(tmp_path):
     assert len(msp.query("SPLINE[layer=='EXACT']")) == 4  # one per analytic piece
     assert len(msp.query("CIRCLE[layer=='BASE_CIRCLE']")) == 1
     assert d.spline_deviation_mm <= 1e-4
-    # each DXF arc reproduces the machined arc: same centre and start radius; its end is within the
-    # printed arc's start/end radius mismatch (≤ 1.5e-4 mm at 4 decimals) of the printed end
+    # each DXF arc is the machined arc: its centre where the printed ends are on one circle; a printed spiral's
+    # (end radius ≠ start radius, by ≤ 1.5e-4 mm at 4 decimals) the arc through its ends and its midpoint
     for a, e in zip(arcs, fit.elements):
-        assert np.allclose(np.asarray(a.dxf.center)[:2], e.centre, atol=1e-12)
+        assert np.allclose(np.asarray(a.dxf.center)[:2], circular(e).centre, atol=1e-12)  # the file's float text
+        assert abs(a.dxf.radius - e.radius) <= abs(e.end_radius - e.radius) + 1e-12
         ends = [np.asarray(a.start_point)[:2], np.asarray(a.end_point)[:2]]
         for p in (e.start, e.end):
-            assert min(np.hypot(*(q - p)) for q in ends) < 1.5e-4
+            assert min(np.hypot(*(q - p)) for q in ends) < 1e-9  # both ends exactly (the DXF's text: 1e-9 mm)
     # the splines run through the exact curve: sample one and measure
     spl = msp.query("SPLINE")[0].construction_tool()
     pts = np.array(list(spl.points(np.linspace(0, spl.max_t, 50))))[:, :2]
