@@ -220,13 +220,34 @@ def smallest_base_radius_without_undercut(cam) -> float:
     return math.ceil(r * 100.0 + 1e-9) / 100.0
 
 
+def _too_steep(cam, angle_deg: float, what: str) -> str:
+    """The error of an undercut or cusp no base radius avoids: the segment of the motion it is in, named as the
+    spec names it, and what would avoid it (campaign seed 50: five oscillating flat-faced followers, whose cusp
+    a larger base radius moves but never removes, and a larger pivot distance deepens, were told only "the
+    motion is too steep for this follower")."""
+    segs = cam.program.segments
+    k = next((i for i, g in enumerate(segs) if g.start_deg <= angle_deg % 360.0 < g.end_deg), len(segs) - 1)
+    g = segs[k]
+    kind = getattr(cam.follower, "kind", "this")
+    if g.law.name.startswith("lift-table"):
+        return (f"motion.lift_table: {what} at cam angle {angle_deg:.2f}°, and no base radius up to 100 m avoids "
+                f"it: the lift is too steep there for this {kind} follower; expected a gentler lift about that angle")
+    unit = "°" if cam.program.unit == "deg" else " mm"
+    return (f"motion.segments[{k}]: {what} at cam angle {angle_deg:.2f}° in its {g.law.name} from {g.start_deg:g}° "
+            f"to {g.end_deg:g}° (rise {g.scale:g}{unit}), and no base radius up to 100 m avoids it: the motion is too "
+            f"steep there for this {kind} follower; expected a longer segment or a smaller rise")
+
+
 def check_undercut(cam) -> None:
     """Raise :class:`GeometryError` if the profile (or a groove flank) has an undercut or a cusp."""
     margin, t = undercut_margin(cam)
     if margin > 0:
         return
-    fix = smallest_base_radius_without_undercut(cam)
     ang = _deg(t)
+    try:
+        fix = smallest_base_radius_without_undercut(cam)
+    except GeometryError:
+        raise GeometryError(_too_steep(cam, ang, "cusp" if cam.pitch is None else "undercut")) from None
     if cam.pitch is not None:
         k = convex_curvature(cam.pitch, cam.sigma, np.array([t]))[0][0]
         where = "the pitch curve's radius of curvature" + (" (concave)" if k < 0 else "")
