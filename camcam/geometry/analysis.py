@@ -225,15 +225,13 @@ def _too_steep(cam, angle_deg: float, what: str) -> str:
     spec names it, and what would avoid it (campaign seed 50: five oscillating flat-faced followers, whose cusp
     a larger base radius moves but never removes, and a larger pivot distance deepens, were told only "the
     motion is too steep for this follower")."""
-    segs = cam.program.segments
-    k = next((i for i, g in enumerate(segs) if g.start_deg <= angle_deg % 360.0 < g.end_deg), len(segs) - 1)
-    g = segs[k]
+    field, g = cam.program.spec_field(math.radians(angle_deg))
     kind = getattr(cam.follower, "kind", "this")
-    if g.law.name.startswith("lift-table"):
-        return (f"motion.lift_table: {what} at cam angle {angle_deg:.2f}°, and no base radius up to 100 m avoids "
+    if field == "motion.lift_table":
+        return (f"{field}: {what} at cam angle {angle_deg:.2f}°, and no base radius up to 100 m avoids "
                 f"it: the lift is too steep there for this {kind} follower; expected a gentler lift about that angle")
     unit = "°" if cam.program.unit == "deg" else " mm"
-    return (f"motion.segments[{k}]: {what} at cam angle {angle_deg:.2f}° in its {g.law.name} from {g.start_deg:g}° "
+    return (f"{field}: {what} at cam angle {angle_deg:.2f}° in its {g.law.name} from {g.start_deg:g}° "
             f"to {g.end_deg:g}° (rise {g.scale:g}{unit}), and no base radius up to 100 m avoids it: the motion is too "
             f"steep there for this {kind} follower; expected a longer segment or a smaller rise")
 

@@ -154,6 +154,22 @@ class MotionProgram:
         T = np.clip((deg - start) / (end - start), 0.0, 1.0)
         return idx, T
 
+    def spec_field(self, theta_rad: float) -> tuple[str, Segment]:
+        """The spec's name for the motion at cam angle θ (rad), ``motion.segments[k]``, or ``motion.lift_table``
+        for a table's program (one segment the spec does not list), and that segment.
+
+        Examples
+        --------
+        >>> from camcam.motion.catalog import make_law
+        >>> p = MotionProgram((Segment(make_law("cycloidal"), 0, 180, 10.0),
+        ...                    Segment(make_law("cycloidal"), 180, 360, -10.0, base=10.0)), rpm=60)
+        >>> p.spec_field(math.radians(200.0))[0]
+        'motion.segments[1]'
+        """
+        k = int(self.locate(np.array([theta_rad]))[0][0])
+        seg = self.segments[k]
+        return ("motion.lift_table" if seg.law.name.startswith("lift-table") else f"motion.segments[{k}]"), seg
+
     def lift(self, theta_rad, order: int = 0) -> np.ndarray:
         """d^order s/dθ^order at cam angles θ (rad): mm or deg, per radian^order."""
         return self._lift_orders(theta_rad, (order,))[0, ...]  # a 0-d array for a scalar θ, as before

@@ -47,16 +47,42 @@ class OscillatingFlat(FollowerKind):
         self.start_angle(base_radius)
 
     def check_cam(self, cam) -> None:
-        """The face keeps its contact on the pivot's side: ℓ > 0 and 1 + σψ′ > 0 all round."""
+        """The face keeps its contact on the pivot's side: ℓ > 0 and 1 + σψ′ > 0 all round.
+
+        ℓ = −a cos β / (1 + σψ′) with β = β₀ − ψ and sin β₀ = R_b/a (:meth:`element`), so where the follower
+        swings slower than the cam turns (1 + σψ′ > 0), ℓ > 0 ⇔ β > 90° ⇔ a > R_b / cos ψ: the pivot
+        distance the largest swing ψ_max needs, which the error names.  Where it swings as fast as the cam
+        turns, no pivot distance keeps the contact, and the error names the motion segment instead (campaign
+        case 52:39: a 25° return over 40°, told to use a larger pivot distance).
+        """
         t = np.linspace(0.0, 2 * math.pi, 3601)
         s1 = cam.lift(t, 1).d[1] * cam.sigma
         ell = cam.element(t, 0).along.value
-        bad = np.flatnonzero((1.0 + s1 <= 0) | (ell <= 0))
-        if bad.size:
+        fast = np.flatnonzero(1.0 + s1 <= 0)
+        if fast.size:
+            at = float(t[fast[0]])
+            field, seg = cam.program.spec_field(at)
+            lo, hi = seg.law.extreme(1, rest_ends=False)  # the law's exact extremes of dS/dT
+            rate = abs(seg.scale) * max(abs(lo.value), abs(hi.value)) / (seg.end_deg - seg.start_deg)
             raise GeometryError(
-                f"follower: the flat face loses contact at cam angle {math.degrees(t[bad[0]]):.2f}° "
-                "(the contact point passes the pivot); use a larger pivot_distance or a slower swing"
-            )
+                f"{field}: the flat face loses contact at cam angle {math.degrees(at):.2f}°, where the follower "
+                f"swings as fast as the cam turns (up to {rate:.3g} times as fast in its {seg.law.name} from "
+                f"{seg.start_deg:g}° to {seg.end_deg:g}°, rise {seg.scale:g}°); expected a longer segment or a "
+                f"smaller rise (no pivot distance keeps the contact)")
+        bad = np.flatnonzero(ell <= 0)
+        if bad.size:
+            psi_max = math.radians(cam.program.extremes(0)[1].value)
+            where = (f"the flat face loses contact at cam angle {math.degrees(t[bad[0]]):.2f}° (the contact point passes "
+                     f"the pivot)")
+            if psi_max >= math.pi / 2:
+                field, seg = cam.program.spec_field(float(t[bad[0]]))
+                raise GeometryError(f"{field}: {where}: a swing of {math.degrees(psi_max):g}° turns the face past "
+                                    f"the pivot at any pivot distance; expected a largest swing under 90°")
+            need = cam.base_radius / math.cos(psi_max)  # a > R_b / cos ψ_max
+            advised = math.ceil(need * 100.0 + 1e-9) / 100.0
+            raise GeometryError(f"follower.pivot_distance: at {self.pivot_distance:g} mm {where}; the largest swing "
+                                f"{math.degrees(psi_max):g}° needs more than R_b / cos ψ = {need:.4g} mm; expected at "
+                                f"least {advised:g} mm")
 
     def element(self, s: Jet, base_radius: float, sigma: int) -> Element:
         # contact Q = O + ℓ e_β; the envelope condition gives ℓ (σβ′ − 1) = a cos β, β′ = −ψ′
