@@ -258,6 +258,15 @@ def _signed_top(outer: np.ndarray, inner: np.ndarray) -> float:
     return float(ux * vy - uy * vx)
 
 
+def _bore_misfit(bore: float, ring: np.ndarray, what: str) -> str:
+    """The error of a bore that does not fit inside ``ring`` (n, 2): where the ring comes nearest the axis, and
+    the largest bore on the 0.01 mm grid that fits (the same points, the same check)."""
+    r = np.hypot(ring[:, 0], ring[:, 1])
+    k = int(np.argmin(r))
+    return (f"cam.bore: {bore:g} mm does not fit inside {what}, which comes within {r[k]:.3f} mm of the axis; "
+            f"expected at most {math.floor(2 * r[k] * 100.0 - 1e-6) / 100.0:g} mm")
+
+
 def disc_parts(cam, thickness: float, bore: float, per_piece: int = POINTS_PER_PIECE, keyway=None,
                dowel=None) -> MeshParts:
     """The disc cam extruded from z = 0 to ``thickness`` with a bore of diameter ``bore`` (and its ``keyway``, a
@@ -265,7 +274,7 @@ def disc_parts(cam, thickness: float, bore: float, per_piece: int = POINTS_PER_P
     _, pts = ring_points(cam.profile, per_piece)
     phi = _polar(pts, "profile")
     if bore / 2 >= np.hypot(pts[:, 0], pts[:, 1]).min():
-        raise GeometryError(f"cam.bore {bore:g} mm does not fit inside the profile")
+        raise GeometryError(_bore_misfit(bore, pts, "the profile"))
     if _reach(bore, keyway) >= np.hypot(pts[:, 0], pts[:, 1]).min():
         raise GeometryError(f"cam.keyway: it reaches radius {_reach(bore, keyway):.3g} mm, outside the profile")
     b = _Builder()
@@ -312,7 +321,7 @@ def groove_parts(cam, thickness: float, bore: float, outer_radius: float, per_pi
     if np.hypot(outer[:, 0], outer[:, 1]).max() >= outer_radius:
         raise GeometryError(f"cam.outer_radius {outer_radius:g} mm does not contain the groove")
     if bore / 2 >= np.hypot(inner[:, 0], inner[:, 1]).min():
-        raise GeometryError(f"cam.bore {bore:g} mm does not fit inside the groove's inner flank")
+        raise GeometryError(_bore_misfit(bore, inner, "the groove's inner flank"))
     if _reach(bore, keyway) >= np.hypot(inner[:, 0], inner[:, 1]).min():
         raise GeometryError(f"cam.keyway: it reaches radius {_reach(bore, keyway):.3g} mm, outside the groove's "
                             f"inner flank")

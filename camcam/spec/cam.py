@@ -54,8 +54,16 @@ def read_cam(t: Table) -> CamSpec:
         length = t.number("length", minimum=MIN_PART_MM, unit="mm")
         t.check("groove_depth", groove < base, f"{groove:g} must be smaller than base_radius = {base:g}")
     t.check("bore", bore == 0 or bore >= MIN_PART_MM, f"{bore:g} mm: expected 0 (no bore) or at least {MIN_PART_MM:g} mm")
-    if bore:
-        t.check("bore", bore / 2 < base - (groove or 0.0), f"{bore:g} mm leaves no material around the bore")
+    if bore and kind == "cylindrical":  # a barrel's groove is radial: the bore must stay under its bottom
+        t.check("bore", bore / 2 < base - groove, f"{bore:g} mm leaves no material under the groove, whose bottom "
+                                                  f"is at radius {base - groove:g} mm; expected at most "
+                                                  f"{_below(2 * (base - groove)):g} mm")
+    elif bore:
+        # a face groove's depth is axial: the bore must fit inside its inner flank, which the cam's geometry
+        # measures (camcam.geometry.mesh.groove_parts); the base radius bounds it here.  Campaign case 50:38 (a
+        # 9.4 mm bore, base radius 22.6 mm, groove 19.8 mm deep) was refused by base − depth = 2.8 mm
+        t.check("bore", bore / 2 < base, f"{bore:g} mm leaves no material around the bore; expected at most "
+                                         f"{_below(2 * base):g} mm (under twice the base radius)")
     max_pa = t.number("max_pressure_angle_deg", None, minimum=0.0, maximum=90.0, inclusive=False, unit="degrees")
     min_rho = t.number("min_curvature_radius_mm", None, minimum=0.0, unit="mm")
     limits = t.string("design_limits", "warn", choices=DESIGN_LIMITS)
@@ -68,6 +76,11 @@ def read_cam(t: Table) -> CamSpec:
                    outer_radius=outer, length=length, max_pressure_angle_deg=max_pa, min_curvature_radius_mm=min_rho,
                    design_limits=limits, material=material.strip() if material else None, keyway=keyway,
                    dowel=dowel)
+
+
+def _below(limit_mm: float) -> float:
+    """The largest diameter on the 0.01 mm grid strictly below ``limit_mm`` (the advice a bore check gives)."""
+    return math.floor(limit_mm * 100.0 - 1e-6) / 100.0
 
 
 def _keyway(t: Table, kind: str, bore: float, base: float) -> Keyway | None:
