@@ -81,6 +81,26 @@ def _whole_elements(elements, lengths, i: int, run: float) -> tuple[tuple, int]:
     return tuple(out), i
 
 
+def _start_joint(lengths, runs) -> int:
+    """The joint of a closed contour (element index) to start its ramps from: the one whose ramps, each of at
+    least its run in ``runs`` and ending at the first joint at or past it, from where the last ended, add up
+    to the least length (the first such index on a tie).
+
+    Examples
+    --------
+    >>> _start_joint([3.0, 1.0, 3.0, 1.0], [4.5])  # from joint 3: 1 + 3 + 1 = 5, from 0: 3 + 1 + 3 = 7
+    1
+    """
+    cum = np.concatenate([[0.0], np.cumsum(lengths)])
+    total = float(cum[-1])
+    laps = math.ceil((sum(runs) + len(runs) * max(lengths)) / total) + 2  # each ramp overshoots < one element
+    unrolled = np.concatenate([cum[:-1] + k * total for k in range(laps)] + [[laps * total]])
+    pos = cum[:-1].copy()
+    for r in runs:
+        pos = unrolled[np.searchsorted(unrolled, pos + r, side="left")]
+    return int(np.argmin(pos - cum[:-1]))
+
+
 def ramp_loop_passes(contour: int, kind: str, elements, levels, z_top: float, ramp_angle_deg: float,
                      cs: CutSettings, spring: bool) -> list[Pass]:
     """A closed contour cut down to each level: ramp along it (≤ ``ramp_angle_deg``), then one full lap.
@@ -94,19 +114,22 @@ def ramp_loop_passes(contour: int, kind: str, elements, levels, z_top: float, ra
     printed; a ramp cut inside an element would add a point no fit measured,
     rounded to the post's grid (case 49:29 of ``benchmarks/anycam.py``: a dwell
     arc's printed spiral cut at a point 0.0012 mm off it, the pieces 0.0047 mm
-    from the groove's centre at a tolerance of 0.0043 mm).
+    from the groove's centre at a tolerance of 0.0043 mm).  The ramps start at
+    the joint from which they overshoot their runs least (:func:`_start_joint`).
     """
     plunge = cs.plunge_feed_mm_min or cs.feed_mm_min / 2
     lengths = [e.length for e in elements]
     if not sum(lengths) > 0:
         raise ValueError(f"contour {contour}: a closed contour of length {sum(lengths):g} mm cannot be ramped along")
     slope = math.tan(math.radians(ramp_angle_deg))
-    p0 = elements[0].start
+    # a hair longer than the drop needs: the printed slope stays under the limit
+    runs = [(z_prev - z) / slope * (1 + 1e-9) for z_prev, z in zip([z_top, *levels[:-1]], levels)]
+    i = _start_joint(lengths, runs)  # the joint the ramps overshoot their runs least from
+    p0 = elements[i].start
     head = [Rapid(float(p0[0]), float(p0[1]), None), Rapid(None, None, cs.clearance_z_mm),
             Feed(None, None, z_top, plunge)]
-    passes, i, z_prev = [], 0, z_top
-    for k, z in enumerate(levels):
-        run = (z_prev - z) / slope * (1 + 1e-9)  # a hair longer: the printed slope stays under the limit
+    passes, z_prev = [], z_top
+    for k, (z, run) in enumerate(zip(levels, runs)):
         moves = list(head) if k == 0 else []
         ramp, i = _whole_elements(elements, lengths, i, run)
         moves += _ramp(ramp, z_prev, z, cs.feed_mm_min)

@@ -46,7 +46,10 @@ def test_ramps_end_at_joints_within_the_angle(radius, fractions, lines, depth, s
     cs = CutSettings(depth_mm=depth, stepdown_mm=stepdown, feed_mm_min=300.0, spindle_rpm=2000.0)
     passes = ramp_loop_passes(0, "slot", elements, levels, 0.0, angle, cs, spring)
     slope = math.tan(math.radians(angle))
-    at, z_prev = elements[0].start, 0.0
+    head = passes[0].moves[0]  # the rapid over the start: a joint
+    at, z_prev = (head.x, head.y), 0.0
+    assert at in {e.start for e in elements}
+    total_ramp = 0.0
     for k, z in enumerate(levels):
         moves = [m for j, m in _xy_moves(passes) if j == k]
         assert all((m.x, m.y) in joints for m in moves)  # no point but the contour's own joints
@@ -61,7 +64,16 @@ def test_ramps_end_at_joints_within_the_angle(radius, fractions, lines, depth, s
         lap = moves[n:]  # one lap at the level, back to where the ramp ended
         assert len(lap) == len(elements) and all(m.z == z for m in lap)
         assert (lap[-1].x, lap[-1].y) == (moves[n - 1].x, moves[n - 1].y)
-        at, z_prev = (moves[n - 1].x, moves[n - 1].y), z
+        at, z_prev, total_ramp = (moves[n - 1].x, moves[n - 1].y), z, total_ramp + run
+    # the start overshoots least: no joint's ramps add up to less (each joint's walked as the planner walks)
+    for j in range(len(elements)):
+        whole, i, z_prev = 0.0, j, 0.0
+        for z in levels:
+            run = 0.0
+            while run < (z_prev - z) / slope * (1 + 1e-9):
+                run, i = run + lengths[i], (i + 1) % len(elements)
+            whole, z_prev = whole + run, z
+        assert total_ramp <= whole + 1e-9 * whole  # float sums in another order
     if spring:
         assert passes[-1].kind == "spring"
 
@@ -76,7 +88,15 @@ def test_the_slot_of_case_49_29_cuts_within_its_tolerance():
     joints = {e.end for e in c.fit.elements}
     cuts = [mv for mv in r.toolpath.moves if isinstance(mv, (Feed, ArcMove)) and mv.x is not None]
     assert all((mv.x, mv.y) in joints for mv in cuts)  # the ramp ended inside a dwell arc: (-65.328, 6.937)
-    # the ramp's last element, the 137 mm dwell arc, is cut whole: a ramp 82 mm longer than its 294 mm drop
+    # the ramp of the one level: whole elements from the joint they overshoot the 293.9 mm run least from (from
+    # the contour's first joint it took the 137 mm dwell arc whole, 82 mm over)
+    (p,) = [p for p in r.toolpath.passes if p.kind == "slot"]
+    cut = [mv for mv in p.moves if isinstance(mv, (Feed, ArcMove)) and mv.x is not None]
+    ramp = cut[:len(cut) - len(c.fit.elements)]  # then one lap, element by element
+    run = m.depth_mm / math.tan(math.radians(m.ramp_angle_deg))
+    by_end = {e.end: e for e in c.fit.elements}
+    length = sum(by_end[(mv.x, mv.y)].length for mv in ramp)
+    assert run <= length < run + 5.0  # 3 mm over here: the nearest joint past the run from the best start
     assert 0.0041 < printed < m.tolerance_mm  # the fit's figure on the printed contour (4 decimals as reported)
     # the material check reads the program back: what is left and overcut is the contour's own figure, within the
     # check's resolution (it was 0.00537 left and 0.0047 overcut at the split)
