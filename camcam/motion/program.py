@@ -165,8 +165,25 @@ class MotionProgram:
         ...                    Segment(make_law("cycloidal"), 180, 360, -10.0, base=10.0)), rpm=60)
         >>> p.spec_field(math.radians(200.0))[0]
         'motion.segments[1]'
+
+        An angle at a dwell's end is the join of the segment that moves there:
+
+        >>> from camcam.motion.standard import dwell
+        >>> q = MotionProgram((Segment(make_law("cycloidal"), 0, 90, 10.0), Segment(dwell(), 90, 180, 0.0, base=10.0),
+        ...                    Segment(make_law("cycloidal"), 180, 360, -10.0, base=10.0)), rpm=60)
+        >>> [q.spec_field(math.radians(a))[0] for a in (90.0, 120.0, 180.0)]
+        ['motion.segments[0]', 'motion.segments[1]', 'motion.segments[2]']
         """
         k = int(self.locate(np.array([theta_rad]))[0][0])
+        if self.segments[k].scale == 0 and len(self.segments) > 1:
+            # an angle at a dwell's end is a join: it belongs to the segment that moves there (campaign case 53:30
+            # named "its dwell from 59° to 97°" for a cusp at 59°, the end of the rise before it)
+            deg = math.degrees(theta_rad) % 360.0
+            seg = self.segments[k]
+            if abs(deg - seg.start_deg) <= 1e-9 or abs(deg - seg.start_deg) >= 360.0 - 1e-9:
+                k = (k - 1) % len(self.segments)
+            elif abs(seg.end_deg - deg) <= 1e-9 or abs(seg.end_deg - deg) >= 360.0 - 1e-9:
+                k = (k + 1) % len(self.segments)
         seg = self.segments[k]
         return ("motion.lift_table" if seg.law.name.startswith("lift-table") else f"motion.segments[{k}]"), seg
 

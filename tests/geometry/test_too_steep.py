@@ -61,3 +61,13 @@ def test_a_lift_table_is_named_as_the_table():
     with pytest.raises(GeometryError, match=r"^motion\.lift_table: cusp at cam angle 22[0-9]\.[0-9]{2}°, and no "
                                             r"base radius up to 100 m avoids it: .*expected a gentler lift"):
         check_undercut(cam)
+
+
+def test_a_cusp_at_a_dwells_start_names_the_segment_that_moves_there():
+    """Campaign case 53:30: the cusp lies at 59°, the end of a parabolic rise and the start of a dwell; the
+    error named "its dwell from 59° to 97° (rise 0°)" and asked for a smaller rise of it."""
+    with pytest.raises(GeometryError) as err:
+        spec = load_spec(Path(__file__).parent / "data" / "too-steep-at-a-dwell-53-30.toml")
+        check_undercut(_cam(spec, spec.cam.base_radius, spec.follower.pivot_distance))
+    assert str(err.value).startswith("motion.segments[1]: cusp at cam angle 59.00° in its parabolic from 19° to 59° "
+                                     "(rise 25°)")
