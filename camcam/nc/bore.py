@@ -100,9 +100,9 @@ def _helix_passes(contour: int, elements, centre, z_top: float, z_clear: float, 
     cx, cy = centre
     start = tuple(map(float, elements[0].start))
     # the helix turns on the circle through the fitted circle's first printed point, which lies up to the fit's
-    # deviation off the exact radius ρ: its quarter points on ρ itself made arcs whose ends are at two radii, and a post refuses
-    # more than its max_radius_error_mm (campaign case 50:51: a 2.4 mm bore circle at a tolerance of 0.047 mm
-    # began 0.0026 mm off ρ, "start/end radius differ by 0.002642 mm", an internal error on post haas)
+    # deviation off the exact radius ρ: quarter points on ρ itself made arcs whose ends are at two radii, and a
+    # post refuses more than its max_radius_error_mm (campaign case 50:51: a 2.4 mm bore circle at a tolerance
+    # of 0.047 mm began 0.0026 mm off ρ, "start/end radius differ by 0.002642 mm", an internal error on haas)
     rho = math.dist(start, centre)
     quarter = math.pi / 2 * rho
     per_quarter = quarter * math.tan(math.radians(ramp_angle_deg))

@@ -88,7 +88,7 @@ def _start_joint(lengths, runs) -> int:
 
     Examples
     --------
-    >>> _start_joint([3.0, 1.0, 3.0, 1.0], [4.5])  # from joint 3: 1 + 3 + 1 = 5, from 0: 3 + 1 + 3 = 7
+    >>> _start_joint([3.0, 1.0, 3.0, 1.0], [4.5])  # from joint 1 or 3: 1 + 3 + 1 = 5; from 0 or 2: 3 + 1 + 3 = 7
     1
     """
     cum = np.concatenate([[0.0], np.cumsum(lengths)])

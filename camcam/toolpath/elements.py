@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Line", "Arc", "circular", "element_tangent", "arc_from_tangent", "element_points", "element_nearest", "element_distance",
-           "element_distances", "contour_length"]
+__all__ = ["Line", "Arc", "circular", "element_tangent", "arc_from_tangent", "element_points", "element_nearest",
+           "element_distance", "element_distances", "contour_length"]
 
 
 @dataclass(frozen=True)

@@ -34,7 +34,8 @@ def _gaps(path, arcs):
 
 
 def test_the_program_path_is_drawn_as_a_closed_chain():
-    assert max(abs(e.end_radius - e.radius) for e in PRINTED) == pytest.approx(1.451e-3, abs=1e-6)  # spirals: the third arc
+    # spirals as printed: the third arc's ends are 1.451e-3 mm apart in radius
+    assert max(abs(e.end_radius - e.radius) for e in PRINTED) == pytest.approx(1.451e-3, abs=1e-6)
     arcs = _arcs(contour_dxf(PRINTED, contour_layer="TOOL_CENTRE").data, "TOOL_CENTRE")
     assert len(arcs) == 4
     # each joint is the end of both entities beside it, to the DXF's float text (1e-9 mm: a chain a CAD

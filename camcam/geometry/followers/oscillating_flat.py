@@ -72,17 +72,17 @@ class OscillatingFlat(FollowerKind):
         bad = np.flatnonzero(ell <= 0)
         if bad.size:
             psi_max = math.radians(cam.program.extremes(0)[1].value)
-            where = (f"the flat face loses contact at cam angle {math.degrees(t[bad[0]]):.2f}° (the contact point passes "
-                     f"the pivot)")
+            deg = math.degrees(t[bad[0]])
+            where = f"the flat face loses contact at cam angle {deg:.2f}° (the contact point passes the pivot)"
             if psi_max >= math.pi / 2:
                 field, seg = cam.program.spec_field(float(t[bad[0]]))
                 raise GeometryError(f"{field}: {where}: a swing of {math.degrees(psi_max):g}° turns the face past "
                                     f"the pivot at any pivot distance; expected a largest swing under 90°")
             need = cam.base_radius / math.cos(psi_max)  # a > R_b / cos ψ_max
             advised = math.ceil(need * 100.0 + 1e-9) / 100.0
-            raise GeometryError(f"follower.pivot_distance: at {self.pivot_distance:g} mm {where}; the largest swing "
-                                f"{math.degrees(psi_max):g}° needs more than R_b / cos ψ = {need:.4g} mm; expected at "
-                                f"least {advised:g} mm")
+            raise GeometryError(f"follower.pivot_distance: at {self.pivot_distance:g} mm {where}; the largest "
+                                f"swing {math.degrees(psi_max):g}° needs more than R_b / cos ψ = {need:.4g} mm; "
+                                f"expected at least {advised:g} mm")
 
     def element(self, s: Jet, base_radius: float, sigma: int) -> Element:
         # contact Q = O + ℓ e_β; the envelope condition gives ℓ (σβ′ − 1) = a cos β, β′ = −ψ′
