@@ -19,6 +19,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "camcam"
 #: Rank of each top-level package or module of camcam: an import may only go to the same or a lower rank.
 RANK = {
     "__init__": 0, "errors": 0, "inputs": 0, "verdict": 0, "lazy": 0, "workers": 0, "interrupts": 0, "data": 0,
+    "advice": 0,
     "motion": 1,
     "geometry": 2, "optimize": 2, "lifttable": 2,
     "reverse": 3, "toolpath": 3, "dynamics": 3, "inspect": 3,

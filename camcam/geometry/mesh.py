@@ -29,6 +29,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from camcam.advice import largest_below_mm
 from camcam.errors import GeometryError
 
 if TYPE_CHECKING:
@@ -264,7 +265,7 @@ def _bore_misfit(bore: float, ring: np.ndarray, what: str) -> str:
     r = np.hypot(ring[:, 0], ring[:, 1])
     k = int(np.argmin(r))
     return (f"cam.bore: {bore:g} mm does not fit inside {what}, which comes within {r[k]:.3f} mm of the axis; "
-            f"expected at most {math.floor(2 * r[k] * 100.0 - 1e-6) / 100.0:g} mm")
+            f"expected at most {largest_below_mm(2 * r[k]):g} mm")
 
 
 def disc_parts(cam, thickness: float, bore: float, per_piece: int = POINTS_PER_PIECE, keyway=None,

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 
+from camcam.advice import largest_below_mm
 from camcam.geometry.params import CAM_KINDS, CamSpec, Dowel, Keyway
 from camcam.spec.reader import Table
 
@@ -57,13 +58,13 @@ def read_cam(t: Table) -> CamSpec:
     if bore and kind == "cylindrical":  # a barrel's groove is radial: the bore must stay under its bottom
         t.check("bore", bore / 2 < base - groove, f"{bore:g} mm leaves no material under the groove, whose bottom "
                                                   f"is at radius {base - groove:g} mm; expected at most "
-                                                  f"{_below(2 * (base - groove)):g} mm")
+                                                  f"{largest_below_mm(2 * (base - groove)):g} mm")
     elif bore:
         # a face groove's depth is axial: the bore must fit inside its inner flank, which the cam's geometry
         # measures (camcam.geometry.mesh.groove_parts); the base radius bounds it here.  Campaign case 50:38 (a
         # 9.4 mm bore, base radius 22.6 mm, groove 19.8 mm deep) was refused by base − depth = 2.8 mm
         t.check("bore", bore / 2 < base, f"{bore:g} mm leaves no material around the bore; expected at most "
-                                         f"{_below(2 * base):g} mm (under twice the base radius)")
+                                         f"{largest_below_mm(2 * base):g} mm (under twice the base radius)")
     max_pa = t.number("max_pressure_angle_deg", None, minimum=0.0, maximum=90.0, inclusive=False, unit="degrees")
     min_rho = t.number("min_curvature_radius_mm", None, minimum=0.0, unit="mm")
     limits = t.string("design_limits", "warn", choices=DESIGN_LIMITS)
@@ -76,11 +77,6 @@ def read_cam(t: Table) -> CamSpec:
                    outer_radius=outer, length=length, max_pressure_angle_deg=max_pa, min_curvature_radius_mm=min_rho,
                    design_limits=limits, material=material.strip() if material else None, keyway=keyway,
                    dowel=dowel)
-
-
-def _below(limit_mm: float) -> float:
-    """The largest diameter on the 0.01 mm grid strictly below ``limit_mm`` (the advice a bore check gives)."""
-    return math.floor(limit_mm * 100.0 - 1e-6) / 100.0
 
 
 def _keyway(t: Table, kind: str, bore: float, base: float) -> Keyway | None:

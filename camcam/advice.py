@@ -1,0 +1,21 @@
+"""The values advice names: a limit rounded to the 0.01 mm grid on its safe side.
+
+An error that says ``expected at most 38.59 mm`` is followed by users and by the design-space campaign
+(``benchmarks/anycam.py``) literally: the value must pass the check that gave it.
+
+Examples
+--------
+>>> largest_below_mm(38.6), largest_below_mm(38.601)
+(38.59, 38.6)
+"""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["largest_below_mm"]
+
+
+def largest_below_mm(limit_mm: float) -> float:
+    """The largest value on the 0.01 mm grid strictly below ``limit_mm`` (a bore that must stay inside a circle)."""
+    return math.floor(limit_mm * 100.0 - 1e-6) / 100.0
