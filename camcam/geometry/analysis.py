@@ -19,6 +19,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from camcam.advice import smallest_above_mm
 from camcam.errors import GeometryError
 from camcam.geometry.extrema import extreme, negative_ranges
 from camcam.geometry.jet import hypot
@@ -217,7 +218,7 @@ def smallest_base_radius_without_undercut(cam) -> float:
     from scipy.optimize import brentq  # only sizing asks this: a run need not import scipy.optimize
 
     r = brentq(m, lo, hi, xtol=1e-6) if m(lo) < 0 else lo
-    return math.ceil(r * 100.0 + 1e-9) / 100.0
+    return smallest_above_mm(r)
 
 
 def _too_steep(cam, angle_deg: float, what: str) -> str:

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from camcam.advice import smallest_above_mm
 from camcam.errors import GeometryError
 from camcam.geometry.followers.base import Element, FollowerKind, reject
 from camcam.geometry.jet import Jet
@@ -79,7 +80,7 @@ class OscillatingFlat(FollowerKind):
                 raise GeometryError(f"{field}: {where}: a swing of {math.degrees(psi_max):g}° turns the face past "
                                     f"the pivot at any pivot distance; expected a largest swing under 90°")
             need = cam.base_radius / math.cos(psi_max)  # a > R_b / cos ψ_max
-            advised = math.ceil(need * 100.0 + 1e-9) / 100.0
+            advised = smallest_above_mm(need)
             raise GeometryError(f"follower.pivot_distance: at {self.pivot_distance:g} mm {where}; the largest "
                                 f"swing {math.degrees(psi_max):g}° needs more than R_b / cos ψ = {need:.4g} mm; "
                                 f"expected at least {advised:g} mm")
